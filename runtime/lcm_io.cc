@@ -1,0 +1,96 @@
+#include "runtime/lcm_io.h"
+
+#include <cstdio>
+#include <cstdlib>
+
+namespace slammtt {
+
+std::string ResolveLcmUrl(const std::optional<std::string>& from_command_line,
+                          const std::optional<std::string>& from_config) {
+  if (from_command_line && !from_command_line->empty()) return *from_command_line;
+  if (from_config && !from_config->empty()) return *from_config;
+  const char* env = std::getenv("LCM_DEFAULT_URL");
+  if (env != nullptr && env[0] != '\0') return env;
+  return kDefaultLcmUrl;
+}
+
+std::unique_ptr<lcm::LCM> OpenLcm(const std::string& url) {
+  auto lcm = std::make_unique<lcm::LCM>(url);
+  if (!lcm->good()) {
+    std::string message = "cannot open LCM at '" + url + "'";
+    if (url.rfind("udpm://", 0) == 0) {
+      message +=
+          " (LCM needs a multicast route: 'ip route add 224.0.0.0/4 dev lo' on a host without "
+          "a network, or a default route)";
+    }
+    throw std::runtime_error(message);
+  }
+  return lcm;
+}
+
+void LcmSink::Publish(const std::string& channel, const void* data, int size) {
+  if (lcm_->publish(channel, data, static_cast<unsigned int>(size)) != 0) {
+    throw std::runtime_error("LCM publish on " + channel + " failed");
+  }
+}
+
+LogWriter::LogWriter(const std::string& path) : path_(path), partial_path_(path + ".partial") {
+  file_ = std::make_unique<lcm::LogFile>(partial_path_, "w");
+  if (!file_->good()) {
+    file_.reset();
+    throw std::runtime_error(path + ": cannot create log file");
+  }
+}
+
+LogWriter::~LogWriter() {
+  if (!committed_) {
+    file_.reset();
+    std::remove(partial_path_.c_str());
+  }
+}
+
+void LogWriter::Write(int64_t timestamp_us, const std::string& channel, const void* data,
+                      int size) {
+  if (committed_ || !file_) throw std::runtime_error(path_ + ": log already closed");
+  lcm::LogEvent event;
+  event.eventnum = 0;  // lcm numbers events itself
+  event.timestamp = timestamp_us;
+  event.channel = channel;
+  event.datalen = size;
+  event.data = const_cast<void*>(data);
+  if (file_->writeEvent(&event) != 0) throw std::runtime_error(path_ + ": write failed");
+  ++events_written_;
+}
+
+void LogWriter::Publish(const std::string& channel, const void* data, int size) {
+  Write(timestamp_us_, channel, data, size);
+}
+
+void LogWriter::Commit() {
+  if (committed_) return;
+  if (std::fflush(file_->getFilePtr()) != 0) throw std::runtime_error(path_ + ": flush failed");
+  file_.reset();
+  if (std::rename(partial_path_.c_str(), path_.c_str()) != 0) {
+    throw std::runtime_error(path_ + ": cannot move the finished log into place");
+  }
+  committed_ = true;
+}
+
+LogReader::LogReader(const std::string& path) {
+  file_ = std::make_unique<lcm::LogFile>(path, "r");
+  if (!file_->good()) throw std::runtime_error(path + ": cannot open log file");
+}
+
+std::optional<LogEvent> LogReader::Next() {
+  const lcm::LogEvent* event = file_->readNextEvent();
+  if (event == nullptr) return std::nullopt;
+  LogEvent out;
+  out.eventnum = event->eventnum;
+  out.timestamp_us = event->timestamp;
+  out.channel = event->channel;
+  const auto* bytes = static_cast<const uint8_t*>(event->data);
+  out.data.assign(bytes, bytes + event->datalen);
+  return out;
+}
+
+}  // namespace slammtt

@@ -1,0 +1,124 @@
+// LCM plumbing shared by every process and tool: the bus URL, encoding, a sink that stages
+// publish into (LCM live, a log file in replay), and log files written so that an error never
+// leaves a partial log behind.
+#pragma once
+
+#include <lcm/lcm-cpp.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace slammtt {
+
+// Our default bus: LCM's own default group and port, with ttl=0 so that no packet leaves the
+// host unless a user asks for a LAN URL.
+inline constexpr const char* kDefaultLcmUrl = "udpm://239.255.76.67:7667?ttl=0";
+
+// The URL to use: the command line if given, else the configuration's lcm.url, else the
+// environment's LCM_DEFAULT_URL, else kDefaultLcmUrl.
+std::string ResolveLcmUrl(const std::optional<std::string>& from_command_line,
+                          const std::optional<std::string>& from_config);
+
+// Opens the bus; throws std::runtime_error with a one-line explanation (and the fix for the
+// usual cause, a host without a multicast route) when LCM cannot start.
+std::unique_ptr<lcm::LCM> OpenLcm(const std::string& url);
+
+// Encodes any lcm-gen type.
+template <class Msg>
+std::vector<uint8_t> Encode(const Msg& message) {
+  std::vector<uint8_t> bytes(static_cast<size_t>(message.getEncodedSize()));
+  message.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+  return bytes;
+}
+
+// Decodes any lcm-gen type; false (and the message untouched or partly filled) on bad bytes.
+template <class Msg>
+bool Decode(const void* data, int size, Msg* message) {
+  return size >= 0 && message->decode(data, 0, size) == size;
+}
+
+// Where a stage's outputs go: LCM in a live process, the output log in replay.
+class MessageSink {
+ public:
+  virtual ~MessageSink() = default;
+  virtual void Publish(const std::string& channel, const void* data, int size) = 0;
+
+  template <class Msg>
+  void PublishMessage(const std::string& channel, const Msg& message) {
+    const std::vector<uint8_t> bytes = Encode(message);
+    Publish(channel, bytes.data(), static_cast<int>(bytes.size()));
+  }
+};
+
+// Publishes on a live bus.
+class LcmSink : public MessageSink {
+ public:
+  explicit LcmSink(lcm::LCM* lcm) : lcm_(lcm) {}
+  void Publish(const std::string& channel, const void* data, int size) override;
+
+ private:
+  lcm::LCM* lcm_;
+};
+
+// Writes an LCM event log (lcm-logger's format, playable by lcm-logplayer). The log is written
+// to "<path>.partial" and renamed to <path> by Commit(); destroying an uncommitted writer removes
+// the partial file, so a failed run leaves nothing that looks like a finished log.
+class LogWriter : public MessageSink {
+ public:
+  // Throws std::runtime_error when the file cannot be created.
+  explicit LogWriter(const std::string& path);
+  ~LogWriter() override;
+  LogWriter(const LogWriter&) = delete;
+  LogWriter& operator=(const LogWriter&) = delete;
+
+  // Event timestamps are the caller's (message time, never the wall clock), so the same input
+  // gives the same bytes. Publish() uses the timestamp set by SetTimestamp().
+  void Write(int64_t timestamp_us, const std::string& channel, const void* data, int size);
+  void SetTimestamp(int64_t timestamp_us) { timestamp_us_ = timestamp_us; }
+  void Publish(const std::string& channel, const void* data, int size) override;
+
+  template <class Msg>
+  void WriteMessage(int64_t timestamp_us, const std::string& channel, const Msg& message) {
+    const std::vector<uint8_t> bytes = Encode(message);
+    Write(timestamp_us, channel, bytes.data(), static_cast<int>(bytes.size()));
+  }
+
+  // Flushes, closes and renames the log into place. Throws on an I/O error.
+  void Commit();
+  int64_t events_written() const { return events_written_; }
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+  std::string partial_path_;
+  std::unique_ptr<lcm::LogFile> file_;
+  int64_t timestamp_us_ = 0;
+  int64_t events_written_ = 0;
+  bool committed_ = false;
+};
+
+// One event of a log.
+struct LogEvent {
+  int64_t eventnum = 0;
+  int64_t timestamp_us = 0;
+  std::string channel;
+  std::vector<uint8_t> data;
+};
+
+// Reads an LCM event log in file order.
+class LogReader {
+ public:
+  // Throws std::runtime_error naming the path when it cannot be opened.
+  explicit LogReader(const std::string& path);
+  // The next event, or nullopt at the end of the log (a truncated last event also ends it).
+  std::optional<LogEvent> Next();
+
+ private:
+  std::unique_ptr<lcm::LogFile> file_;
+};
+
+}  // namespace slammtt

@@ -1,0 +1,97 @@
+#include "runtime/config.h"
+
+#include <gtest/gtest.h>
+
+namespace slammtt {
+namespace {
+
+TEST(ConfigTest, ReadsTypedValuesAndDefaults) {
+  const Config c = Config::FromString(
+      "segmenter:\n  lambda_deg: 20\n  sigma_r_m: 0.03\n  centre: circle\n  enabled: true\n"
+      "  list: [1, 2.5]\n",
+      "test.yaml");
+  const Config s = c.Child("segmenter");
+  EXPECT_DOUBLE_EQ(s.GetDouble("lambda_deg", 0.0), 20.0);
+  EXPECT_DOUBLE_EQ(s.GetDouble("sigma_r_m", 0.0), 0.03);
+  EXPECT_EQ(s.GetString("centre", ""), "circle");
+  EXPECT_TRUE(s.GetBool("enabled", false));
+  EXPECT_EQ(s.GetDoubles("list", {}), (std::vector<double>{1.0, 2.5}));
+  EXPECT_EQ(s.GetInt("min_points", 3), 3);
+  EXPECT_NO_THROW(c.CheckUnused());
+}
+
+TEST(ConfigTest, UnknownKeyIsAnErrorNamingFileLineAndPath) {
+  const Config c = Config::FromString("segmenter:\n  lambda_deg: 20\n  lamda_deg: 21\n", "a.yaml");
+  const Config s = c.Child("segmenter");
+  s.GetDouble("lambda_deg", 0.0);
+  try {
+    c.CheckUnused();
+    FAIL() << "expected ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_STREQ(e.what(), "a.yaml:3: segmenter.lamda_deg: unknown key");
+  }
+}
+
+TEST(ConfigTest, WrongTypeNamesTheKeyAndTheValue) {
+  const Config c = Config::FromString("radius_m: big\n", "s.yaml");
+  try {
+    c.GetDouble("radius_m", 1.0);
+    FAIL() << "expected ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_STREQ(e.what(), "s.yaml:1: radius_m: expected a number, got \"big\"");
+  }
+}
+
+TEST(ConfigTest, RejectsNonFiniteNumbersAndFractionalIntegers) {
+  const Config c = Config::FromString("a: .nan\nb: .inf\nc: 2.5\n", "s.yaml");
+  EXPECT_THROW(c.GetDouble("a", 0), ConfigError);
+  EXPECT_THROW(c.GetDouble("b", 0), ConfigError);
+  EXPECT_THROW(c.GetInt("c", 0), ConfigError);
+}
+
+TEST(ConfigTest, MissingRequiredKey) {
+  const Config c = Config::FromString("objects:\n  - {x_m: 1}\n", "s.yaml");
+  const std::vector<Config> objects = c.Items("objects");
+  ASSERT_EQ(objects.size(), 1u);
+  try {
+    objects[0].RequireDouble("radius_m");
+    FAIL() << "expected ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_STREQ(e.what(), "s.yaml:2: objects[0].radius_m: missing key");
+  }
+}
+
+TEST(ConfigTest, UnusedKeyInsideAListElementIsFound) {
+  const Config c =
+      Config::FromString("objects:\n  - x_m: 1\n  - x_m: 2\n    colour: red\n", "s.yaml");
+  for (const Config& o : c.Items("objects")) o.GetDouble("x_m", 0);
+  try {
+    c.CheckUnused();
+    FAIL() << "expected ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_STREQ(e.what(), "s.yaml:4: objects[1].colour: unknown key");
+  }
+}
+
+TEST(ConfigTest, BadYamlAndMissingFile) {
+  EXPECT_THROW(Config::FromString("a: [1, 2\n", "bad.yaml"), ConfigError);
+  EXPECT_THROW(Config::FromString("- 1\n- 2\n", "list.yaml"), ConfigError);
+  EXPECT_THROW(Config::LoadFile("/nonexistent/slammtt.yaml"), ConfigError);
+  EXPECT_NO_THROW(Config::FromString("", "empty.yaml"));
+}
+
+TEST(ConfigTest, CheckKeysAmong) {
+  const Config c = Config::FromString("lcm: {}\nsegmentr: {}\n", "stack.yaml");
+  EXPECT_THROW(c.CheckKeysAmong({"lcm", "segmenter"}), ConfigError);
+  EXPECT_NO_THROW(c.CheckKeysAmong({"lcm", "segmentr"}));
+}
+
+TEST(ConfigTest, ChildOfWrongTypeIsAnError) {
+  const Config c = Config::FromString("segmenter: 3\n", "s.yaml");
+  EXPECT_THROW(c.Child("segmenter"), ConfigError);
+  const Config empty = c.Child("absent");
+  EXPECT_DOUBLE_EQ(empty.GetDouble("x", 4.0), 4.0);
+}
+
+}  // namespace
+}  // namespace slammtt
