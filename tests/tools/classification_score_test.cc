@@ -1,0 +1,97 @@
+#include "tools/metrics/classification_score.h"
+
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+
+namespace slammtt {
+namespace {
+
+constexpr int64_t kScanUs = 125000;  // 8 scans per second
+
+TruthObject Truth(int64_t id, double x, ObjectLabel true_class, bool visible = true) {
+  return TruthObject{id, Eigen::Vector2d(x, 0), true_class, visible};
+}
+LabelledTrack Track(int64_t id, double x, ObjectLabel label) {
+  return LabelledTrack{id, Eigen::Vector2d(x, 0.1), label};
+}
+
+TEST(ClassificationTest, DelayIsUntilTheLabelStaysRight) {
+  ClassificationAccumulator acc(1.0);
+  const auto S = ObjectLabel::kStatic;
+  const auto M = ObjectLabel::kMoving;
+  const auto U = ObjectLabel::kUndecided;
+  // Object 1 (static): undecided, undecided, static, static.
+  // Object 2 (moving): moving, static, moving, moving  -> settles at scan 2.
+  const std::vector<ObjectLabel> labels1 = {U, U, S, S};
+  const std::vector<ObjectLabel> labels2 = {M, S, M, M};
+  for (int k = 0; k < 4; ++k) {
+    acc.AddScan(k * kScanUs, {Truth(1, 0, S), Truth(2, 10, M)},
+                {Track(50, 0, labels1[k]), Track(60, 10, labels2[k])});
+  }
+  const ClassificationSummary s = acc.Summary();
+  ASSERT_EQ(s.objects.size(), 2u);
+  EXPECT_EQ(s.objects[0].final_label, S);
+  EXPECT_DOUBLE_EQ(*s.objects[0].delay_s, 2 * kScanUs * 1e-6);
+  EXPECT_EQ(s.objects[1].final_label, M);
+  EXPECT_DOUBLE_EQ(*s.objects[1].delay_s, 2 * kScanUs * 1e-6);
+  EXPECT_DOUBLE_EQ(*s.accuracy, 1.0);
+  EXPECT_DOUBLE_EQ(*s.mean_delay_s, 0.25);
+  EXPECT_EQ(s.confusion[0][0], 1);
+  EXPECT_EQ(s.confusion[1][1], 1);
+}
+
+TEST(ClassificationTest, DelayCountsFromFirstSightingAndIgnoresUnmatchedScans) {
+  ClassificationAccumulator acc(1.0);
+  const auto M = ObjectLabel::kMoving;
+  acc.AddScan(0, {Truth(1, 0, M)}, {});                   // seen, no track yet
+  acc.AddScan(kScanUs, {Truth(1, 0, M)}, {Track(7, 0, M)});
+  acc.AddScan(2 * kScanUs, {Truth(1, 0, M)}, {});         // track missing: no label, no reset
+  acc.AddScan(3 * kScanUs, {Truth(1, 0, M)}, {Track(7, 0, M)});
+  const ClassificationSummary s = acc.Summary();
+  ASSERT_EQ(s.objects.size(), 1u);
+  EXPECT_EQ(s.objects[0].num_matched_scans, 2);
+  EXPECT_DOUBLE_EQ(*s.objects[0].delay_s, kScanUs * 1e-6);
+}
+
+TEST(ClassificationTest, WrongAndUntrackedObjects) {
+  ClassificationAccumulator acc(1.0);
+  const auto S = ObjectLabel::kStatic;
+  const auto M = ObjectLabel::kMoving;
+  // Object 1 (moving) ends labelled static: wrong, no delay. Object 2 (static) never tracked.
+  // Object 3 is never visible: not scored even though a track sits on it.
+  acc.AddScan(0, {Truth(1, 0, M), Truth(2, 20, S), Truth(3, 40, S, false)},
+              {Track(5, 0, M), Track(6, 40, S)});
+  acc.AddScan(kScanUs, {Truth(1, 0, M), Truth(2, 20, S), Truth(3, 40, S, false)},
+              {Track(5, 0, S), Track(6, 40, S)});
+  const ClassificationSummary s = acc.Summary();
+  ASSERT_EQ(s.objects.size(), 2u);
+  EXPECT_FALSE(s.objects[0].correct);
+  EXPECT_FALSE(s.objects[0].delay_s.has_value());
+  EXPECT_FALSE(s.objects[1].final_label.has_value());
+  EXPECT_EQ(s.confusion[1][0], 1);                  // moving labelled static
+  EXPECT_EQ(s.confusion[0][kUntrackedColumn], 1);   // static never tracked
+  EXPECT_DOUBLE_EQ(*s.accuracy, 0.0);
+  EXPECT_DOUBLE_EQ(*s.accuracy_of_tracked, 0.0);
+  EXPECT_FALSE(s.mean_delay_s.has_value());
+}
+
+TEST(ClassificationTest, NothingVisibleLeavesAccuracyUndefined) {
+  ClassificationAccumulator acc(1.0);
+  acc.AddScan(0, {}, {Track(1, 0, ObjectLabel::kMoving)});
+  const ClassificationSummary s = acc.Summary();
+  EXPECT_TRUE(s.objects.empty());
+  EXPECT_FALSE(s.accuracy.has_value());
+}
+
+TEST(ClassificationTest, RejectsBadInput) {
+  ClassificationAccumulator acc(1.0);
+  EXPECT_THROW(acc.AddScan(0, {Truth(1, 0, ObjectLabel::kUndecided)}, {}),
+               std::invalid_argument);
+  EXPECT_THROW(acc.AddScan(0, {}, {Track(1, 0, ObjectLabel::kMoving),
+                                   Track(1, 3, ObjectLabel::kMoving)}),
+               std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace slammtt
