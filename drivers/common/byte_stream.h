@@ -34,8 +34,15 @@ class ByteStream {
   virtual std::string Describe() const = 0;
 };
 
+// Checks the form of an endpoint without opening it: "tcp://HOST:PORT" with a port 1..65535,
+// or an absolute serial port path (optionally "serial:/dev/..."), with a positive baud rate.
+// Throws std::invalid_argument with a one-line reason: drivers call it on their configuration
+// at start-up, so a typo fails at once instead of being retried forever as a link failure.
+void CheckEndpoint(const std::string& endpoint, int baud);
+
 // Opens an endpoint: "tcp://HOST:PORT" connects over TCP; anything else is a serial port path
-// opened with libserialport at `baud`, 8N1, no flow control. Throws LinkError on failure with
+// (optionally prefixed "serial:"; symlinks such as /dev/serial/by-id/... are resolved) opened
+// with libserialport at `baud`, 8N1, no flow control. Throws LinkError on failure with
 // the reason (no such device, permission denied, connection refused).
 std::unique_ptr<ByteStream> OpenByteStream(const std::string& endpoint, int baud,
                                            int connect_timeout_ms = 2000);

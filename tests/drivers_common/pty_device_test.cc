@@ -1,0 +1,106 @@
+#include "drivers/common/pty_device.h"
+
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <limits.h>
+#include <stdlib.h>
+#include <unistd.h>
+
+#include <memory>
+#include <numeric>
+#include <vector>
+
+namespace slammtt {
+namespace {
+
+// The host side without libserialport: a plain open() of the slave, as minicom would.
+std::unique_ptr<FdByteStream> OpenHost(const std::string& path) {
+  const int fd = open(path.c_str(), O_RDWR | O_NOCTTY);
+  if (fd < 0) return nullptr;
+  return std::make_unique<FdByteStream>(fd, "host:" + path);
+}
+
+std::vector<uint8_t> ReadExactly(ByteStream& stream, size_t count) {
+  std::vector<uint8_t> out;
+  uint8_t buffer[512];
+  for (int i = 0; i < 200 && out.size() < count; ++i) {
+    const size_t got = stream.Read(buffer, std::min(sizeof buffer, count - out.size()), 50);
+    out.insert(out.end(), buffer, buffer + got);
+  }
+  return out;
+}
+
+TEST(PtyDeviceTest, RawLinkCarriesEveryByteValueUnchanged) {
+  PtyDevice device;
+  EXPECT_EQ(device.slave_path().rfind("/dev/pts/", 0), 0u) << device.slave_path();
+  auto host = OpenHost(device.slave_path());
+  ASSERT_TRUE(host);
+  // CR, LF, ^C, XON/XOFF, DEL and 0xFF are the bytes a cooked tty would alter or swallow.
+  std::vector<uint8_t> all(256);
+  std::iota(all.begin(), all.end(), 0);
+  device.stream().Write(all.data(), all.size());
+  EXPECT_EQ(ReadExactly(*host, 256), all);
+  host->Write(all.data(), all.size());
+  EXPECT_EQ(ReadExactly(device.stream(), 256), all);
+  // No echo: the device side got exactly what the host sent, nothing more.
+  uint8_t extra[4];
+  EXPECT_EQ(device.stream().Read(extra, sizeof extra, 20), 0u);
+  EXPECT_EQ(host->Read(extra, sizeof extra, 20), 0u);
+}
+
+TEST(PtyDeviceTest, HostMayCloseAndReopen) {
+  PtyDevice device;
+  auto host = OpenHost(device.slave_path());
+  ASSERT_TRUE(host);
+  host.reset();
+  // The device side keeps working with no host attached.
+  const uint8_t byte = 0x42;
+  device.stream().Write(&byte, 1);
+  uint8_t buffer[4];
+  EXPECT_EQ(device.stream().Read(buffer, sizeof buffer, 10), 0u);
+  host = OpenHost(device.slave_path());
+  ASSERT_TRUE(host);
+  host->FlushInput();
+  device.stream().Write(&byte, 1);
+  EXPECT_EQ(ReadExactly(*host, 1), std::vector<uint8_t>({0x42}));
+}
+
+TEST(PtyDeviceTest, DestroyingTheDeviceHangsUpTheHost) {
+  auto device = std::make_unique<PtyDevice>();
+  auto host = OpenHost(device->slave_path());
+  ASSERT_TRUE(host);
+  device.reset();
+  uint8_t buffer[4];
+  EXPECT_THROW(host->Read(buffer, sizeof buffer, 1000), LinkError);
+}
+
+TEST(PtyDeviceTest, PublishLinkPointsAStableNameAtTheCurrentPty) {
+  char directory_template[] = "/tmp/slammtt-pty-test-XXXXXX";
+  ASSERT_NE(mkdtemp(directory_template), nullptr);
+  const std::string link = std::string(directory_template) + "/lidar";
+  std::string first_path;
+  {
+    PtyDevice first;
+    first.PublishLink(link);
+    first_path = first.slave_path();
+    char resolved[PATH_MAX];
+    ASSERT_NE(realpath(link.c_str(), resolved), nullptr);
+    EXPECT_EQ(std::string(resolved), first.slave_path());
+  }
+  PtyDevice second;
+  second.PublishLink(link);
+  char target[PATH_MAX] = {};
+  ASSERT_GT(readlink(link.c_str(), target, sizeof target - 1), 0);
+  EXPECT_EQ(std::string(target), second.slave_path());
+  unlink(link.c_str());
+  rmdir(directory_template);
+}
+
+TEST(PtyDeviceTest, HostDtrIsUnknownWithoutTheShimState) {
+  if (getenv("SLAMMTT_PTY_STATE_DIR") != nullptr) GTEST_SKIP() << "running under pty-run";
+  PtyDevice device;
+  EXPECT_FALSE(device.HostDtr().has_value());
+}
+
+}  // namespace
+}  // namespace slammtt

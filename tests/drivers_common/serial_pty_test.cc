@@ -1,0 +1,96 @@
+// libserialport opens a pseudo-terminal under tests/support/pty/pty-run: the path every driver
+// test takes to reach its emulator as it would reach the device on the robot.
+#include <gtest/gtest.h>
+#include <stdlib.h>
+#include <unistd.h>
+
+#include <memory>
+#include <numeric>
+#include <vector>
+
+#include "drivers/common/byte_stream.h"
+#include "drivers/common/pty_device.h"
+
+namespace slammtt {
+namespace {
+
+class SerialPtyTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    ASSERT_NE(getenv("SLAMMTT_IN_PTY_NS"), nullptr)
+        << "run this program under tests/support/pty/pty-run (ctest does)";
+  }
+};
+
+std::vector<uint8_t> ReadExactly(ByteStream& stream, size_t count) {
+  std::vector<uint8_t> out;
+  uint8_t buffer[512];
+  for (int i = 0; i < 200 && out.size() < count; ++i) {
+    const size_t got = stream.Read(buffer, std::min(sizeof buffer, count - out.size()), 50);
+    out.insert(out.end(), buffer, buffer + got);
+  }
+  return out;
+}
+
+TEST_F(SerialPtyTest, LibserialportOpensThePtyAndCarriesEveryByte) {
+  PtyDevice device;
+  auto host = OpenByteStream(device.slave_path(), 115200);
+  EXPECT_EQ(host->Describe(), "serial:" + device.slave_path() + "@115200");
+  std::vector<uint8_t> all(256);
+  std::iota(all.begin(), all.end(), 0);
+  host->Write(all.data(), all.size());
+  EXPECT_EQ(ReadExactly(device.stream(), 256), all);
+  device.stream().Write(all.data(), all.size());
+  EXPECT_EQ(ReadExactly(*host, 256), all);
+}
+
+TEST_F(SerialPtyTest, DeviceSideSeesTheDtrLineTheHostSets) {
+  PtyDevice device;
+  auto host = OpenByteStream(device.slave_path(), 115200);
+  ASSERT_TRUE(device.HostDtr().has_value());
+  EXPECT_TRUE(*device.HostDtr());  // asserted after open, as on a real port
+  host->SetDtr(false);
+  EXPECT_FALSE(*device.HostDtr());
+  host->SetDtr(true);
+  EXPECT_TRUE(*device.HostDtr());
+}
+
+TEST_F(SerialPtyTest, NonStandardAndLowBaudRatesAreAccepted) {
+  PtyDevice device;
+  for (int baud : {9600, 115200, 256000}) {
+    auto host = OpenByteStream(device.slave_path(), baud);
+    EXPECT_EQ(host->Describe(), "serial:" + device.slave_path() + "@" + std::to_string(baud));
+  }
+}
+
+TEST_F(SerialPtyTest, UnpluggedDeviceIsALinkErrorAndTheLinkNameFindsTheNewOne) {
+  char directory_template[] = "/tmp/slammtt-serial-pty-XXXXXX";
+  ASSERT_NE(mkdtemp(directory_template), nullptr);
+  const std::string link = std::string(directory_template) + "/lidar";
+
+  auto device = std::make_unique<PtyDevice>();
+  device->PublishLink(link);
+  auto host = OpenByteStream(link, 115200);
+  EXPECT_EQ(host->Describe(), "serial:" + link + "=" + device->slave_path() + "@115200");
+  device.reset();  // the "USB adapter" is pulled
+  uint8_t buffer[8];
+  try {
+    host->Read(buffer, sizeof buffer, 1000);
+    FAIL() << "no LinkError after the device went away";
+  } catch (const LinkError& e) {
+    EXPECT_NE(std::string(e.what()).find(link), std::string::npos) << e.what();
+  }
+  host.reset();
+
+  device = std::make_unique<PtyDevice>();  // plugged in again: a new /dev/pts/N
+  device->PublishLink(link);
+  host = OpenByteStream(link, 115200);
+  const uint8_t byte = 0x5A;
+  device->stream().Write(&byte, 1);
+  EXPECT_EQ(ReadExactly(*host, 1), std::vector<uint8_t>({0x5A}));
+  unlink(link.c_str());
+  rmdir(directory_template);
+}
+
+}  // namespace
+}  // namespace slammtt
