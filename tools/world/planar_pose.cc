@@ -1,0 +1,37 @@
+#include "tools/world/planar_pose.h"
+
+#include <cmath>
+
+namespace slammtt {
+
+double WrapAngle(double angle_rad) {
+  double wrapped = std::remainder(angle_rad, 2.0 * M_PI);  // [-pi, pi]
+  if (wrapped <= -M_PI) wrapped += 2.0 * M_PI;
+  return wrapped;
+}
+
+Pose2D SensorPoseFromRobot(const Pose2D& robot, double mount_a_m, double mount_b_m) {
+  const double c = std::cos(robot.heading_rad);
+  const double s = std::sin(robot.heading_rad);
+  return Pose2D{robot.x_m + mount_a_m * c - mount_b_m * s, robot.y_m + mount_a_m * s + mount_b_m * c,
+                robot.heading_rad};
+}
+
+Pose2D MoveUnicycle(const Pose2D& start, double linear_mps, double angular_radps, double dt_s) {
+  const double turn = angular_radps * dt_s;
+  Pose2D end;
+  if (std::abs(turn) < 1e-12) {
+    // Straight (or a turn too small for the arc formula to stay accurate): midpoint heading.
+    const double heading = start.heading_rad + 0.5 * turn;
+    end.x_m = start.x_m + linear_mps * dt_s * std::cos(heading);
+    end.y_m = start.y_m + linear_mps * dt_s * std::sin(heading);
+  } else {
+    const double radius = linear_mps / angular_radps;
+    end.x_m = start.x_m + radius * (std::sin(start.heading_rad + turn) - std::sin(start.heading_rad));
+    end.y_m = start.y_m - radius * (std::cos(start.heading_rad + turn) - std::cos(start.heading_rad));
+  }
+  end.heading_rad = WrapAngle(start.heading_rad + turn);
+  return end;
+}
+
+}  // namespace slammtt

@@ -1,0 +1,196 @@
+// The synthetic world as data: robot motion, static and moving objects, laser, odometry and
+// point-feature settings of one scenario. A Scenario is built in code (tests) or loaded from a
+// YAML file by tools/world/scenario_loader.h; docs/world.md lists every key with its units and
+// default. Nothing here reads files or clocks.
+//
+// Objects are circles (centre, radius) in the world frame: static landmarks and movers. The
+// paper treats detected objects as points (section 2); circles give the ray caster something to
+// hit and the point features a width.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "tools/world/planar_pose.h"
+
+namespace slammtt {
+
+// The robot may not be faster than the paper's simulated robot ("up to 2 m/s", section 5.1).
+inline constexpr double kMaxRobotSpeedMps = 2.0;
+
+// Which sensor messages the world produces.
+enum class SensorOutput {
+  kFeatures,  // point features straight from the visible objects (the paper's simulation)
+  kScans,     // raw ray-cast laser scans (input of the segmenter)
+  kBoth,
+};
+// "features", "scans", "both"; false for anything else.
+bool ParseSensorOutput(const std::string& text, SensorOutput* output);
+const char* SensorOutputName(SensorOutput output);
+
+// A 2D laser scanner. Beam i points at angle -fov/2 + i * resolution in the sensor frame; a
+// 360-degree sensor has round(360 / resolution) beams starting at -180 degrees (no beam twice),
+// a narrower one floor(fov / resolution) + 1 beams covering both edges. A scan is instantaneous:
+// every beam sees the world at the scan's time (scan_duration_us = 0).
+// Defaults: the robot's RPLIDAR A2 at 10 Hz (about 0.9 degree, 400 beams per revolution, range
+// 0.15-12 m; paper section 5.2 and the A2 datasheet).
+struct LaserSpec {
+  double fov_deg = 360.0;         // (0, 360]
+  double resolution_deg = 0.9;    // angle between neighbouring beams, > 0
+  double min_range_m = 0.15;      // nearer returns are invalid
+  double max_range_m = 12.0;      // farther surfaces give no return
+  double rate_hz = 10.0;          // scans per second
+  double range_noise_m = 0.01;    // standard deviation of the Gaussian noise of each beam
+  double mount_a_m = 0.0;         // sensor position on the robot, paper eq. 11: forward
+  double mount_b_m = 0.0;         //   and left of the axle centre
+};
+
+// Point features emitted straight from the objects (paper section 5.1: range/bearing noise 0.2 m
+// and 2 degrees). The field of view, ranges, rate and mount are the laser's.
+struct FeatureSpec {
+  double range_noise_m = 0.2;
+  double bearing_noise_deg = 2.0;
+  double detection_probability = 1.0;  // a visible object yields a feature with this probability
+};
+
+// Wheel odometry of a differential-drive base, paper eq. 1. Each reading measures the rotation
+// of both wheels since the previous reading:
+//   measured = true * (1 + slip_bias + slip_std * n1) + encoder_noise_rad * n2  (n1, n2 ~ N(0,1))
+// where the additive encoder noise applies only to a wheel that turned (a wheel standing still
+// reads no motion). The base integrates the measured increments with eq. 1 from (0, 0, 0).
+// Defaults: P3-DX wheels of 195 mm diameter, about 0.33 m apart; noise-free.
+struct OdometrySpec {
+  double rate_hz = 20.0;
+  double wheel_radius_m = 0.0975;  // r of eq. 1
+  double axle_length_m = 0.33;     // D of eq. 1: distance between the wheels
+  double encoder_noise_rad = 0.0;  // additive standard deviation per reading and wheel
+  double slip_std = 0.0;           // relative standard deviation per reading and wheel
+  double left_slip_bias = 0.0;     // systematic relative error of the left wheel
+  double right_slip_bias = 0.0;    // and of the right wheel
+};
+
+// One constant-velocity piece of the robot's velocity profile.
+struct VelocitySegment {
+  double duration_s = 0.0;
+  double linear_mps = 0.0;
+  double angular_radps = 0.0;
+};
+
+struct PlanarPoint {
+  double x_m = 0.0;
+  double y_m = 0.0;
+};
+
+// How the robot moves: a velocity profile (used when `waypoints` is empty) or waypoints followed
+// by a deterministic controller (turn towards the next waypoint at yaw rate
+// clamp(turn_gain * heading error, +-max_angular), drive at speed * max(0, cos(heading error)),
+// switch to the next waypoint within waypoint_tolerance). Commands change every control period
+// (10 ms); in between the robot moves exactly on arcs (MoveUnicycle). After the last profile
+// segment or waypoint the robot stops, unless `loop` starts the list again.
+struct RobotMotionSpec {
+  Pose2D start;                          // world pose at time 0
+  std::vector<VelocitySegment> profile;  // |linear_mps| <= kMaxRobotSpeedMps
+  std::vector<PlanarPoint> waypoints;
+  double speed_mps = 0.5;                // waypoint mode, (0, kMaxRobotSpeedMps]
+  double max_angular_radps = 1.0;        // waypoint mode
+  double turn_gain_per_s = 2.0;          // waypoint mode
+  double waypoint_tolerance_m = 0.2;     // waypoint mode
+  bool loop = false;
+};
+
+struct StaticObjectSpec {
+  int64_t id = 0;
+  double x_m = 0.0;
+  double y_m = 0.0;
+  double radius_m = 0.2;
+};
+
+// A point of a recorded or scripted trajectory.
+struct TimedPoint {
+  double t_s = 0.0;
+  double x_m = 0.0;
+  double y_m = 0.0;
+};
+
+// A waypoint of a mover; the mover stands still wait_s seconds on arrival.
+struct MoverWaypoint {
+  double x_m = 0.0;
+  double y_m = 0.0;
+  double wait_s = 0.0;
+};
+
+enum class MoverKind {
+  kConstantVelocity,  // from `start` at appear_s with (vx, vy): paper eqs. 6-7
+  kWaypoints,         // along `waypoints` at speed_mps
+  kTrajectory,        // through `trajectory` points, linearly interpolated (recorded paths)
+  kRandomWalk,        // straight legs at speed_mps with random turns, inside `area`
+};
+// What a waypoint mover does after its last waypoint.
+enum class PathEnd { kStay, kLeave, kLoop };
+
+// Random walk: legs of exponentially distributed duration (mean mean_leg_s, at least 0.5 s);
+// at the start of each leg the heading turns by a uniform angle in [-max_turn, +max_turn] or,
+// with probability reverse_probability, by exactly 180 degrees. A leg that would leave `area`
+// heads instead for a uniformly drawn point inside it. The path is drawn once, at the start,
+// from the object's own random stream (DeriveSeed(seed, id)): the same seed gives the same walk.
+struct RandomWalkSpec {
+  double heading_rad = 0.0;  // initial heading
+  double mean_leg_s = 4.0;
+  double max_turn_rad = 1.5707963267948966;
+  double reverse_probability = 0.0;
+  double area_min_x_m = -10.0;
+  double area_min_y_m = -10.0;
+  double area_max_x_m = 10.0;
+  double area_max_y_m = 10.0;
+};
+
+// A moving object. It exists from appear_s (inclusive) to disappear_s (exclusive), further limited
+// by its path: a trajectory exists only between its first and last point, a waypoint path with
+// at_end = kLeave until it reaches its last waypoint. While it exists and its path does not say
+// where it is (before the first point), it stands at the first point. It is a mover (ground-truth
+// class MOVING) even while it stands still.
+struct MoverSpec {
+  int64_t id = 0;
+  double radius_m = 0.25;
+  MoverKind kind = MoverKind::kConstantVelocity;
+  double appear_s = 0.0;
+  double disappear_s = std::numeric_limits<double>::infinity();
+  // kConstantVelocity and kRandomWalk: position at appear_s.
+  double start_x_m = 0.0;
+  double start_y_m = 0.0;
+  // kConstantVelocity.
+  double vx_mps = 0.0;
+  double vy_mps = 0.0;
+  // kWaypoints (starting at the first waypoint at appear_s) and kRandomWalk.
+  double speed_mps = 1.0;
+  std::vector<MoverWaypoint> waypoints;
+  PathEnd at_end = PathEnd::kStay;
+  // kTrajectory: strictly increasing t_s.
+  std::vector<TimedPoint> trajectory;
+  // kRandomWalk.
+  RandomWalkSpec random_walk;
+};
+
+struct Scenario {
+  std::string name;
+  double duration_s = 60.0;
+  // utime of simulated time 0 in logs, so that logs are byte-identical (a fixed epoch,
+  // 2023-11-14T22:13:20Z by default); live runs replace it with the wall clock at start.
+  int64_t start_utime = 1700000000000000;
+  SensorOutput output = SensorOutput::kScans;
+  LaserSpec laser;
+  FeatureSpec features;
+  OdometrySpec odometry;
+  RobotMotionSpec robot;
+  std::vector<StaticObjectSpec> statics;
+  std::vector<MoverSpec> movers;
+};
+
+// Every problem of a scenario built in code, one line each ("movers[2].radius_m: must be
+// positive, got -1"); empty when the scenario can be simulated. The YAML loader reports the same
+// problems with file and line; WorldSimulator refuses a scenario with any.
+std::vector<std::string> FindScenarioProblems(const Scenario& scenario);
+
+}  // namespace slammtt

@@ -1,0 +1,448 @@
+#include "tools/world/scenario_loader.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+namespace slammtt {
+
+namespace {
+
+constexpr double kDegToRad = M_PI / 180.0;
+
+// Remembers where every value came from, so that a problem found after reading (by
+// FindScenarioProblems, which knows nothing of files) is reported at its line.
+class Locations {
+ public:
+  // `key` empty: the node itself (a list element).
+  void Add(const std::string& path, const Config& node, const std::string& key) {
+    entries_.emplace(path, Entry{node, key});
+  }
+  // Throws ConfigError for "path: message" at the nearest recorded enclosing path.
+  [[noreturn]] void Fail(const std::string& problem, const Config& root) const {
+    const size_t colon = problem.find(": ");
+    const std::string path = problem.substr(0, colon);
+    const std::string message = colon == std::string::npos ? problem : problem.substr(colon + 2);
+    std::string prefix = path;
+    while (!prefix.empty()) {
+      const auto it = entries_.find(prefix);
+      if (it != entries_.end()) {
+        const std::string rest = path.substr(prefix.size());
+        const std::string detail =
+            rest.empty() ? message : rest.substr(rest[0] == '.' ? 1 : 0) + ": " + message;
+        if (it->second.key.empty()) it->second.node.Fail(detail);
+        it->second.node.FailKey(it->second.key, detail);
+      }
+      const size_t cut = prefix.find_last_of(".[");
+      prefix = cut == std::string::npos ? std::string() : prefix.substr(0, cut);
+    }
+    root.Fail(problem);
+  }
+
+ private:
+  struct Entry {
+    Config node;
+    std::string key;
+  };
+  std::map<std::string, Entry> entries_;
+};
+
+class ScenarioReader {
+ public:
+  ScenarioReader(const Config& root, std::string base_dir)
+      : root_(root), base_dir_(std::move(base_dir)) {}
+
+  Scenario Read() {
+    root_.CheckKeysAmong({"name", "description", "duration_s", "start_utime", "output", "laser",
+                          "features", "odometry", "robot", "statics", "movers", "crowd"});
+    Scenario s;
+    s.name = root_.GetString("name", "");
+    root_.GetString("description", "");  // for people only
+    s.duration_s = Double(root_, "duration_s", s.duration_s);
+    s.start_utime = Int(root_, "start_utime", s.start_utime);
+    if (root_.Has("output")) {
+      const std::string output = root_.GetString("output", "");
+      if (!ParseSensorOutput(output, &s.output)) {
+        root_.FailKey("output", "expected features, scans or both, got \"" + output + "\"");
+      }
+    }
+    ReadLaser(root_.Child("laser"), &s.laser);
+    ReadFeatures(root_.Child("features"), &s.features);
+    ReadOdometry(root_.Child("odometry"), &s.odometry);
+    ReadRobot(root_.Child("robot"), &s.robot);
+    const std::vector<Config> statics = root_.Items("statics");
+    for (size_t i = 0; i < statics.size(); ++i) s.statics.push_back(ReadStatic(statics[i], i));
+    const std::vector<Config> movers = root_.Items("movers");
+    for (size_t i = 0; i < movers.size(); ++i) s.movers.push_back(ReadMover(movers[i], i));
+    if (root_.Has("crowd")) ReadCrowd(root_.Child("crowd"), &s.movers);
+
+    root_.CheckUnused();
+    const std::vector<std::string> problems = FindScenarioProblems(s);
+    if (!problems.empty()) locations_.Fail(problems.front(), root_);
+    return s;
+  }
+
+ private:
+  double Double(const Config& node, const std::string& key, double fallback) {
+    locations_.Add(Join(node, key), node, key);
+    return node.GetDouble(key, fallback);
+  }
+  int64_t Int(const Config& node, const std::string& key, int64_t fallback) {
+    locations_.Add(Join(node, key), node, key);
+    return node.GetInt(key, fallback);
+  }
+  // A list of exactly `n` numbers (or n-1 when `optional_last`), e.g. [x_m, y_m].
+  std::vector<double> Numbers(const Config& element, size_t n, bool optional_last,
+                              const std::string& what) {
+    if (!element.IsSequence()) element.Fail("expected " + what);
+    const std::vector<double> values = element.AsDoubles();
+    if (values.size() != n && !(optional_last && values.size() + 1 == n)) {
+      element.Fail("expected " + what + ", got " + std::to_string(values.size()) + " numbers");
+    }
+    return values;
+  }
+  std::vector<double> NumbersKey(const Config& node, const std::string& key, size_t n,
+                                 const std::string& what) {
+    locations_.Add(Join(node, key), node, key);
+    if (!node.Has(key)) node.FailKey(key, "missing key");
+    const std::vector<double> values = node.GetDoubles(key, {});
+    if (values.size() != n) {
+      node.FailKey(key, "expected " + what + ", got " + std::to_string(values.size()) + " numbers");
+    }
+    return values;
+  }
+  static std::string Join(const Config& node, const std::string& key) {
+    return node.Path().empty() ? key : node.Path() + "." + key;
+  }
+
+  void ReadLaser(const Config& c, LaserSpec* l) {
+    c.CheckKeysAmong({"fov_deg", "resolution_deg", "min_range_m", "max_range_m", "rate_hz",
+                      "range_noise_m", "mount_a_m", "mount_b_m"});
+    l->fov_deg = Double(c, "fov_deg", l->fov_deg);
+    l->resolution_deg = Double(c, "resolution_deg", l->resolution_deg);
+    l->min_range_m = Double(c, "min_range_m", l->min_range_m);
+    l->max_range_m = Double(c, "max_range_m", l->max_range_m);
+    l->rate_hz = Double(c, "rate_hz", l->rate_hz);
+    l->range_noise_m = Double(c, "range_noise_m", l->range_noise_m);
+    l->mount_a_m = Double(c, "mount_a_m", l->mount_a_m);
+    l->mount_b_m = Double(c, "mount_b_m", l->mount_b_m);
+  }
+
+  void ReadFeatures(const Config& c, FeatureSpec* f) {
+    c.CheckKeysAmong({"range_noise_m", "bearing_noise_deg", "detection_probability"});
+    f->range_noise_m = Double(c, "range_noise_m", f->range_noise_m);
+    f->bearing_noise_deg = Double(c, "bearing_noise_deg", f->bearing_noise_deg);
+    f->detection_probability = Double(c, "detection_probability", f->detection_probability);
+  }
+
+  void ReadOdometry(const Config& c, OdometrySpec* o) {
+    c.CheckKeysAmong({"rate_hz", "wheel_radius_m", "axle_length_m", "encoder_noise_rad",
+                      "slip_std", "left_slip_bias", "right_slip_bias"});
+    o->rate_hz = Double(c, "rate_hz", o->rate_hz);
+    o->wheel_radius_m = Double(c, "wheel_radius_m", o->wheel_radius_m);
+    o->axle_length_m = Double(c, "axle_length_m", o->axle_length_m);
+    o->encoder_noise_rad = Double(c, "encoder_noise_rad", o->encoder_noise_rad);
+    o->slip_std = Double(c, "slip_std", o->slip_std);
+    o->left_slip_bias = Double(c, "left_slip_bias", o->left_slip_bias);
+    o->right_slip_bias = Double(c, "right_slip_bias", o->right_slip_bias);
+  }
+
+  void ReadRobot(const Config& c, RobotMotionSpec* r) {
+    c.CheckKeysAmong({"start", "profile", "waypoints", "speed_mps", "max_angular_degps",
+                      "turn_gain_per_s", "waypoint_tolerance_m", "loop"});
+    const Config start = c.Child("start");
+    start.CheckKeysAmong({"x_m", "y_m", "heading_deg"});
+    r->start.x_m = Double(start, "x_m", 0.0);
+    r->start.y_m = Double(start, "y_m", 0.0);
+    r->start.heading_rad = Double(start, "heading_deg", 0.0) * kDegToRad;
+    for (const Config& segment : c.Items("profile")) {
+      if (!segment.IsMap()) segment.Fail("expected {duration_s, linear_mps, angular_degps}");
+      locations_.Add(segment.Path(), segment, "");
+      segment.CheckKeysAmong({"duration_s", "linear_mps", "angular_degps"});
+      VelocitySegment v;
+      if (!segment.Has("duration_s")) segment.FailKey("duration_s", "missing key");
+      v.duration_s = Double(segment, "duration_s", 0.0);
+      v.linear_mps = Double(segment, "linear_mps", 0.0);
+      v.angular_radps = Double(segment, "angular_degps", 0.0) * kDegToRad;
+      r->profile.push_back(v);
+    }
+    for (const Config& point : c.Items("waypoints")) {
+      locations_.Add(point.Path(), point, "");
+      const std::vector<double> xy = Numbers(point, 2, false, "[x_m, y_m]");
+      r->waypoints.push_back(PlanarPoint{xy[0], xy[1]});
+    }
+    r->speed_mps = Double(c, "speed_mps", r->speed_mps);
+    r->max_angular_radps = Double(c, "max_angular_degps", r->max_angular_radps / kDegToRad) * kDegToRad;
+    r->turn_gain_per_s = Double(c, "turn_gain_per_s", r->turn_gain_per_s);
+    r->waypoint_tolerance_m = Double(c, "waypoint_tolerance_m", r->waypoint_tolerance_m);
+    r->loop = c.GetBool("loop", r->loop);
+    if (r->profile.empty() && r->waypoints.empty() && c.Has("profile")) {
+      c.FailKey("profile", "must not be empty");
+    }
+  }
+
+  StaticObjectSpec ReadStatic(const Config& c, size_t index) {
+    if (!c.IsMap()) c.Fail("expected {id, x_m, y_m, radius_m}");
+    locations_.Add(c.Path(), c, "");
+    c.CheckKeysAmong({"id", "x_m", "y_m", "radius_m"});
+    StaticObjectSpec o;
+    o.id = Int(c, "id", static_cast<int64_t>(index) + 1);
+    if (!c.Has("x_m")) c.FailKey("x_m", "missing key");
+    if (!c.Has("y_m")) c.FailKey("y_m", "missing key");
+    o.x_m = Double(c, "x_m", 0.0);
+    o.y_m = Double(c, "y_m", 0.0);
+    o.radius_m = Double(c, "radius_m", o.radius_m);
+    return o;
+  }
+
+  MoverSpec ReadMover(const Config& c, size_t index) {
+    if (!c.IsMap()) c.Fail("expected a mapping with type: ...");
+    locations_.Add(c.Path(), c, "");
+    MoverSpec m;
+    if (!c.Has("type")) c.FailKey("type", "missing key (constant_velocity, waypoints, trajectory or random_walk)");
+    const std::string type = c.GetString("type", "");
+    std::vector<std::string> keys = {"id", "type", "radius_m", "appear_s", "disappear_s"};
+    if (type == "constant_velocity") {
+      m.kind = MoverKind::kConstantVelocity;
+      keys.insert(keys.end(), {"start", "velocity_mps"});
+    } else if (type == "waypoints") {
+      m.kind = MoverKind::kWaypoints;
+      keys.insert(keys.end(), {"waypoints", "speed_mps", "at_end"});
+    } else if (type == "trajectory") {
+      m.kind = MoverKind::kTrajectory;
+      keys.insert(keys.end(), {"trajectory"});
+    } else if (type == "random_walk") {
+      m.kind = MoverKind::kRandomWalk;
+      keys.insert(keys.end(), {"start", "speed_mps", "heading_deg", "mean_leg_s", "max_turn_deg",
+                               "reverse_probability", "area"});
+    } else {
+      c.FailKey("type", "expected constant_velocity, waypoints, trajectory or random_walk, got \"" +
+                            type + "\"");
+    }
+    c.CheckKeysAmong(keys);
+    m.id = Int(c, "id", 10000 + static_cast<int64_t>(index));
+    m.radius_m = Double(c, "radius_m", m.radius_m);
+    m.appear_s = Double(c, "appear_s", m.appear_s);
+    if (c.Has("disappear_s")) m.disappear_s = Double(c, "disappear_s", 0.0);
+    switch (m.kind) {
+      case MoverKind::kConstantVelocity: {
+        const std::vector<double> start = NumbersKey(c, "start", 2, "[x_m, y_m]");
+        const std::vector<double> v = NumbersKey(c, "velocity_mps", 2, "[vx_mps, vy_mps]");
+        m.start_x_m = start[0];
+        m.start_y_m = start[1];
+        m.vx_mps = v[0];
+        m.vy_mps = v[1];
+        break;
+      }
+      case MoverKind::kWaypoints: {
+        if (!c.Has("waypoints")) c.FailKey("waypoints", "missing key");
+        locations_.Add(Join(c, "waypoints"), c, "waypoints");
+        for (const Config& point : c.Items("waypoints")) {
+          locations_.Add(point.Path(), point, "");
+          const std::vector<double> p = Numbers(point, 3, true, "[x_m, y_m] or [x_m, y_m, wait_s]");
+          m.waypoints.push_back(MoverWaypoint{p[0], p[1], p.size() == 3 ? p[2] : 0.0});
+        }
+        m.speed_mps = Double(c, "speed_mps", m.speed_mps);
+        locations_.Add(Join(c, "at_end"), c, "at_end");
+        const std::string at_end = c.GetString("at_end", "stay");
+        if (at_end == "stay") {
+          m.at_end = PathEnd::kStay;
+        } else if (at_end == "leave") {
+          m.at_end = PathEnd::kLeave;
+        } else if (at_end == "loop") {
+          m.at_end = PathEnd::kLoop;
+        } else {
+          c.FailKey("at_end", "expected stay, leave or loop, got \"" + at_end + "\"");
+        }
+        break;
+      }
+      case MoverKind::kTrajectory: {
+        if (!c.Has("trajectory")) c.FailKey("trajectory", "missing key");
+        locations_.Add(Join(c, "trajectory"), c, "trajectory");
+        for (const Config& point : c.Items("trajectory")) {
+          locations_.Add(point.Path(), point, "");
+          const std::vector<double> p = Numbers(point, 3, false, "[t_s, x_m, y_m]");
+          m.trajectory.push_back(TimedPoint{p[0], p[1], p[2]});
+        }
+        break;
+      }
+      case MoverKind::kRandomWalk: {
+        const std::vector<double> start = NumbersKey(c, "start", 2, "[x_m, y_m]");
+        m.start_x_m = start[0];
+        m.start_y_m = start[1];
+        m.speed_mps = Double(c, "speed_mps", m.speed_mps);
+        RandomWalkSpec& w = m.random_walk;
+        w.heading_rad = Double(c, "heading_deg", 0.0) * kDegToRad;
+        w.mean_leg_s = Double(c, "mean_leg_s", w.mean_leg_s);
+        w.max_turn_rad = Double(c, "max_turn_deg", w.max_turn_rad / kDegToRad) * kDegToRad;
+        w.reverse_probability = Double(c, "reverse_probability", w.reverse_probability);
+        const std::vector<double> area =
+            NumbersKey(c, "area", 4, "[min_x_m, min_y_m, max_x_m, max_y_m]");
+        w.area_min_x_m = area[0];
+        w.area_min_y_m = area[1];
+        w.area_max_x_m = area[2];
+        w.area_max_y_m = area[3];
+        break;
+      }
+    }
+    return m;
+  }
+
+  void ReadCrowd(const Config& c, std::vector<MoverSpec>* movers) {
+    c.CheckKeysAmong({"file", "window_s", "rotation_deg", "offset_m", "max_people", "radius_m",
+                      "id_offset"});
+    if (!c.Has("file")) c.FailKey("file", "missing key");
+    const std::string file = c.GetString("file", "");
+    const std::filesystem::path path =
+        std::filesystem::path(file).is_absolute() ? std::filesystem::path(file)
+                                                  : std::filesystem::path(base_dir_) / file;
+    CrowdImportSpec spec;
+    if (c.Has("window_s")) {
+      const std::vector<double> window = NumbersKey(c, "window_s", 2, "[start_s, end_s]");
+      if (!(window[1] > window[0])) c.FailKey("window_s", "end must be after start");
+      spec.window_start_s = window[0];
+      spec.window_end_s = window[1];
+    }
+    spec.rotation_rad = Double(c, "rotation_deg", 0.0) * kDegToRad;
+    if (c.Has("offset_m")) {
+      const std::vector<double> offset = NumbersKey(c, "offset_m", 2, "[x_m, y_m]");
+      spec.offset_x_m = offset[0];
+      spec.offset_y_m = offset[1];
+    }
+    const int64_t max_people = Int(c, "max_people", 0);
+    if (max_people < 0 || max_people > 100000) c.FailKey("max_people", "must be within [0, 100000]");
+    spec.max_people = static_cast<int>(max_people);
+    spec.radius_m = Double(c, "radius_m", spec.radius_m);
+    if (!(spec.radius_m > 0.0)) c.FailKey("radius_m", "must be positive");
+    spec.id_offset = Int(c, "id_offset", spec.id_offset);
+
+    std::vector<RecordedTrack> tracks;
+    try {
+      tracks = ReadRecordedTracks(path.string());
+    } catch (const ConfigError& e) {
+      c.FailKey("file", e.what());
+    }
+    const size_t first = movers->size();
+    for (MoverSpec& m : MoversFromRecordedTracks(tracks, spec)) movers->push_back(std::move(m));
+    for (size_t i = first; i < movers->size(); ++i) {
+      locations_.Add("movers[" + std::to_string(i) + "]", c, "");
+    }
+  }
+
+  Config root_;
+  std::string base_dir_;
+  Locations locations_;
+};
+
+bool ParseNumber(const std::string& text, double* value) {
+  if (text.empty()) return false;
+  errno = 0;
+  char* end = nullptr;
+  *value = std::strtod(text.c_str(), &end);
+  return errno == 0 && end == text.c_str() + text.size() && std::isfinite(*value);
+}
+
+bool ParseWhole(const std::string& text, int64_t* value) {
+  if (text.empty()) return false;
+  errno = 0;
+  char* end = nullptr;
+  *value = std::strtoll(text.c_str(), &end, 10);
+  return errno == 0 && end == text.c_str() + text.size();
+}
+
+}  // namespace
+
+Scenario LoadScenarioFromString(const std::string& yaml_text, const std::string& source,
+                                const std::string& base_dir) {
+  return ScenarioReader(Config::FromString(yaml_text, source), base_dir).Read();
+}
+
+Scenario LoadScenario(const std::string& path) {
+  const Config root = Config::LoadFile(path);
+  std::string base_dir = std::filesystem::path(path).parent_path().string();
+  if (base_dir.empty()) base_dir = ".";
+  Scenario scenario = ScenarioReader(root, base_dir).Read();
+  if (scenario.name.empty()) scenario.name = std::filesystem::path(path).stem().string();
+  return scenario;
+}
+
+std::vector<RecordedTrack> ReadRecordedTracks(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw ConfigError(path + ": cannot open file");
+  std::map<int64_t, RecordedTrack> by_id;
+  std::string line;
+  int line_number = 0;
+  auto fail = [&](const std::string& message) {
+    throw ConfigError(path + ":" + std::to_string(line_number) + ": " + message);
+  };
+  while (std::getline(in, line)) {
+    ++line_number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line_number == 1) {
+      if (line != "t_s\tid\tx_m\ty_m") fail("expected the header \"t_s<TAB>id<TAB>x_m<TAB>y_m\"");
+      continue;
+    }
+    if (line.empty()) continue;
+    std::vector<std::string> fields;
+    std::stringstream row(line);
+    std::string field;
+    while (std::getline(row, field, '\t')) fields.push_back(field);
+    TimedPoint point;
+    int64_t id = 0;
+    if (fields.size() != 4 || !ParseNumber(fields[0], &point.t_s) || !ParseWhole(fields[1], &id) ||
+        !ParseNumber(fields[2], &point.x_m) || !ParseNumber(fields[3], &point.y_m)) {
+      fail("expected four tab-separated numbers t_s, id, x_m, y_m");
+    }
+    RecordedTrack& track = by_id[id];
+    track.id = id;
+    if (!track.points.empty() && !(point.t_s > track.points.back().t_s)) {
+      std::ostringstream message;
+      message << "person " << id << ": time " << point.t_s << " does not increase (previous "
+              << track.points.back().t_s << ")";
+      fail(message.str());
+    }
+    track.points.push_back(point);
+  }
+  if (line_number == 0) throw ConfigError(path + ": empty file");
+  std::vector<RecordedTrack> tracks;
+  for (auto& entry : by_id) tracks.push_back(std::move(entry.second));
+  return tracks;
+}
+
+std::string ResolveScenarioPath(const std::string& name_or_path,
+                                const std::vector<std::string>& search_roots) {
+  namespace fs = std::filesystem;
+  const bool is_path = name_or_path.find('/') != std::string::npos ||
+                       fs::path(name_or_path).extension() == ".yaml" ||
+                       fs::path(name_or_path).extension() == ".yml";
+  if (is_path) {
+    if (!fs::is_regular_file(name_or_path)) throw ConfigError(name_or_path + ": cannot open file");
+    return name_or_path;
+  }
+  std::string tried;
+  std::string available;
+  for (const std::string& root : search_roots) {
+    const fs::path dir = fs::path(root) / "config" / "scenarios";
+    const fs::path candidate = dir / (name_or_path + ".yaml");
+    std::error_code ec;
+    if (fs::is_regular_file(candidate, ec)) return candidate.string();
+    tried += (tried.empty() ? "" : ", ") + candidate.string();
+    if (available.empty() && fs::is_directory(dir, ec)) {
+      std::vector<std::string> names;
+      for (const auto& entry : fs::directory_iterator(dir, ec)) {
+        if (entry.path().extension() == ".yaml") names.push_back(entry.path().stem().string());
+      }
+      std::sort(names.begin(), names.end());
+      for (const std::string& n : names) available += (available.empty() ? "" : ", ") + n;
+    }
+  }
+  throw ConfigError("scenario \"" + name_or_path + "\" not found (tried " + tried + ")" +
+                    (available.empty() ? "" : "; shipped scenarios: " + available));
+}
+
+}  // namespace slammtt

@@ -1,0 +1,132 @@
+// The synthetic world, step by step: the robot drives its scenario motion, movers follow their
+// paths, and the world produces, in time order, odometry readings and sensor frames (ground truth
+// with per-object beam counts, a ray-cast laser scan and/or point features).
+//
+//   Scenario scenario = LoadScenario("config/scenarios/s1-crossing.yaml");   // or build in code
+//   WorldSimulator world(scenario, /*seed=*/7, scenario.output);
+//   while (!world.Done()) {
+//     const WorldEvent event = world.Next();
+//     if (event.kind == WorldEvent::Kind::kSensor) { ... event.sensor.scan, event.sensor.truth ... }
+//   }
+//
+// Time: integer microseconds since the scenario start. Odometry reading j is at
+// round(j * 1e6 / odometry.rate_hz), sensor frame k at round(k * 1e6 / laser.rate_hz), both up to
+// and including duration_s. At equal times the odometry reading comes first.
+// Randomness: independent streams derived from the seed (odometry, laser noise, features, one per
+// random-walk mover), so e.g. choosing scans instead of features does not change the odometry.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <random>
+#include <vector>
+
+#include "tools/world/laser_model.h"
+#include "tools/world/mover_path.h"
+#include "tools/world/odometry_model.h"
+#include "tools/world/point_features.h"
+#include "tools/world/ray_caster.h"
+#include "tools/world/robot_driver.h"
+#include "tools/world/scenario.h"
+
+namespace slammtt {
+
+// Ground truth of one object at one moment (order: statics in scenario order, then movers).
+struct ObjectTruth {
+  int64_t id = 0;
+  bool is_static = false;  // scenario class: static landmark or mover (even a standing mover)
+  double x_m = 0.0;
+  double y_m = 0.0;
+  double vx_mps = 0.0;
+  double vy_mps = 0.0;
+  double radius_m = 0.0;
+  int beams_on_object = 0;  // valid beams whose first hit is this object
+  bool visible = false;     // a point feature was emitted (feature output), else beams >= 1
+};
+
+struct RobotTruth {
+  Pose2D pose;         // axle centre, world frame
+  Pose2D sensor_pose;  // paper eq. 11
+  double linear_mps = 0.0;
+  double angular_radps = 0.0;
+};
+
+struct TruthSnapshot {
+  int64_t time_us = 0;
+  RobotTruth robot;
+  std::vector<ObjectTruth> objects;  // every object that exists at time_us
+};
+
+// Everything the sensor produced at one scan time.
+struct SensorFrame {
+  int64_t time_us = 0;
+  int64_t sequence = 0;  // 0, 1, 2, ...
+  TruthSnapshot truth;
+  bool has_scan = false;
+  std::vector<SimulatedBeam> scan;  // beam i at LaserBeamAngles()[i]; object = index in truth.objects
+  bool has_features = false;
+  std::vector<PointFeature> features;  // object = index in truth.objects
+};
+
+struct WorldEvent {
+  enum class Kind { kOdometry, kSensor };
+  Kind kind = Kind::kOdometry;
+  int64_t time_us = 0;
+  OdometryReading odometry;  // kind == kOdometry
+  SensorFrame sensor;        // kind == kSensor
+};
+
+class WorldSimulator {
+ public:
+  // std::invalid_argument (one line per problem, joined by "; ") when FindScenarioProblems()
+  // finds any.
+  WorldSimulator(const Scenario& scenario, uint64_t seed, SensorOutput output);
+
+  // True when every event up to duration_s has been returned.
+  bool Done() const;
+  // The next event in time order. std::logic_error when Done().
+  WorldEvent Next();
+
+  // Replaces the scenario's robot motion by this command from now on (live mode following
+  // VELOCITY_COMMAND); nullopt returns to the scenario motion. Linear speed is clamped to
+  // +-kMaxRobotSpeedMps. Takes effect at the next control tick.
+  void SetCommandOverride(const std::optional<VelocityCommand>& command);
+
+  const Scenario& scenario() const { return scenario_; }
+  int64_t duration_us() const { return duration_us_; }
+  const std::vector<double>& beam_angles_rad() const { return beam_angles_rad_; }
+  const std::vector<MoverPath>& mover_paths() const { return mover_paths_; }
+  // Ground truth of the robot at the last event's time.
+  const RobotTruth& robot() const { return robot_; }
+
+ private:
+  void AdvanceRobotTo(int64_t time_us);
+  TruthSnapshot TruthAt(int64_t time_us, std::vector<Circle>* circles) const;
+  SensorFrame MakeSensorFrame(int64_t time_us);
+
+  Scenario scenario_;
+  SensorOutput output_;
+  int64_t duration_us_ = 0;
+  std::vector<double> beam_angles_rad_;
+  std::vector<MoverPath> mover_paths_;
+  RobotDriver driver_;
+  std::optional<VelocityCommand> command_override_;
+
+  std::mt19937_64 odometry_rng_;
+  std::mt19937_64 laser_rng_;
+  std::mt19937_64 feature_rng_;
+
+  // Robot state: pose at robot_time_us_, command held since the last control tick.
+  int64_t robot_time_us_ = 0;
+  int64_t next_control_us_ = 0;
+  VelocityCommand command_;
+  RobotTruth robot_;
+  double distance_since_odometry_m_ = 0.0;
+  double rotation_since_odometry_rad_ = 0.0;
+
+  OdometryIntegrator odometry_;
+  int64_t next_odometry_index_ = 0;
+  int64_t next_scan_index_ = 0;
+};
+
+}  // namespace slammtt
