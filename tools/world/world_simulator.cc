@@ -52,6 +52,12 @@ bool WorldSimulator::Done() const {
          EventTimeUs(next_scan_index_, scenario_.laser.rate_hz) > duration_us_;
 }
 
+int64_t WorldSimulator::NextEventTimeUs() const {
+  const int64_t odometry_us = EventTimeUs(next_odometry_index_, scenario_.odometry.rate_hz);
+  const int64_t scan_us = EventTimeUs(next_scan_index_, scenario_.laser.rate_hz);
+  return odometry_us <= duration_us_ ? std::min(odometry_us, scan_us) : scan_us;
+}
+
 void WorldSimulator::SetCommandOverride(const std::optional<VelocityCommand>& command) {
   command_override_ = command;
   if (command_override_) {

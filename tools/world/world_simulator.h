@@ -84,6 +84,8 @@ class WorldSimulator {
 
   // True when every event up to duration_s has been returned.
   bool Done() const;
+  // Time of the event Next() will return (meaningless when Done()).
+  int64_t NextEventTimeUs() const;
   // The next event in time order. std::logic_error when Done().
   WorldEvent Next();
 

@@ -1,0 +1,125 @@
+// slammtt-world: the synthetic world as a program (docs/world.md).
+//   slammtt-world --scenario s1-crossing --seed 7 --log OUT.lcm   # as fast as possible
+//   slammtt-world --scenario rplidar-a2                            # live, real time
+#include <filesystem>
+#include <iomanip>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "runtime/command_line.h"
+#include "runtime/lcm_io.h"
+#include "runtime/log.h"
+#include "runtime/process.h"
+#include "tools/world/scenario_loader.h"
+#include "tools/world/world_runner.h"
+
+namespace {
+
+// Where --scenario NAME is looked up: the source tree this program was built from, then the
+// tree around the executable (build/bin/ -> ../../).
+std::vector<std::string> ScenarioSearchRoots() {
+  std::vector<std::string> roots = {SLAMMTT_WORLD_SOURCE_DIR};
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    roots.push_back((exe.parent_path() / ".." / "..").lexically_normal().string());
+    roots.push_back((exe.parent_path() / "..").lexically_normal().string());
+  }
+  return roots;
+}
+
+std::string Summary(const std::string& scenario, uint64_t seed, const std::string& where,
+                    const slammtt::WorldRunSummary& s) {
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(2) << scenario << " seed " << seed << ": " << s.messages
+      << " messages (";
+  bool first = true;
+  for (const auto& [channel, count] : s.messages_per_channel) {
+    out << (first ? "" : ", ") << channel << " " << count;
+    first = false;
+  }
+  out << ") for " << s.simulated_s << " s simulated in " << s.wall_s << " s wall " << where;
+  return out.str();
+}
+
+int Run(int argc, char** argv) {
+  slammtt::CommandLine cl(
+      "slammtt-world", "--scenario NAME|PATH [--seed N] [--log OUT.lcm] [options]",
+      "The synthetic world: a robot, a laser and moving people from a scenario file. Writes "
+      "ODOMETRY, GROUND_TRUTH and LASER_SCAN and/or FEATURES into an LCM log as fast as "
+      "possible (--log), or publishes them live in real time.");
+  slammtt::AddStandardOptions(&cl);
+  cl.AddOption("scenario", "NAME|PATH",
+               "scenario: a name from config/scenarios/ (s1-crossing, s2-lobby, s3-no-static, "
+               "rplidar-a2, crowd-zara02) or a YAML file",
+               's');
+  cl.AddOption("seed", "N", "random seed, a whole number >= 0 (default 1)");
+  cl.AddOption("log", "OUT.lcm", "write an LCM log as fast as possible instead of publishing live");
+  cl.AddOption("output", "features|scans|both", "sensor output (default: the scenario's)");
+  cl.AddOption("duration", "S", "simulated seconds (default: the scenario's duration_s)");
+  cl.AddOption("rate-factor", "F", "live mode: run F times faster than real time (default 1)");
+  cl.AddFlag("follow-commands",
+             "live mode: drive the robot from VELOCITY_COMMAND (it stops 0.5 s after the last "
+             "command) instead of the scenario's motion");
+  if (!cl.Parse(argc, argv)) return 0;
+  const slammtt::ProcessSettings settings = slammtt::LoadProcessSettings(cl);
+
+  const auto scenario_arg = cl.Value("scenario");
+  if (!scenario_arg) throw slammtt::UsageError("--scenario is required (see --help)");
+  const int64_t seed = cl.IntValue("seed").value_or(1);
+  if (seed < 0) throw slammtt::UsageError("--seed must be a whole number >= 0");
+  const auto log_path = cl.Value("log");
+  const double rate_factor = cl.DoubleValue("rate-factor").value_or(1.0);
+  if (!(rate_factor > 0.0)) throw slammtt::UsageError("--rate-factor must be positive");
+  if (log_path && (cl.Value("rate-factor") || cl.Flag("follow-commands"))) {
+    throw slammtt::UsageError("--rate-factor and --follow-commands are for live mode, not --log");
+  }
+
+  // The whole scenario (and any trajectory file) is read and checked before any output exists.
+  const std::string path = slammtt::ResolveScenarioPath(*scenario_arg, ScenarioSearchRoots());
+  slammtt::Scenario scenario = slammtt::LoadScenario(path);
+  if (const auto output = cl.Value("output")) {
+    if (!slammtt::ParseSensorOutput(*output, &scenario.output)) {
+      throw slammtt::UsageError("--output expects features, scans or both, got '" + *output + "'");
+    }
+  }
+  if (const auto duration = cl.DoubleValue("duration")) {
+    if (!(*duration > 0.0) || *duration > 1e7) {
+      throw slammtt::UsageError("--duration must be a positive number of seconds");
+    }
+    scenario.duration_s = *duration;
+  }
+  slammtt::WorldSimulator world(scenario, static_cast<uint64_t>(seed), scenario.output);
+
+  slammtt::WorldChannels channels;
+  channels.odometry = settings.channels.Get("odometry");
+  channels.ground_truth = settings.channels.Get("ground_truth");
+  channels.laser_scan = settings.channels.Get("laser_scan");
+  channels.features = settings.channels.Get("features");
+
+  slammtt::WorldRunSummary summary;
+  std::string where;
+  if (log_path) {
+    summary = slammtt::WriteWorldLog(&world, channels, *log_path);
+    where = "into " + *log_path;
+    if (summary.interrupted) {
+      slammtt::LogError() << "interrupted: no log written";
+      return 1;
+    }
+  } else {
+    const std::unique_ptr<lcm::LCM> lcm = slammtt::OpenLcm(settings.lcm_url);
+    slammtt::LiveOptions options;
+    options.rate_factor = rate_factor;
+    options.follow_commands = cl.Flag("follow-commands");
+    options.velocity_command_channel = settings.channels.Get("velocity_command");
+    summary = slammtt::PublishWorldLive(&world, lcm.get(), channels, options);
+    where = "on " + settings.lcm_url + (summary.interrupted ? " (interrupted)" : "");
+  }
+  slammtt::LogInfo() << Summary(scenario.name, static_cast<uint64_t>(seed), where, summary);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) { return slammtt::ProcessMain(argc, argv, "slammtt-world", Run); }
