@@ -1,0 +1,195 @@
+#include "perception/centre_estimation.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Dense>
+
+namespace slammtt {
+namespace {
+
+// An angle expressed near `reference` (within pi of it), for the unwrapped bearing frame.
+double NearAngle(double angle_rad, double reference_rad) {
+  return reference_rad + std::remainder(angle_rad - reference_rad, 2.0 * M_PI);
+}
+
+// Mean of the per-point centre distances D_i = a_i + sqrt(R^2 - c_i^2) along the unit ray
+// (ux, uy) for a circle of fixed radius R, weighted by (R^2 - c_i^2) / R^2.
+double CentreDistanceForRadius(const ClusterView& cluster, double ux, double uy,
+                               double radius_m) {
+  const double r2 = radius_m * radius_m;
+  double sum_w = 0.0;
+  double sum_wd = 0.0;
+  double sum_a = 0.0;
+  for (size_t i = 0; i < cluster.count; ++i) {
+    const double a = cluster.x_m[i] * ux + cluster.y_m[i] * uy;
+    const double c = -cluster.x_m[i] * uy + cluster.y_m[i] * ux;
+    const double q = r2 - c * c;
+    sum_a += a;
+    if (q <= 0.0) continue;
+    const double w = q / r2;
+    sum_w += w;
+    sum_wd += w * (a + std::sqrt(q));
+  }
+  if (sum_w > 0.0) return sum_wd / sum_w;
+  return sum_a / static_cast<double>(cluster.count) + radius_m;  // every point off the circle
+}
+
+}  // namespace
+
+CentreEstimate MiddlePointCentre(const ClusterView& cluster) {
+  CentreEstimate estimate;
+  const size_t n = cluster.count;
+  if (n % 2 == 1) {
+    estimate.range_m = cluster.range_m[n / 2];
+    estimate.bearing_rad = cluster.bearing_rad[n / 2];
+    return estimate;
+  }
+  const size_t i = n / 2 - 1;
+  const size_t j = n / 2;
+  const double x = 0.5 * (cluster.x_m[i] + cluster.x_m[j]);
+  const double y = 0.5 * (cluster.y_m[i] + cluster.y_m[j]);
+  estimate.range_m = std::hypot(x, y);
+  const double middle = 0.5 * (cluster.bearing_rad[i] + cluster.bearing_rad[j]);
+  estimate.bearing_rad = estimate.range_m > 0.0 ? NearAngle(std::atan2(y, x), middle) : middle;
+  return estimate;
+}
+
+CentreEstimate RadiusCorrectedCentre(const ClusterView& cluster, double max_radius_m) {
+  CentreEstimate estimate;
+  const size_t n = cluster.count;
+  if (n == 1) {
+    estimate.range_m = cluster.range_m[0];
+    estimate.bearing_rad = cluster.bearing_rad[0];
+    return estimate;
+  }
+  const double first = cluster.bearing_rad[0];
+  const double last = cluster.bearing_rad[n - 1];
+  const double spacing = (last - first) / static_cast<double>(n - 1);
+  const double alpha = (last - first) + spacing;
+  const double centre_bearing = 0.5 * (first + last);
+  const double ux = std::cos(centre_bearing);
+  const double uy = std::sin(centre_bearing);
+  // An extent near pi would put the centre at infinity; the radius clamp below takes over.
+  const double s = std::min(std::sin(0.5 * std::min(alpha, M_PI)), 0.99);
+  const double s2 = s * s;
+
+  double sum_w = 0.0;
+  double sum_wd = 0.0;
+  for (size_t i = 0; i < n; ++i) {
+    const double r = cluster.range_m[i];
+    const double a = cluster.x_m[i] * ux + cluster.y_m[i] * uy;  // r cos(phi)
+    const double c = -cluster.x_m[i] * uy + cluster.y_m[i] * ux;  // r sin(phi)
+    const double q = s2 * r * r - c * c;
+    if (q <= 0.0) continue;  // at or beyond the estimated tangent: weight 0
+    const double w = q / (s2 * r * r);
+    sum_w += w;
+    sum_wd += w * (a + std::sqrt(q)) / (1.0 - s2);
+  }
+  double distance = 0.0;
+  if (sum_w > 0.0) {
+    distance = sum_wd / sum_w;
+  } else {
+    // Cannot happen for a cluster with increasing bearings (its middle is inside the extent);
+    // kept so that a degenerate input still gives a finite answer.
+    distance = cluster.range_m[n / 2] / (1.0 - s);
+  }
+  double radius = distance * s;
+  if (radius > max_radius_m) {
+    radius = max_radius_m;
+    distance = CentreDistanceForRadius(cluster, ux, uy, radius);
+  }
+  estimate.range_m = distance;
+  estimate.bearing_rad = centre_bearing;
+  estimate.radius_m = radius;
+  return estimate;
+}
+
+CentreEstimate CircleFitCentre(const ClusterView& cluster, double max_radius_m, double sigma_r_m) {
+  CentreEstimate fallback = RadiusCorrectedCentre(cluster, max_radius_m);
+  fallback.fell_back = true;
+  const size_t n = cluster.count;
+  if (n < 2) return fallback;
+  const bool use_first = !cluster.first_edge_occluded;
+  const bool use_last = !cluster.last_edge_occluded;
+  const size_t tangents = static_cast<size_t>(use_first) + static_cast<size_t>(use_last);
+  if (n + tangents < 3 || (tangents == 0 && n < kMinCircleFitPoints)) return fallback;
+
+  const double first = cluster.bearing_rad[0];
+  const double last = cluster.bearing_rad[n - 1];
+  const double spacing = (last - first) / static_cast<double>(n - 1);
+  const double first_tangent = first - 0.5 * spacing;
+  const double last_tangent = last + 0.5 * spacing;
+  const double inv_sigma_t = std::sqrt(12.0) / spacing;
+  const double inv_sigma_r = 1.0 / sigma_r_m;
+
+  double distance = fallback.range_m;
+  double bearing = fallback.bearing_rad;
+  double radius = std::max(fallback.radius_m, 1e-3);
+  bool converged = false;
+  for (int iteration = 0; iteration < 20; ++iteration) {
+    const double cos_b = std::cos(bearing);
+    const double sin_b = std::sin(bearing);
+    const double cx = distance * cos_b;
+    const double cy = distance * sin_b;
+    Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();  // J^T J over (D, theta, R)
+    Eigen::Vector3d gradient = Eigen::Vector3d::Zero();  // J^T e
+    auto add = [&](const Eigen::Vector3d& jacobian, double residual) {
+      normal.noalias() += jacobian * jacobian.transpose();
+      gradient.noalias() += jacobian * residual;
+    };
+    for (size_t i = 0; i < n; ++i) {
+      const double dx = cx - cluster.x_m[i];
+      const double dy = cy - cluster.y_m[i];
+      const double d = std::hypot(dx, dy);
+      if (!(d > 0.0)) return fallback;  // centre on a point: no gradient
+      const double ux = dx / d;
+      const double uy = dy / d;
+      add(Eigen::Vector3d(ux * cos_b + uy * sin_b, distance * (-ux * sin_b + uy * cos_b), -1.0) *
+              inv_sigma_r,
+          (d - radius) * inv_sigma_r);
+    }
+    // Half angle g = asin(R / D) subtended by the circle, and its derivatives.
+    const double root = std::sqrt(distance * distance - radius * radius);
+    const double g = std::asin(radius / distance);
+    const double dg_dd = -radius / (distance * root);
+    const double dg_dr = 1.0 / root;
+    if (use_first) {
+      add(Eigen::Vector3d(-dg_dd, 1.0, -dg_dr) * inv_sigma_t,
+          (bearing - g - first_tangent) * inv_sigma_t);
+    }
+    if (use_last) {
+      add(Eigen::Vector3d(dg_dd, 1.0, dg_dr) * inv_sigma_t,
+          (bearing + g - last_tangent) * inv_sigma_t);
+    }
+    const Eigen::LDLT<Eigen::Matrix3d> solver(normal);
+    if (solver.info() != Eigen::Success || !solver.isPositive() ||
+        !(solver.vectorD().minCoeff() > 1e-12 * solver.vectorD().maxCoeff())) {
+      return fallback;
+    }
+    const Eigen::Vector3d step = -solver.solve(gradient);
+    if (!step.allFinite()) return fallback;
+    const double previous_distance = distance;
+    const double previous_bearing = bearing;
+    const double previous_radius = radius;
+    distance += step(0);
+    bearing += step(1);
+    radius += step(2);
+    // Stay in the admissible region: a positive radius, the sensor outside the object.
+    if (!(distance > 0.0)) return fallback;
+    radius = std::clamp(radius, 1e-4, std::min(max_radius_m, 0.99 * distance));
+    if (std::abs(distance - previous_distance) < 1e-9 && std::abs(radius - previous_radius) < 1e-9 &&
+        std::abs(bearing - previous_bearing) * distance < 1e-9) {
+      converged = true;
+      break;
+    }
+  }
+  if (!converged || !std::isfinite(distance) || !std::isfinite(bearing)) return fallback;
+  CentreEstimate estimate;
+  estimate.range_m = distance;
+  estimate.bearing_rad = bearing;
+  estimate.radius_m = radius;
+  return estimate;
+}
+
+}  // namespace slammtt

@@ -1,0 +1,271 @@
+#include "perception/segmenter.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "perception/centre_estimation.h"
+
+namespace slammtt {
+namespace {
+
+constexpr double kTwoPi = 2.0 * M_PI;
+
+// CCW angle from a to b, in [0, 2 pi), for angles already in (-pi, pi].
+double CcwDelta(double a_rad, double b_rad) {
+  const double d = b_rad - a_rad;
+  return d < 0.0 ? d + kTwoPi : d;
+}
+
+const SegmenterOptions& Checked(const SegmenterOptions& options) {
+  const std::string problem = CheckSegmenterOptions(options);
+  if (!problem.empty()) throw std::invalid_argument("segmenter options: " + problem);
+  return options;
+}
+
+}  // namespace
+
+double WrapAngle(double angle_rad) {
+  if (angle_rad > -M_PI && angle_rad <= M_PI) return angle_rad;
+  double a = angle_rad;
+  if (a > M_PI && a <= 3.0 * M_PI) {
+    a -= kTwoPi;
+  } else if (a <= -M_PI && a > -3.0 * M_PI) {
+    a += kTwoPi;
+  } else {
+    a = std::remainder(a, kTwoPi);
+  }
+  if (a <= -M_PI) a += kTwoPi;
+  if (a > M_PI) a -= kTwoPi;
+  return a;
+}
+
+Segmenter::Segmenter(const SegmenterOptions& options)
+    : options_(Checked(options)),
+      criterion_(options.lambda_rad, options.sigma_r_m, options.max_beam_gap_rad) {}
+
+const std::vector<Feature>& Segmenter::Segment(const ScanView& scan) {
+  stats_ = SegmentationStats{};
+  features_.clear();
+  CollectBeams(scan);
+  if (!beams_.empty()) {
+    PutInCircularOrder();
+    DropDuplicates();
+    FindClusters();
+    std::sort(features_.begin(), features_.end(), [](const Feature& a, const Feature& b) {
+      if (a.bearing_rad != b.bearing_rad) return a.bearing_rad < b.bearing_rad;
+      return a.range_m < b.range_m;
+    });
+  }
+  stats_.beams_used = static_cast<int64_t>(beams_.size());
+  stats_.features = static_cast<int64_t>(features_.size());
+  return features_;
+}
+
+void Segmenter::CollectBeams(const ScanView& scan) {
+  beams_.clear();
+  const size_t n = (scan.angle_rad != nullptr && scan.range_m != nullptr) ? scan.num_beams : 0;
+  stats_.beams = static_cast<int64_t>(scan.num_beams);
+  // A sensor limit that is not a usable number is no limit; the options' limits always apply.
+  double lo = options_.min_range_m;
+  if (std::isfinite(scan.range_min_m) && scan.range_min_m > lo) lo = scan.range_min_m;
+  double hi = options_.max_range_m;
+  if (std::isfinite(scan.range_max_m) && scan.range_max_m > 0.0 && scan.range_max_m < hi) {
+    hi = scan.range_max_m;
+  }
+  if (beams_.capacity() < n) beams_.reserve(n);
+  for (size_t i = 0; i < n; ++i) {
+    if (scan.valid != nullptr && scan.valid[i] == 0) {
+      ++stats_.beams_flagged_invalid;
+      continue;
+    }
+    const double angle = scan.angle_rad[i];
+    const double range = scan.range_m[i];
+    if (!std::isfinite(angle) || !std::isfinite(range)) {
+      ++stats_.beams_non_finite;
+      continue;
+    }
+    // A range of 0 is the sensor itself (RPLIDAR's "no return"), never a point of the world.
+    if (!(range > 0.0 && range >= lo && range <= hi)) {
+      ++stats_.beams_out_of_range;
+      continue;
+    }
+    beams_.push_back(Beam{WrapAngle(angle), range, static_cast<int32_t>(i)});
+  }
+  if (n < scan.num_beams) stats_.beams_non_finite += static_cast<int64_t>(scan.num_beams - n);
+}
+
+void Segmenter::PutInCircularOrder() {
+  const size_t m = beams_.size();
+  size_t descents = 0;
+  for (size_t k = 0; k + 1 < m; ++k) descents += beams_[k + 1].angle_rad < beams_[k].angle_rad;
+  // Sorted, or sorted after a rotation (one descent, and the end does not pass the start).
+  if (descents == 0 || (descents == 1 && beams_[m - 1].angle_rad <= beams_[0].angle_rad)) return;
+  std::sort(beams_.begin(), beams_.end(), [](const Beam& a, const Beam& b) {
+    if (a.angle_rad != b.angle_rad) return a.angle_rad < b.angle_rad;
+    return a.index < b.index;
+  });
+  stats_.beams_were_sorted = true;
+}
+
+void Segmenter::DropDuplicates() {
+  const double tolerance = options_.duplicate_angle_tolerance_rad;
+  size_t kept = 0;
+  for (size_t k = 0; k < beams_.size(); ++k) {
+    if (kept > 0 && CcwDelta(beams_[kept - 1].angle_rad, beams_[k].angle_rad) < tolerance) {
+      if (beams_[k].range_m < beams_[kept - 1].range_m) beams_[kept - 1] = beams_[k];
+      ++stats_.beams_duplicate;
+    } else {
+      beams_[kept++] = beams_[k];
+    }
+  }
+  // The last and the first beam are neighbours too.
+  while (kept > 1 && CcwDelta(beams_[kept - 1].angle_rad, beams_[0].angle_rad) < tolerance) {
+    if (beams_[kept - 1].range_m < beams_[0].range_m) beams_[0] = beams_[kept - 1];
+    --kept;
+    ++stats_.beams_duplicate;
+  }
+  beams_.resize(kept);
+}
+
+void Segmenter::FindClusters() {
+  const size_t m = beams_.size();
+  if (m == 1) {
+    MakeFeature(0, 1);
+    return;
+  }
+  if (splits_.size() < m) splits_.resize(m);
+  size_t first_split = m;
+  for (size_t k = 0; k < m; ++k) {
+    const Beam& a = beams_[k];
+    const Beam& b = beams_[k + 1 < m ? k + 1 : 0];
+    const bool split = criterion_.Splits(a.range_m, b.range_m, CcwDelta(a.angle_rad, b.angle_rad));
+    splits_[k] = split;
+    if (split && first_split == m) first_split = k;
+  }
+  if (first_split == m) {  // one closed cluster around the sensor
+    MakeFeature(0, m);
+    return;
+  }
+  size_t cluster_start = first_split + 1 < m ? first_split + 1 : 0;
+  size_t count = 0;
+  size_t k = cluster_start;
+  for (size_t step = 0; step < m; ++step) {
+    ++count;
+    if (splits_[k]) {
+      MakeFeature(cluster_start, count);
+      cluster_start = k + 1 < m ? k + 1 : 0;
+      count = 0;
+    }
+    k = k + 1 < m ? k + 1 : 0;
+  }
+}
+
+void Segmenter::MakeFeature(size_t ring_start, size_t count) {
+  ++stats_.clusters;
+  const size_t m = beams_.size();
+  if (ring_start + count > m || (count == m && m > 1)) ++stats_.clusters_across_seam;
+  if (count < static_cast<size_t>(options_.min_points)) {
+    ++stats_.clusters_too_few_points;
+    return;
+  }
+  if (bearing_.size() < count) {
+    bearing_.resize(count);
+    range_.resize(count);
+    x_.resize(count);
+    y_.resize(count);
+  }
+  size_t k = ring_start;
+  double bearing = beams_[k].angle_rad;
+  for (size_t i = 0; i < count; ++i) {
+    if (i > 0) {
+      const size_t next = k + 1 < m ? k + 1 : 0;
+      bearing += CcwDelta(beams_[k].angle_rad, beams_[next].angle_rad);
+      k = next;
+    }
+    bearing_[i] = bearing;
+    range_[i] = beams_[k].range_m;
+  }
+  const size_t last_ring_index = k;
+  const double extent = bearing_[count - 1] - bearing_[0];
+  if (extent >= M_PI) {  // surrounds the sensor or spans a half plane: no centre
+    ++stats_.clusters_too_wide;
+    return;
+  }
+  for (size_t i = 0; i < count; ++i) {
+    x_[i] = range_[i] * std::cos(bearing_[i]);
+    y_[i] = range_[i] * std::sin(bearing_[i]);
+  }
+  const double width = std::hypot(x_[count - 1] - x_[0], y_[count - 1] - y_[0]);
+  if (width > options_.max_width_m) {
+    ++stats_.clusters_too_wide;
+    return;
+  }
+
+  const double spacing = count > 1 ? extent / static_cast<double>(count - 1) : 0.0;
+  ClusterView cluster;
+  cluster.bearing_rad = bearing_.data();
+  cluster.range_m = range_.data();
+  cluster.x_m = x_.data();
+  cluster.y_m = y_.data();
+  cluster.count = count;
+  if (count < m && count > 1) {
+    // An edge is occluded when the adjacent beam outside it (within 1.5 spacings) is nearer.
+    const Beam& before = beams_[ring_start > 0 ? ring_start - 1 : m - 1];
+    const Beam& after = beams_[last_ring_index + 1 < m ? last_ring_index + 1 : 0];
+    const double adjacent = 1.5 * spacing;
+    cluster.first_edge_occluded =
+        before.range_m < range_[0] &&
+        CcwDelta(before.angle_rad, beams_[ring_start].angle_rad) <= adjacent;
+    cluster.last_edge_occluded =
+        after.range_m < range_[count - 1] &&
+        CcwDelta(beams_[last_ring_index].angle_rad, after.angle_rad) <= adjacent;
+  }
+  const CentreEstimate corrected = RadiusCorrectedCentre(cluster, options_.max_object_radius_m);
+  CentreEstimate centre = corrected;
+  double offset_var = 0.0;  // variance of a known, uncorrected offset of the centre
+  switch (options_.centre_rule) {
+    case CentreRule::kMiddlePoint:
+      centre = MiddlePointCentre(cluster);
+      offset_var = corrected.radius_m * corrected.radius_m;
+      break;
+    case CentreRule::kRadiusCorrected:
+      break;
+    case CentreRule::kCircleFit:
+      centre = CircleFitCentre(cluster, options_.max_object_radius_m, options_.sigma_r_m);
+      if (centre.fell_back) ++stats_.circle_fit_fallbacks;
+      break;
+  }
+  if (!std::isfinite(centre.range_m) || !(centre.range_m > 0.0) ||
+      !std::isfinite(centre.bearing_rad)) {
+    // Not reachable with finite positive ranges; a guard so that no NaN ever leaves here.
+    centre = MiddlePointCentre(cluster);
+  }
+
+  // The object's size for the shape terms: the rule's own radius estimate, or the extent's.
+  const double radius = centre.radius_m > 0.0 ? centre.radius_m : corrected.radius_m;
+  const double f = options_.shape_sigma_fraction;
+  const double lateral = f * radius / centre.range_m;
+  Feature feature;
+  feature.range_m = centre.range_m;
+  feature.bearing_rad = WrapAngle(centre.bearing_rad);
+  feature.width_m = width;
+  feature.num_points = static_cast<int>(count);
+  feature.radius_m = centre.radius_m;
+  feature.covariance(0, 0) =
+      options_.sigma_r_m * options_.sigma_r_m + f * f * radius * radius + offset_var;
+  feature.covariance(1, 1) = options_.bearing_sigma_rad * options_.bearing_sigma_rad +
+                             spacing * spacing / 24.0 + lateral * lateral;
+  feature.covariance(0, 1) = 0.0;
+  feature.covariance(1, 0) = 0.0;
+  feature.first_beam_index = beams_[ring_start].index;
+  feature.last_beam_index = beams_[last_ring_index].index;
+  features_.push_back(feature);
+}
+
+std::vector<Feature> SegmentScan(const ScanView& scan, const SegmenterOptions& options) {
+  Segmenter segmenter(options);
+  return segmenter.Segment(scan);
+}
+
+}  // namespace slammtt

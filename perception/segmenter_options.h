@@ -1,0 +1,84 @@
+// Parameters of the adaptive breakpoint segmentation (paper section 3, Algorithm 1) and of the
+// point feature made from each cluster. Defaults are the paper's where it gives one (lambda,
+// sigma_r); the others are ours, chosen and justified in docs/perception.md.
+//
+// Reading these from the stack configuration (`segmenter:` section) is not done here: see
+// ReadSegmenterOptions() in perception/segmenter_stage.h.
+#pragma once
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace slammtt {
+
+// Where the feature's centre is put (the point handed to the estimator).
+enum class CentreRule {
+  // The paper's rule (Algorithm 1, step 8): the middle point of the cluster. On a round object
+  // (person, post) every visible point lies on the near half of the outline, so this centre is
+  // about one radius closer to the sensor than the object's centre.
+  kMiddlePoint,
+  // Bearing: middle of the cluster's angular extent. Range: the circle tangent to the two rays
+  // that bound the visible extent, fitted to the central points along the beams; i.e. the near
+  // range pushed back by a radius estimated from the extent (see centre_estimation.h).
+  kRadiusCorrected,
+  // Geometric least-squares circle fit of the cluster's points, started from kRadiusCorrected
+  // and falling back to it when the fit is not trustworthy (too few points, radius out of
+  // bounds, centre outside the visible cone or in front of the points).
+  kCircleFit,
+};
+
+// "middle_point", "radius_corrected", "circle_fit".
+const char* CentreRuleName(CentreRule rule);
+// Parses a name of CentreRuleName(); false for anything else.
+bool ParseCentreRule(const std::string& name, CentreRule* rule);
+
+struct SegmenterOptions {
+  // Breakpoint criterion (paper eq. 15, Borges and Aldon 2004): consecutive points i, i+1 are
+  // split when |p(i+1) - p(i)| > r(i) * sin(dtheta) / sin(lambda - dtheta) + 3 * sigma_r.
+  // lambda is the smallest incidence angle of a surface that still counts as one object.
+  double lambda_rad = 20.0 * M_PI / 180.0;  // paper: 20 degrees
+  double sigma_r_m = 0.03;                  // paper: 0.03 m; also the range noise of one beam
+
+  // Two valid beams further apart than this always split, whatever eq. 15 says. Eq. 15 alone
+  // joins points across any gap below lambda (at dtheta = 19 deg its threshold is 18.7 r), which
+  // would merge two people with a run of no-return beams between them. Default: about five
+  // RPLIDAR A2 beams, so one or two dropped beams inside an object do not split it.
+  double max_beam_gap_rad = 5.0 * M_PI / 180.0;
+
+  // Beams whose angles differ by less than this are one direction measured twice; the nearer
+  // return is kept (the far one of a pair is a mixed or late return). Far below any real
+  // spacing (RPLIDAR quantises angles to 1/64 degree), above float rounding near 2 pi.
+  double duplicate_angle_tolerance_rad = 0.001 * M_PI / 180.0;
+
+  // Range limits, applied together with the scan's own range_min_m / range_max_m (the tighter
+  // limit wins). Beams outside are dropped and counted.
+  double min_range_m = 0.0;
+  double max_range_m = std::numeric_limits<double>::infinity();
+
+  // A cluster becomes a feature only with at least this many points...
+  int min_points = 3;
+  // ...and when the distance between its first and last point is at most this: a wall or a
+  // long piece of furniture is not a point feature (its "centre" slides with the viewpoint and
+  // the estimator would take it for a moving object). People are about 0.5 m wide.
+  double max_width_m = 1.5;
+
+  CentreRule centre_rule = CentreRule::kCircleFit;
+  // Upper bound of an object radius for kRadiusCorrected and kCircleFit: a larger estimate is
+  // clamped (kRadiusCorrected) or rejected in favour of kRadiusCorrected (kCircleFit).
+  double max_object_radius_m = 1.0;
+
+  // Measurement covariance of the feature (see Segmenter in segmenter.h for the model):
+  // angular noise of one beam's direction (encoder jitter, timing within the revolution).
+  double bearing_sigma_rad = 0.5 * M_PI / 180.0;
+  // Fraction of the estimated object radius taken as the standard deviation of the centre's
+  // position from the object's shape (objects are not exact circles).
+  double shape_sigma_fraction = 0.3;
+};
+
+// Empty when the options are usable; otherwise one line naming the first bad field
+// ("lambda_rad must be in (0, pi/2), got 2"). Every numeric field must be finite except
+// max_range_m, which may be +infinity.
+std::string CheckSegmenterOptions(const SegmenterOptions& options);
+
+}  // namespace slammtt
