@@ -1,0 +1,238 @@
+#include "tools/replay/log_replay.h"
+
+#include <sys/stat.h>
+
+#include <exception>
+#include <stdexcept>
+#include <utility>
+
+#include "runtime/log.h"
+
+namespace slammtt {
+namespace {
+
+// A chain of stages feeding each other longer than this is a loop (a stage consuming what it
+// publishes, directly or through others); the message is dropped and counted as an error.
+constexpr int kMaxCascadeDepth = 16;
+
+bool SameFile(const std::string& a, const std::string& b) {
+  struct stat sa {};
+  struct stat sb {};
+  if (stat(a.c_str(), &sa) != 0 || stat(b.c_str(), &sb) != 0) return false;
+  return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+}
+
+}  // namespace
+
+// The sink a stage publishes into during one Handle(): timing to the timing output, everything
+// else to the main output and on to the stages downstream.
+class LogReplay::CascadeSink : public MessageSink {
+ public:
+  CascadeSink(LogReplay* replay, size_t stage_index, int64_t timestamp_us, int64_t eventnum,
+              const EventWriter& output, const EventWriter& timing, int depth)
+      : replay_(replay),
+        stage_index_(stage_index),
+        timestamp_us_(timestamp_us),
+        eventnum_(eventnum),
+        output_(output),
+        timing_(timing),
+        depth_(depth) {}
+
+  void Publish(const std::string& channel, const void* data, int size) override {
+    StageReplayStats& stats = replay_->stats_[stage_index_];
+    if (channel == replay_->timing_channel_) {
+      ++stats.timing_messages;
+      if (timing_) timing_(timestamp_us_, channel, data, size);
+      return;
+    }
+    ++stats.messages_published;
+    output_(timestamp_us_, channel, data, size);
+    replay_->Deliver(channel, data, size, timestamp_us_, eventnum_, output_, timing_, depth_ + 1);
+  }
+
+ private:
+  LogReplay* replay_;
+  size_t stage_index_;
+  int64_t timestamp_us_;
+  int64_t eventnum_;
+  const EventWriter& output_;
+  const EventWriter& timing_;
+  int depth_;
+};
+
+LogReplay::LogReplay(std::vector<ReplayStage> stages, std::string timing_channel)
+    : stages_(std::move(stages)), timing_channel_(std::move(timing_channel)) {
+  for (const ReplayStage& s : stages_) {
+    if (!s.stage) throw std::invalid_argument("replay: null stage");
+    StageReplayStats stats;
+    stats.name = s.stage->Name();
+    stats_.push_back(stats);
+  }
+}
+
+void LogReplay::Plan(const std::set<std::string>& input_channels) {
+  std::set<std::string> available = input_channels;
+  for (StageReplayStats& s : stats_) s.runs = false;
+  // A stage's outputs make more channels available: iterate to the fixed point.
+  bool changed = true;
+  while (changed) {
+    changed = false;
+    for (size_t k = 0; k < stages_.size(); ++k) {
+      if (stats_[k].runs) continue;
+      for (const std::string& channel : stages_[k].stage->InputChannels()) {
+        if (available.count(channel) == 0) continue;
+        stats_[k].runs = true;
+        changed = true;
+        for (const std::string& out : stages_[k].output_channels) available.insert(out);
+        break;
+      }
+    }
+  }
+  produced_.clear();
+  for (size_t k = 0; k < stages_.size(); ++k) {
+    if (!stats_[k].runs) continue;
+    produced_.insert(stages_[k].output_channels.begin(), stages_[k].output_channels.end());
+    produced_.insert(timing_channel_);
+  }
+  planned_ = true;
+}
+
+void LogReplay::HandleEvent(const LogEvent& event, const EventWriter& output,
+                            const EventWriter& timing) {
+  if (!planned_) throw std::logic_error("LogReplay::HandleEvent before Plan");
+  const int size = static_cast<int>(event.data.size());
+  if (produced_.count(event.channel) != 0) {
+    // Replaced by what a running stage computes: neither copied nor fed to the stages (the
+    // estimator must see the replayed FEATURES only, not also the recorded ones).
+    ++events_replaced_;
+    return;
+  }
+  ++events_copied_;
+  output(event.timestamp_us, event.channel, event.data.data(), size);
+  Deliver(event.channel, event.data.data(), size, event.timestamp_us, event.eventnum, output,
+          timing, 0);
+}
+
+void LogReplay::Deliver(const std::string& channel, const void* data, int size,
+                        int64_t timestamp_us, int64_t eventnum, const EventWriter& output,
+                        const EventWriter& timing, int depth) {
+  for (size_t k = 0; k < stages_.size(); ++k) {
+    if (!stats_[k].runs) continue;
+    Stage& stage = *stages_[k].stage;
+    bool wants = false;
+    for (const std::string& c : stage.InputChannels()) wants = wants || c == channel;
+    if (!wants) continue;
+    if (depth > kMaxCascadeDepth) {
+      ++stats_[k].errors;
+      LogError() << stage.Name() << ": message on " << channel << " (input event " << eventnum
+                 << ") dropped: stages feed each other in a loop";
+      continue;
+    }
+    ++stats_[k].messages_handled;
+    CascadeSink sink(this, k, timestamp_us, eventnum, output, timing, depth);
+    try {
+      stage.Handle(channel, data, size, sink);
+    } catch (const std::exception& e) {
+      ++stats_[k].errors;
+      LogError() << stage.Name() << ": message on " << channel << " (input event " << eventnum
+                 << ") failed: " << e.what();
+    }
+  }
+}
+
+ReplayFileResult ReplayLogFile(const std::string& input_path, const std::string& output_path,
+                               std::vector<ReplayStage> stages,
+                               const ReplayFileOptions& options) {
+  ReplayFileResult result;
+  if (SameFile(input_path, output_path) ||
+      (!options.timing_path.empty() && SameFile(input_path, options.timing_path))) {
+    throw std::runtime_error(output_path + ": refusing to overwrite the input log");
+  }
+  if (!options.timing_path.empty() && options.timing_path == output_path) {
+    throw std::runtime_error(output_path + ": the timing log must be another file");
+  }
+  result.input = ScanLogFile(input_path);
+
+  LogReplay replay(std::move(stages), options.timing_channel);
+  std::set<std::string> channels;
+  for (const auto& entry : result.input.channels) channels.insert(entry.first);
+  replay.Plan(channels);
+  result.replaced_channels = replay.produced_channels();
+
+  LogWriter writer(output_path);
+  std::unique_ptr<LogWriter> timing_writer;
+  if (!options.timing_path.empty()) timing_writer = std::make_unique<LogWriter>(options.timing_path);
+  const EventWriter output = [&](int64_t ts, const std::string& ch, const void* d, int n) {
+    writer.Write(ts, ch, d, n);
+  };
+  EventWriter timing;
+  if (timing_writer) {
+    timing = [&](int64_t ts, const std::string& ch, const void* d, int n) {
+      timing_writer->Write(ts, ch, d, n);
+    };
+  }
+
+  // Events are read through LCM's own API (what lcm-logplayer plays).
+  lcm::LogFile file(input_path, "r");
+  if (!file.good()) throw std::runtime_error(input_path + ": cannot open log file");
+  ReplayProgress progress;
+  progress.events_total = result.input.complete_events;
+  progress.log_span_us = result.input.last_timestamp_us - result.input.first_timestamp_us;
+  int64_t next_progress_events = options.progress_every_events;
+  int64_t next_progress_time_us = static_cast<int64_t>(options.progress_every_log_s * 1e6);
+  while (const lcm::LogEvent* raw = file.readNextEvent()) {
+    LogEvent event;
+    event.eventnum = raw->eventnum;
+    event.timestamp_us = raw->timestamp;
+    event.channel = raw->channel;
+    const auto* bytes = static_cast<const uint8_t*>(raw->data);
+    event.data.assign(bytes, bytes + raw->datalen);
+    ++result.events_read;
+    replay.HandleEvent(event, output, timing);
+    progress.events_done = result.events_read;
+    progress.log_time_us = event.timestamp_us - result.input.first_timestamp_us;
+    if (options.on_progress && (progress.events_done >= next_progress_events ||
+                                progress.log_time_us >= next_progress_time_us)) {
+      options.on_progress(progress);
+      while (next_progress_events <= progress.events_done) {
+        next_progress_events += options.progress_every_events;
+      }
+      while (next_progress_time_us <= progress.log_time_us) {
+        next_progress_time_us += static_cast<int64_t>(options.progress_every_log_s * 1e6);
+      }
+    }
+  }
+  result.stages = replay.stats();
+
+  const LogScan& scan = result.input;
+  std::string problem;
+  if (scan.damage == LogDamage::kCorrupt) {
+    problem = input_path + ": " + scan.damage_description + "; processed the " +
+              std::to_string(result.events_read) + " events before it";
+  } else if (result.events_read != scan.complete_events) {
+    // LCM's reader and the structural scan disagree: never write a log we cannot vouch for.
+    problem = input_path + ": LCM read " + std::to_string(result.events_read) + " of " +
+              std::to_string(scan.complete_events) + " complete events";
+  } else if (scan.damage == LogDamage::kTruncatedTail) {
+    const std::string line = input_path + ": " + scan.damage_description;
+    if (options.truncated_tail_is_error) {
+      problem = line;
+    } else {
+      result.warning = line + "; ignored (all " + std::to_string(result.events_read) +
+                       " complete events replayed)";
+    }
+  }
+  if (!problem.empty()) {
+    result.error = problem;
+    return result;  // the writers' destructors remove the partial files
+  }
+  result.events_written = writer.events_written();
+  writer.Commit();
+  if (timing_writer) {
+    result.timing_events_written = timing_writer->events_written();
+    timing_writer->Commit();
+  }
+  return result;
+}
+
+}  // namespace slammtt

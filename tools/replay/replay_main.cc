@@ -1,0 +1,118 @@
+// slammtt-replay IN.lcm -o OUT.lcm [--config FILE]: deterministic replay of a log through the
+// processing stages (log_replay.h; usage and semantics in docs/tools.md).
+#include <chrono>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "runtime/command_line.h"
+#include "runtime/log.h"
+#include "runtime/process.h"
+#include "tools/replay/log_replay.h"
+#include "tools/replay/stack_stages.h"
+
+namespace slammtt {
+namespace {
+
+int Run(int argc, char** argv) {
+  CommandLine cl("slammtt-replay", "[options] IN.lcm -o OUT.lcm",
+                 "Runs the processing stages on a log in log order and writes a log with the "
+                 "inputs and every output, byte-identical on every run. Stage timing goes to a "
+                 "separate log (OUT.timing.lcm by default).");
+  AddStandardOptions(&cl);
+  cl.AddPositional("IN.lcm", "input log (lcm-logger or slammtt-world)");
+  cl.AddOption("output", "OUT.lcm", "output log (required)", 'o');
+  cl.AddOption("timing-log", "FILE", "STAGE_TIMING log (default: OUT.timing.lcm)");
+  cl.AddFlag("no-timing", "write no timing log");
+  cl.AddRepeatedOption("stage", "NAME",
+                       "run only these stages (segmenter, estimator; overrides replay.stages)");
+  cl.AddFlag("strict", "treat a truncated final event as an error (default: a warning)");
+  if (!cl.Parse(argc, argv)) return 0;
+  const std::string input = *cl.Positional("IN.lcm");
+  const auto output = cl.Value("output");
+  if (!output) throw UsageError("-o OUT.lcm is required");
+  if (cl.Flag("no-timing") && cl.Value("timing-log")) {
+    throw UsageError("--no-timing and --timing-log exclude each other");
+  }
+
+  ProcessSettings settings = LoadProcessSettings(cl);
+  const Config section = settings.config.Child("replay");
+  std::vector<std::string> enabled;
+  for (const std::string& name : StackStageNames()) {
+    if (IsStackStageBuilt(name)) {
+      enabled.push_back(name);
+    } else {
+      LogWarning() << name << ": stage not built into this program yet; not run";
+    }
+  }
+  if (section.Has("stages")) {
+    enabled.clear();
+    for (const Config& item : section.Items("stages")) enabled.push_back(item.AsString());
+  }
+  if (!cl.Values("stage").empty()) enabled = cl.Values("stage");
+  ReplayFileOptions options;
+  options.progress_every_events = section.GetInt("progress_every_events", 20000);
+  options.progress_every_log_s = section.GetDouble("progress_every_log_s", 30.0);
+  options.truncated_tail_is_error =
+      cl.Flag("strict") || section.GetString("truncated_tail", "warn") == "error";
+  if (section.Has("truncated_tail")) {
+    const std::string value = section.GetString("truncated_tail", "warn");
+    if (value != "warn" && value != "error") {
+      section.FailKey("truncated_tail", "expected warn or error, got \"" + value + "\"");
+    }
+  }
+  if (options.progress_every_events < 1) {
+    section.FailKey("progress_every_events", "must be at least 1");
+  }
+  if (!(options.progress_every_log_s > 0.0)) {
+    section.FailKey("progress_every_log_s", "must be positive");
+  }
+  section.CheckUnused();
+  options.timing_channel = settings.channels.Get("stage_timing");
+  if (!cl.Flag("no-timing")) options.timing_path = cl.ValueOr("timing-log", *output + ".timing.lcm");
+  // The steady clock only paces and annotates the progress line; no output depends on it.
+  const auto start = std::chrono::steady_clock::now();
+  options.on_progress = [&](const ReplayProgress& p) {
+    const double wall_s =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double log_s = static_cast<double>(p.log_time_us) * 1e-6;
+    LogInfo() << "replay: " << p.events_done << "/" << p.events_total << " events, "
+              << static_cast<int64_t>(log_s) << " of "
+              << static_cast<int64_t>(static_cast<double>(p.log_span_us) * 1e-6)
+              << " s of log, " << static_cast<int64_t>(wall_s > 0 ? log_s / wall_s : 0.0)
+              << "x real time";
+  };
+
+  std::vector<ReplayStage> stages = CreateStackStages(settings, enabled);
+  const ReplayFileResult result = ReplayLogFile(input, *output, std::move(stages), options);
+  for (const StageReplayStats& s : result.stages) {
+    if (!s.runs) {
+      LogInfo() << s.name << ": skipped (none of its input channels is in the log)";
+      continue;
+    }
+    LogInfo() << s.name << ": handled " << s.messages_handled << " messages, published "
+              << s.messages_published << (s.errors > 0 ? ", " : "")
+              << (s.errors > 0 ? std::to_string(s.errors) + " failed" : "");
+  }
+  if (!result.warning.empty()) LogWarning() << result.warning;
+  if (!result.error.empty()) {
+    LogError() << result.error << "; no output written";
+    return 1;
+  }
+  const double wall_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double span_s =
+      static_cast<double>(result.input.last_timestamp_us - result.input.first_timestamp_us) * 1e-6;
+  LogInfo() << "wrote " << result.events_written << " events to " << *output
+            << (options.timing_path.empty()
+                    ? std::string()
+                    : " and " + std::to_string(result.timing_events_written) + " to " +
+                          options.timing_path)
+            << " (" << span_s << " s of log in " << wall_s << " s)";
+  return 0;
+}
+
+}  // namespace
+}  // namespace slammtt
+
+int main(int argc, char** argv) { return slammtt::ProcessMain(argc, argv, "slammtt-replay", slammtt::Run); }
