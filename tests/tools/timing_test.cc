@@ -1,0 +1,150 @@
+#include "tools/timing/timing_table.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <string>
+
+#include "slammtt_msgs/stage_timing_t.hpp"
+#include "tests/tools/log_test_util.h"
+
+namespace slammtt {
+namespace {
+
+TEST(TimingTableTest, NearestRankPercentiles) {
+  std::vector<int64_t> values;
+  for (int64_t v = 100; v >= 1; --v) values.push_back(v);  // any order
+  const DurationStats s = ComputeStats(values);
+  EXPECT_EQ(s.count, 100);
+  EXPECT_EQ(s.median, 50);
+  EXPECT_EQ(s.p95, 95);
+  EXPECT_EQ(s.p99, 99);
+  EXPECT_EQ(s.max, 100);
+  EXPECT_DOUBLE_EQ(s.mean, 50.5);
+
+  const DurationStats four = ComputeStats({4, 1, 3, 2});
+  EXPECT_EQ(four.median, 2);  // the lower middle value: always a measured one
+  EXPECT_EQ(four.p95, 4);
+  const DurationStats one = ComputeStats({7});
+  EXPECT_EQ(one.median, 7);
+  EXPECT_EQ(one.p99, 7);
+  const DurationStats none = ComputeStats({});
+  EXPECT_EQ(none.count, 0);
+  EXPECT_EQ(none.max, 0);
+}
+
+TEST(TimingTableTest, SummarisesStagesSubstagesAndPeriod) {
+  std::vector<TimingRecord> records;
+  for (int k = 0; k < 10; ++k) {
+    // The segmenter at 10 Hz taking 1..10 ms, the estimator at 10 Hz taking 20 ms.
+    records.push_back({k * 100000, "segmenter", (k + 1) * 1000000, {{"split", (k + 1) * 1000}},
+                       {{"beams", 360}}});
+    records.push_back({k * 100000, "estimator", 20000000,
+                       {{"predict", 1000}, {"gating", 2000}, {"ransac", 15000}}, {}});
+  }
+  const std::vector<StageTimingSummary> s = SummariseTiming(records);
+  ASSERT_EQ(s.size(), 2u);
+  EXPECT_EQ(s[0].stage, "segmenter");
+  EXPECT_EQ(s[0].total_ns.median, 5000000);
+  EXPECT_EQ(s[0].total_ns.max, 10000000);
+  ASSERT_TRUE(s[0].period_median_us.has_value());
+  EXPECT_EQ(*s[0].period_median_us, 100000);
+  EXPECT_DOUBLE_EQ(*s[0].share_of_period, 0.05);  // 5 ms of 100 ms
+  // Load: 55 ms of work over the 0.9 s the records span.
+  EXPECT_DOUBLE_EQ(*s[0].load, 55e6 / 0.9e9);
+  ASSERT_EQ(s[0].counters.size(), 1u);
+  EXPECT_EQ(s[0].counters[0].stats.median, 360);
+  ASSERT_EQ(s[1].substages_ns.size(), 3u);
+  EXPECT_EQ(s[1].substages_ns[0].name, "predict");
+  EXPECT_EQ(s[1].substages_ns[2].name, "ransac");
+  EXPECT_EQ(s[1].substages_ns[2].stats.p99, 15000);
+  EXPECT_DOUBLE_EQ(*s[1].share_of_period, 0.2);
+}
+
+TEST(TimingTableTest, ASingleRecordHasNoPeriod) {
+  const std::vector<StageTimingSummary> s = SummariseTiming({{5, "x", 10, {}, {}}});
+  ASSERT_EQ(s.size(), 1u);
+  EXPECT_FALSE(s[0].period_median_us.has_value());
+  EXPECT_FALSE(s[0].share_of_period.has_value());
+  EXPECT_TRUE(SummariseTiming({}).empty());
+}
+
+std::string RunCommand(const std::string& command, int* status) {
+  std::FILE* pipe = popen(command.c_str(), "r");
+  std::string out;
+  char buffer[4096];
+  size_t n = 0;
+  while ((n = std::fread(buffer, 1, sizeof(buffer), pipe)) > 0) out.append(buffer, n);
+  *status = pclose(pipe);
+  return out;
+}
+
+TEST(TimingProgramTest, PrintsJsonFromATimingLog) {
+  testing::TempDir dir;
+  LogWriter writer(dir.File("timing.lcm"));
+  for (int k = 0; k < 20; ++k) {
+    slammtt_msgs::stage_timing_t msg;
+    msg.utime = 1000000 + k * 125000;
+    msg.stage = "estimator";
+    msg.total_ns = 1000 * (k + 1);
+    msg.num_substages = 2;
+    msg.substage = {"predict", "ransac"};
+    msg.substage_ns = {100, 900 * (k + 1)};
+    msg.num_counters = 1;
+    msg.counter_name = {"hypotheses"};
+    msg.counter_value = {k};
+    writer.WriteMessage(msg.utime, "STAGE_TIMING", msg);
+  }
+  const std::string junk = "not a timing message";
+  writer.Write(5000000, "STAGE_TIMING", junk.data(), static_cast<int>(junk.size()));
+  writer.Write(5000001, "OTHER", junk.data(), static_cast<int>(junk.size()));
+  writer.Commit();
+
+  int status = 0;
+  const std::string out = RunCommand(std::string(SLAMMTT_BIN_DIR) + "/slammtt-timing --json " +
+                                         dir.File("timing.lcm") + " 2>" + dir.File("err.txt"),
+                                     &status);
+  ASSERT_EQ(status, 0) << out;
+  const nlohmann::json j = nlohmann::json::parse(out);
+  EXPECT_EQ(j["messages"], 20);
+  EXPECT_EQ(j["skipped_messages"], 1);
+  ASSERT_EQ(j["stages"].size(), 1u);
+  const nlohmann::json& e = j["stages"][0];
+  EXPECT_EQ(e["stage"], "estimator");
+  EXPECT_EQ(e["total_ns"]["median"], 10000);
+  EXPECT_EQ(e["total_ns"]["p95"], 19000);
+  EXPECT_EQ(e["total_ns"]["max"], 20000);
+  EXPECT_EQ(e["period_median_us"], 125000);
+  EXPECT_DOUBLE_EQ(e["share_of_period"].get<double>(), 10000.0 / 125e6);
+  EXPECT_EQ(e["substages"][1]["name"], "ransac");
+  EXPECT_EQ(e["substages"][1]["ns"]["p99"], 18000);
+  EXPECT_EQ(e["counters"][0]["value"]["max"], 19);
+  EXPECT_NE(testing::FileBytes(dir.File("err.txt")).find("skipped 1 undecodable"),
+            std::string::npos);
+
+  // The text table names every sub-stage.
+  const std::string table =
+      RunCommand(std::string(SLAMMTT_BIN_DIR) + "/slammtt-timing " + dir.File("timing.lcm") +
+                     " 2>/dev/null",
+                 &status);
+  ASSERT_EQ(status, 0);
+  EXPECT_NE(table.find("estimator"), std::string::npos);
+  EXPECT_NE(table.find("  ransac"), std::string::npos);
+  EXPECT_NE(table.find("of the 125.0 ms period"), std::string::npos) << table;
+}
+
+TEST(TimingProgramTest, ACorruptLogIsAnError) {
+  testing::TempDir dir;
+  testing::WriteFileBytes(dir.File("bad.lcm"), "garbage that is not a log");
+  int status = 0;
+  RunCommand(std::string(SLAMMTT_BIN_DIR) + "/slammtt-timing " + dir.File("bad.lcm") +
+                 " >/dev/null 2>" + dir.File("err.txt"),
+             &status);
+  EXPECT_NE(status, 0);
+  const std::string err = testing::FileBytes(dir.File("err.txt"));
+  EXPECT_NE(err.find("corrupt event header at byte 0"), std::string::npos) << err;
+}
+
+}  // namespace
+}  // namespace slammtt
