@@ -1,0 +1,174 @@
+// The P3-DX base driver: one session with the robot's microcontroller over a ByteStream, from
+// the SYNC handshake to CLOSE, and what it publishes. Single-threaded: the owner calls Poll()
+// in its loop (it waits in the link's Read for at most the time it is given) and hands
+// VELOCITY_COMMAND messages to HandleVelocityCommand(). The link factory and the clock are
+// injected, so tests run the whole session against an emulated robot in simulated time.
+//
+// Session (Pioneer 3 Operations Manual 2006, ARCOS "Client-Server Communication"; ARIA
+// ArRobot::asyncConnectHandler; ../shared/design/protocols/p3dx.md):
+//  1. open the link, flush it, send SYNC0; SYNC0 and SYNC1 must come back as echoes, SYNC2's
+//     reply is the name packet (name, class, subclass: the subclass picks DistConvFactor).
+//     A SYNC without reply is re-sent every sync_reply_timeout_s; after sync_attempts the link
+//     is reopened. A wrong reply restarts at SYNC0.
+//  2. A robot still connected to an earlier client answers SYNC with SIPs. If it is moving
+//     (0x33) it takes our SYNC0 as a keep-alive and keeps driving, so we stop it first: VEL2 0,
+//     and ESTOP if it still moves 1 s later. Once a SIP says stopped (0x32) we send CLOSE, wait
+//     until its SIPs stop, and start again at SYNC0.
+//  3. OPEN, then ENABLE 1 (motors on). The first SIP makes the session "running".
+//  4. Running: every SIP gives one ODOMETRY (utime = host time of the SIP's arrival, i.e. when
+//     its last byte was read; the firmware's own sample time is not in the SIP) and updates
+//     BASE_STATUS. VELOCITY_COMMAND is clamped and sent as VEL [mm/s] + RVEL [deg/s] (RVEL
+//     has 1 deg/s steps; VEL2 would only have 20 mm/s per wheel); a value that did not change
+//     is repeated every pulse_interval_s, otherwise PULSE is sent then, so the firmware
+//     watchdog never starves and a lost VEL is repaired.
+//  5. No valid command for command_timeout_s while moving: VEL 0 + RVEL 0 (the robot stops
+//     with its configured deceleration) and command_timeout_stop in BASE_STATUS until the next
+//     command. A command with a non-finite value is skipped and counted.
+//  6. No valid SIP for sip_timeout_s, or a LinkError: the link is lost: reported, closed, and
+//     reopened after a backoff (0.5 s doubling to 8 s) with the full handshake; the odometry
+//     stays continuous across the gap (P3dxOdometryIntegrator::Reanchor).
+//  7. Shutdown(): VEL 0 + RVEL 0, then CLOSE (which also stops the robot and ends its SIPs).
+// Bad checksums, bad byte counts, truncated packets and SIPs too short for their fields are
+// skipped and counted; none of them ever gives odometry.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "drivers/common/byte_stream.h"
+#include "drivers/common/driver_clock.h"
+#include "drivers/common/reconnect_backoff.h"
+#include "drivers/p3dx/p3dx_driver_options.h"
+#include "drivers/p3dx/p3dx_odometry.h"
+#include "drivers/p3dx/p3dx_packet.h"
+#include "drivers/p3dx/p3dx_sip.h"
+#include "runtime/lcm_io.h"
+#include "slammtt_msgs/base_status_t.hpp"
+#include "slammtt_msgs/velocity_command_t.hpp"
+
+namespace slammtt {
+
+// Opens the link: OpenByteStream in the process, an emulated robot in tests.
+using ByteStreamFactory =
+    std::function<std::unique_ptr<ByteStream>(const std::string& endpoint, int baud)>;
+
+struct P3dxDriverChannels {
+  std::string odometry = "ODOMETRY";
+  std::string base_status = "BASE_STATUS";
+};
+
+class P3dxDriver {
+ public:
+  enum class State {
+    kDisconnected,  // no link; the next attempt is due at next_attempt_us_
+    kSyncing,       // SYNC0/1/2 handshake
+    kStoppingStale, // a connected robot was moving: stopping it before CLOSE
+    kClosingStale,  // CLOSE sent to the earlier session; waiting for its SIPs to stop
+    kOpening,       // OPEN and ENABLE sent, waiting for the first SIP
+    kRunning,
+    kStopped,       // after Shutdown()
+  };
+
+  P3dxDriver(const P3dxDriverOptions& options, ByteStreamFactory factory, DriverClock* clock,
+             MessageSink* sink, P3dxDriverChannels channels = P3dxDriverChannels{});
+  ~P3dxDriver();
+  P3dxDriver(const P3dxDriver&) = delete;
+  P3dxDriver& operator=(const P3dxDriver&) = delete;
+
+  // Does what is due: opens the link when its backoff expired, runs the timers, reads the link
+  // for at most `max_wait_ms` (less when a timer is due sooner) and handles what came. Never
+  // throws for link trouble (that is reported and retried). Returns without waiting when there
+  // is no link.
+  void Poll(int max_wait_ms);
+  // A VELOCITY_COMMAND from the bus (sent at once when connected).
+  void HandleVelocityCommand(const slammtt_msgs::velocity_command_t& command);
+  // Stops the robot and ends the session (VEL 0, RVEL 0, CLOSE); publishes the final status.
+  void Shutdown();
+
+  // Milliseconds until the next link attempt when disconnected (0 when connected or due), so
+  // an owner without a link to wait on can sleep on its other descriptors meanwhile.
+  int MillisecondsUntilNextAttempt() const;
+  bool link_open() const { return link_ != nullptr; }
+  State state() const { return state_; }
+  static const char* StateName(State state);
+  // The status as it would be published now.
+  slammtt_msgs::base_status_t Status() const;
+
+  int64_t odometry_published() const { return odometry_sequence_; }
+  int64_t commands_skipped() const { return commands_skipped_; }
+  const P3dxDecoderCounters& decoder_counters() const { return decoder_.counters(); }
+
+ private:
+  void TryOpen(int64_t now_us);
+  void LinkLost(const std::string& reason);
+  void SetState(State state);
+  void StartSync();
+  void SendSync(int index);
+  bool Send(const std::vector<uint8_t>& packet);  // false when the link was lost
+  void RunTimers(int64_t now_us);
+  void ReadLink(int wait_ms);
+  void HandlePacket(const std::vector<uint8_t>& payload, int64_t arrival_utime);
+  void HandleSyncReply(const std::vector<uint8_t>& payload);
+  void HandleStaleSip(const P3dxStandardSip& sip);
+  void HandleSip(const P3dxStandardSip& sip, int64_t arrival_utime);
+  void SendVelocity();
+  void PublishStatus();
+  int64_t NextTimerUs() const;
+
+  P3dxDriverOptions options_;
+  ByteStreamFactory factory_;
+  DriverClock* clock_;
+  MessageSink* sink_;
+  P3dxDriverChannels channels_;
+
+  std::unique_ptr<ByteStream> link_;
+  std::string endpoint_description_;
+  State state_ = State::kDisconnected;
+  ReconnectBackoff backoff_;
+  int64_t next_attempt_us_ = 0;
+  bool had_session_ = false;
+  bool shutting_down_ = false;  // a session reached kRunning before: the next one is a reconnect
+
+  P3dxPacketDecoder decoder_;
+  int64_t last_byte_us_ = 0;
+
+  int sync_index_ = 0;        // the SYNC whose reply we wait for
+  int sync_attempts_ = 0;     // unanswered sends of it
+  int64_t sync_sent_us_ = 0;
+  int64_t stale_since_us_ = 0;     // kStoppingStale: first moving SIP
+  bool stale_estop_sent_ = false;
+  int64_t close_sent_us_ = 0;      // kClosingStale
+  int64_t last_stale_sip_us_ = 0;
+  int64_t opened_us_ = 0;          // kOpening / kRunning: OPEN sent, or last valid SIP
+
+  P3dxRobotIdentity identity_;
+  P3dxOdometryIntegrator odometry_;
+  int64_t odometry_sequence_ = 0;
+  int64_t last_sip_us_ = 0;
+
+  // Velocity: what was asked (clamped, in robot units) and what was last sent.
+  bool have_command_ = false;
+  int64_t last_command_us_ = 0;
+  int target_vel_mmps_ = 0;
+  int target_rvel_degps_ = 0;
+  bool sent_once_ = false;
+  int sent_vel_mmps_ = 0;
+  int sent_rvel_degps_ = 0;
+  int64_t last_write_us_ = 0;
+  bool command_timeout_stop_ = false;
+  int64_t commands_skipped_ = 0;
+
+  // Status.
+  P3dxStandardSip last_sip_;
+  bool have_sip_ = false;
+  int64_t sips_received_ = 0;
+  int64_t short_sips_ = 0;
+  int64_t other_packets_ = 0;
+  int64_t reconnects_ = 0;
+  std::string last_error_;
+  int64_t next_status_us_ = 0;
+};
+
+}  // namespace slammtt

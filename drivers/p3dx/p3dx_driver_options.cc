@@ -1,0 +1,93 @@
+#include "drivers/p3dx/p3dx_driver_options.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "drivers/common/byte_stream.h"
+#include "drivers/p3dx/p3dx_odometry.h"
+
+namespace slammtt {
+
+P3dxDriverOptions ReadP3dxDriverOptions(const Config& section) {
+  P3dxDriverOptions o;
+  o.port = section.GetString("port", o.port);
+  o.baud = static_cast<int>(section.GetInt("baud", o.baud));
+  o.max_linear_mps = section.GetDouble("max_linear_mps", o.max_linear_mps);
+  o.max_angular_radps = section.GetDouble("max_angular_radps", o.max_angular_radps);
+  o.command_timeout_s = section.GetDouble("command_timeout_s", o.command_timeout_s);
+  o.pulse_interval_s = section.GetDouble("pulse_interval_s", o.pulse_interval_s);
+  o.sync_reply_timeout_s = section.GetDouble("sync_reply_timeout_s", o.sync_reply_timeout_s);
+  o.sync_attempts = static_cast<int>(section.GetInt("sync_attempts", o.sync_attempts));
+  o.sip_timeout_s = section.GetDouble("sip_timeout_s", o.sip_timeout_s);
+  o.reconnect_initial_s = section.GetDouble("reconnect_initial_s", o.reconnect_initial_s);
+  o.reconnect_max_s = section.GetDouble("reconnect_max_s", o.reconnect_max_s);
+  o.subclass = section.GetString("subclass", o.subclass);
+  o.enable_motors = section.GetBool("enable_motors", o.enable_motors);
+  o.status_period_s = section.GetDouble("status_period_s", o.status_period_s);
+  try {
+    ValidateP3dxDriverOptions(o);
+  } catch (const std::invalid_argument& e) {
+    section.Fail(e.what());
+  }
+  return o;
+}
+
+void AddP3dxDriverOptions(CommandLine* command_line) {
+  command_line->AddOption("port", "PORT",
+                          "serial port or tcp://HOST:PORT of the robot (default p3dx.port, "
+                          "/dev/ttyUSB0)");
+  command_line->AddOption("baud", "RATE", "serial baud rate (default p3dx.baud, 9600)");
+  command_line->AddOption("max-linear-mps", "V", "speed limit (default p3dx.max_linear_mps, 0.5)");
+  command_line->AddOption("max-angular-radps", "W",
+                          "turn-rate limit (default p3dx.max_angular_radps, 1.0)");
+  command_line->AddOption("command-timeout-s", "S",
+                          "stop when no VELOCITY_COMMAND for this long (default 0.5)");
+}
+
+void ApplyP3dxDriverCommandLine(const CommandLine& command_line, P3dxDriverOptions* options) {
+  if (auto v = command_line.Value("port")) options->port = *v;
+  if (auto v = command_line.IntValue("baud")) options->baud = static_cast<int>(*v);
+  if (auto v = command_line.DoubleValue("max-linear-mps")) options->max_linear_mps = *v;
+  if (auto v = command_line.DoubleValue("max-angular-radps")) options->max_angular_radps = *v;
+  if (auto v = command_line.DoubleValue("command-timeout-s")) options->command_timeout_s = *v;
+  try {
+    ValidateP3dxDriverOptions(*options);
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(e.what());
+  }
+}
+
+void ValidateP3dxDriverOptions(const P3dxDriverOptions& o) {
+  auto positive = [](double value, const char* name) {
+    if (!(value > 0.0) || !std::isfinite(value)) {
+      throw std::invalid_argument(std::string(name) + " must be a positive number");
+    }
+  };
+  CheckEndpoint(o.port, o.baud);
+  positive(o.max_linear_mps, "max_linear_mps");
+  positive(o.max_angular_radps, "max_angular_radps");
+  positive(o.command_timeout_s, "command_timeout_s");
+  positive(o.pulse_interval_s, "pulse_interval_s");
+  positive(o.sync_reply_timeout_s, "sync_reply_timeout_s");
+  positive(o.sip_timeout_s, "sip_timeout_s");
+  positive(o.reconnect_initial_s, "reconnect_initial_s");
+  positive(o.reconnect_max_s, "reconnect_max_s");
+  positive(o.status_period_s, "status_period_s");
+  if (o.sync_attempts < 1) throw std::invalid_argument("sync_attempts must be at least 1");
+  if (o.reconnect_max_s < o.reconnect_initial_s) {
+    throw std::invalid_argument("reconnect_max_s must not be less than reconnect_initial_s");
+  }
+  if (o.pulse_interval_s >= 2.0) {
+    throw std::invalid_argument(
+        "pulse_interval_s must be below the firmware watchdog's 2 s, or the robot stops");
+  }
+  // VEL carries at most 32767 mm/s and RVEL 32767 deg/s; the P3-DX tops out near 1.2 m/s.
+  if (o.max_linear_mps > 2.0) throw std::invalid_argument("max_linear_mps above 2.0 m/s");
+  if (o.max_angular_radps > 6.0) throw std::invalid_argument("max_angular_radps above 6.0 rad/s");
+  if (!o.subclass.empty() && !P3dxConversionForSubclass(o.subclass)) {
+    throw std::invalid_argument("subclass '" + o.subclass +
+                                "' has no conversion factors (use p3dx or p3dx-sh)");
+  }
+}
+
+}  // namespace slammtt

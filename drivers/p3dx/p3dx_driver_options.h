@@ -1,0 +1,52 @@
+// Options of the P3-DX base driver: the `p3dx:` section of the stack configuration, then the
+// command line (which wins). Every default is documented in docs/p3dx.md.
+#pragma once
+
+#include <string>
+
+#include "runtime/command_line.h"
+#include "runtime/config.h"
+
+namespace slammtt {
+
+struct P3dxDriverOptions {
+  // Link: a serial port (opened through libserialport, 8N1) or "tcp://HOST:PORT".
+  std::string port = "/dev/ttyUSB0";
+  int baud = 9600;  // the ARCOS host port's default rate
+
+  // Velocity limits applied to VELOCITY_COMMAND before it goes to the robot.
+  double max_linear_mps = 0.5;
+  double max_angular_radps = 1.0;
+  // Stop the robot when no VELOCITY_COMMAND came for this long.
+  double command_timeout_s = 0.5;
+  // Send PULSE (or repeat the current VEL/RVEL) when nothing was sent for this long, so the
+  // firmware watchdog (2 s by default) never fires while we are connected.
+  double pulse_interval_s = 0.5;
+
+  // Link supervision.
+  double sync_reply_timeout_s = 0.5;  // re-send a SYNC whose reply has not come
+  int sync_attempts = 8;              // unanswered SYNCs before the link is reopened
+  double sip_timeout_s = 1.0;         // no valid SIP for this long: the link is lost
+  double reconnect_initial_s = 0.5;   // backoff before reopening: doubles up to the maximum
+  double reconnect_max_s = 8.0;
+
+  // "" takes the conversion factors from the subclass in the robot's SYNC2 reply; "p3dx" or
+  // "p3dx-sh" forces them (a robot whose firmware reports something else).
+  std::string subclass;
+  bool enable_motors = true;      // send ENABLE 1 after OPEN
+  double status_period_s = 1.0;   // BASE_STATUS period (also sent on every state change)
+};
+
+// Reads the `p3dx:` section; ConfigError naming the key for a bad value. The caller runs
+// CheckUnused() on the section afterwards.
+P3dxDriverOptions ReadP3dxDriverOptions(const Config& section);
+
+// --port, --baud, --max-linear-mps, --max-angular-radps, --command-timeout-s.
+void AddP3dxDriverOptions(CommandLine* command_line);
+void ApplyP3dxDriverCommandLine(const CommandLine& command_line, P3dxDriverOptions* options);
+
+// Throws std::invalid_argument, one line naming the option, when a value is out of range or the
+// port is not a well-formed endpoint (drivers/common CheckEndpoint).
+void ValidateP3dxDriverOptions(const P3dxDriverOptions& options);
+
+}  // namespace slammtt
