@@ -1,0 +1,255 @@
+// Scenario files: values and defaults, and every kind of bad input rejected with one line that
+// names the file, the line and the key.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "tools/world/scenario_loader.h"
+
+namespace slammtt {
+namespace {
+
+namespace fs = std::filesystem;
+
+class ScenarioLoaderTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("slammtt_world_loader_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string Write(const std::string& name, const std::string& text) {
+    const fs::path path = dir_ / name;
+    std::ofstream(path) << text;
+    return path.string();
+  }
+  // The ConfigError message of loading `yaml` (empty when it loads).
+  std::string ErrorOf(const std::string& yaml) {
+    const std::string path = Write("bad.yaml", yaml);
+    try {
+      LoadScenario(path);
+    } catch (const ConfigError& e) {
+      return e.what();
+    }
+    return "";
+  }
+  std::string BadPath() const { return (dir_ / "bad.yaml").string(); }
+
+  fs::path dir_;
+};
+
+TEST_F(ScenarioLoaderTest, ReadsEveryKindOfObjectWithDefaults) {
+  const std::string path = Write("ok.yaml", R"(name: ok
+duration_s: 30
+output: features
+laser: {fov_deg: 180, resolution_deg: 1, max_range_m: 30, rate_hz: 8, mount_a_m: 0.1}
+features: {range_noise_m: 0.2, bearing_noise_deg: 2}
+odometry: {rate_hz: 20, slip_std: 0.01}
+robot:
+  start: {x_m: 1, y_m: 2, heading_deg: 90}
+  profile:
+    - {duration_s: 10, linear_mps: 1.5, angular_degps: 0}
+    - {duration_s: 5, linear_mps: 0.5, angular_degps: 18}
+statics:
+  - {x_m: 5, y_m: 2, radius_m: 0.3}
+  - {id: 7, x_m: -5, y_m: 2}
+movers:
+  - {id: 101, type: constant_velocity, start: [8, -3], velocity_mps: [0.625, 0.625]}
+  - {id: 102, type: waypoints, waypoints: [[0, 0], [3, 0, 2.5]], speed_mps: 1.2, at_end: leave}
+  - {id: 103, type: trajectory, trajectory: [[0, 1, 1], [1, 2, 1]], appear_s: 0.5}
+  - {id: 104, type: random_walk, start: [0, 0], area: [-5, -5, 5, 5], max_turn_deg: 180,
+     reverse_probability: 0.1, radius_m: 0.2, disappear_s: 20}
+)");
+  const Scenario s = LoadScenario(path);
+  EXPECT_EQ(s.name, "ok");
+  EXPECT_EQ(s.duration_s, 30.0);
+  EXPECT_EQ(s.output, SensorOutput::kFeatures);
+  EXPECT_EQ(s.laser.fov_deg, 180.0);
+  EXPECT_EQ(s.laser.mount_a_m, 0.1);
+  EXPECT_EQ(s.laser.min_range_m, LaserSpec{}.min_range_m);
+  EXPECT_EQ(s.odometry.slip_std, 0.01);
+  EXPECT_NEAR(s.robot.start.heading_rad, M_PI / 2, 1e-12);
+  ASSERT_EQ(s.robot.profile.size(), 2u);
+  EXPECT_NEAR(s.robot.profile[1].angular_radps, 18.0 * M_PI / 180.0, 1e-12);
+  ASSERT_EQ(s.statics.size(), 2u);
+  EXPECT_EQ(s.statics[0].id, 1);  // default id: position in the list
+  EXPECT_EQ(s.statics[1].id, 7);
+  EXPECT_EQ(s.statics[1].radius_m, StaticObjectSpec{}.radius_m);
+  ASSERT_EQ(s.movers.size(), 4u);
+  EXPECT_EQ(s.movers[0].kind, MoverKind::kConstantVelocity);
+  EXPECT_EQ(s.movers[0].vx_mps, 0.625);
+  EXPECT_EQ(s.movers[1].kind, MoverKind::kWaypoints);
+  EXPECT_EQ(s.movers[1].waypoints[1].wait_s, 2.5);
+  EXPECT_EQ(s.movers[1].at_end, PathEnd::kLeave);
+  EXPECT_EQ(s.movers[2].kind, MoverKind::kTrajectory);
+  EXPECT_EQ(s.movers[2].trajectory[1].x_m, 2.0);
+  EXPECT_EQ(s.movers[3].kind, MoverKind::kRandomWalk);
+  EXPECT_NEAR(s.movers[3].random_walk.max_turn_rad, M_PI, 1e-12);
+  EXPECT_EQ(s.movers[3].random_walk.area_max_y_m, 5.0);
+  EXPECT_EQ(s.movers[3].disappear_s, 20.0);
+}
+
+TEST_F(ScenarioLoaderTest, NameDefaultsToTheFileName) {
+  EXPECT_EQ(LoadScenario(Write("my-world.yaml", "duration_s: 5\n")).name, "my-world");
+}
+
+TEST_F(ScenarioLoaderTest, UnknownTopLevelKeyNamesFileLineAndKey) {
+  const std::string error = ErrorOf("duration_s: 5\ncolour: red\n");
+  EXPECT_EQ(error.rfind(BadPath() + ":2: colour: unknown key", 0), 0u) << error;
+}
+
+TEST_F(ScenarioLoaderTest, UnknownKeyOfAMoverTypeNamesIt) {
+  const std::string error = ErrorOf(R"(movers:
+  - type: waypoints
+    waypoints: [[0, 0], [1, 1]]
+    velocity_mps: [1, 0]
+)");
+  EXPECT_EQ(error.rfind(BadPath() + ":4: movers[0].velocity_mps: unknown key", 0), 0u) << error;
+}
+
+TEST_F(ScenarioLoaderTest, UnknownKeyInsideASectionNamesIt) {
+  const std::string error = ErrorOf("laser:\n  fov_deg: 180\n  max_range: 30\n");
+  EXPECT_EQ(error.rfind(BadPath() + ":3: laser.max_range: unknown key", 0), 0u) << error;
+}
+
+TEST_F(ScenarioLoaderTest, WrongTypeNamesFileLineAndKey) {
+  const std::string error = ErrorOf("name: x\nduration_s: long\n");
+  EXPECT_EQ(error, BadPath() + ":2: duration_s: expected a number, got \"long\"");
+  const std::string list_error = ErrorOf("movers:\n  - {type: constant_velocity, start: 3, velocity_mps: [1, 0]}\n");
+  EXPECT_NE(list_error.find(BadPath() + ":2: movers[0].start: expected a list of numbers"),
+            std::string::npos)
+      << list_error;
+}
+
+TEST_F(ScenarioLoaderTest, NegativeRadiusNamesFileLineAndKey) {
+  const std::string error = ErrorOf(R"(statics:
+  - {x_m: 1, y_m: 2, radius_m: 0.3}
+  - x_m: 4
+    y_m: 2
+    radius_m: -0.3
+)");
+  EXPECT_EQ(error, BadPath() + ":5: statics[1].radius_m: must be positive, got -0.3");
+}
+
+TEST_F(ScenarioLoaderTest, NonIncreasingTrajectoryTimesNameTheLine) {
+  const std::string error = ErrorOf(R"(movers:
+  - type: trajectory
+    trajectory:
+      - [0.0, 1, 1]
+      - [0.4, 2, 1]
+      - [0.4, 3, 1]
+)");
+  EXPECT_EQ(error, BadPath() +
+                       ":6: movers[0].trajectory[2]: t_s: times must increase strictly, got 0.4 "
+                       "after 0.4");
+}
+
+TEST_F(ScenarioLoaderTest, RobotFasterThanTwoMetresPerSecondIsRejected) {
+  const std::string error = ErrorOf(R"(robot:
+  profile:
+    - {duration_s: 3, linear_mps: 2.5}
+)");
+  EXPECT_EQ(error, BadPath() + ":3: robot.profile[0].linear_mps: must be within [-2, 2], got 2.5");
+  const std::string waypoint_error =
+      ErrorOf("robot:\n  waypoints: [[1, 0], [2, 0]]\n  speed_mps: 3\n");
+  EXPECT_EQ(waypoint_error.rfind(BadPath() + ":3: robot.speed_mps: must be within (0, 2]", 0), 0u)
+      << waypoint_error;
+}
+
+TEST_F(ScenarioLoaderTest, OtherValueChecksNameTheirKeys) {
+  EXPECT_EQ(ErrorOf("laser: {fov_deg: 400}\n"),
+            BadPath() + ":1: laser.fov_deg: must be within (0, 360], got 400");
+  EXPECT_EQ(ErrorOf("output: pictures\n"),
+            BadPath() + ":1: output: expected features, scans or both, got \"pictures\"");
+  EXPECT_EQ(ErrorOf("movers:\n  - {type: teleport}\n").rfind(BadPath() + ":2: movers[0].type:", 0),
+            0u);
+  EXPECT_EQ(ErrorOf("statics:\n  - {id: 3, x_m: 0, y_m: 0}\n  - {id: 3, x_m: 1, y_m: 0}\n"),
+            BadPath() + ":3: statics[1].id: duplicate object id 3");
+  EXPECT_EQ(ErrorOf("movers:\n  - {type: random_walk, start: [9, 9], area: [0, 0, 5, 5]}\n"),
+            BadPath() + ":2: movers[0].start: must lie inside the area");
+  EXPECT_EQ(ErrorOf("duration_s: -1\n"), BadPath() + ":1: duration_s: must be positive, got -1");
+}
+
+TEST_F(ScenarioLoaderTest, MissingScenarioFileIsAnError) {
+  try {
+    LoadScenario((dir_ / "nothing.yaml").string());
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()), (dir_ / "nothing.yaml").string() + ": cannot open file");
+  }
+}
+
+TEST_F(ScenarioLoaderTest, MissingTrajectoryFileNamesTheScenarioKeyAndThePath) {
+  const std::string error = ErrorOf("duration_s: 5\ncrowd:\n  file: people/none.tsv\n");
+  EXPECT_EQ(error.rfind(BadPath() + ":3: crowd.file: ", 0), 0u) << error;
+  EXPECT_NE(error.find("people/none.tsv: cannot open file"), std::string::npos) << error;
+}
+
+TEST_F(ScenarioLoaderTest, CrowdFileIsReadRelativeToTheScenarioAndTransformed) {
+  fs::create_directories(dir_ / "data");
+  Write("data/people.tsv",
+        "t_s\tid\tx_m\ty_m\n0.0\t1\t1.0\t0.0\n0.0\t2\t5.0\t5.0\n0.4\t1\t2.0\t0.0\n0.4\t2\t5.0\t6.0\n"
+        "0.8\t1\t3.0\t0.0\n");
+  const Scenario s = LoadScenario(Write("crowd.yaml", R"(duration_s: 5
+crowd:
+  file: data/people.tsv
+  window_s: [0.4, 100]
+  offset_m: [10, 0]
+  rotation_deg: 0
+  radius_m: 0.3
+  id_offset: 500
+)"));
+  // Person 2 has one sample in the window: skipped.
+  ASSERT_EQ(s.movers.size(), 1u);
+  EXPECT_EQ(s.movers[0].id, 501);
+  EXPECT_EQ(s.movers[0].radius_m, 0.3);
+  ASSERT_EQ(s.movers[0].trajectory.size(), 2u);
+  EXPECT_NEAR(s.movers[0].trajectory[0].t_s, 0.0, 1e-12);
+  EXPECT_NEAR(s.movers[0].trajectory[0].x_m, 12.0, 1e-12);
+}
+
+TEST_F(ScenarioLoaderTest, TrajectoryFileErrorsNameTheirLine) {
+  const std::string bad_row = Write("a.tsv", "t_s\tid\tx_m\ty_m\n0.0\t1\t1.0\t0.0\n0.4\t1\tx\t0.0\n");
+  try {
+    ReadRecordedTracks(bad_row);
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              bad_row + ":3: expected four tab-separated numbers t_s, id, x_m, y_m");
+  }
+  const std::string backwards =
+      Write("b.tsv", "t_s\tid\tx_m\ty_m\n0.4\t1\t1.0\t0.0\n0.4\t2\t1.0\t0.0\n0.0\t1\t1.0\t0.0\n");
+  try {
+    ReadRecordedTracks(backwards);
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              backwards + ":4: person 1: time 0 does not increase (previous 0.4)");
+  }
+  const std::string header = Write("c.tsv", "time,id,x,y\n");
+  EXPECT_THROW(ReadRecordedTracks(header), ConfigError);
+}
+
+TEST_F(ScenarioLoaderTest, ResolveFindsNamesAndListsShippedScenarios) {
+  fs::create_directories(dir_ / "root" / "config" / "scenarios");
+  Write("root/config/scenarios/alpha.yaml", "duration_s: 1\n");
+  const std::string root = (dir_ / "root").string();
+  EXPECT_EQ(ResolveScenarioPath("alpha", {"/nonexistent", root}),
+            (dir_ / "root" / "config" / "scenarios" / "alpha.yaml").string());
+  try {
+    ResolveScenarioPath("beta", {root});
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("shipped scenarios: alpha"), std::string::npos);
+  }
+  EXPECT_THROW(ResolveScenarioPath("./beta.yaml", {root}), ConfigError);
+}
+
+}  // namespace
+}  // namespace slammtt
