@@ -1,0 +1,86 @@
+// slammtt-p3dx: the Pioneer P3-DX base driver (see p3dx_driver.h and docs/p3dx.md).
+#include <poll.h>
+
+#include <memory>
+
+#include "drivers/common/byte_stream.h"
+#include "drivers/common/driver_clock.h"
+#include "drivers/p3dx/p3dx_driver.h"
+#include "drivers/p3dx/p3dx_driver_options.h"
+#include "runtime/lcm_io.h"
+#include "runtime/log.h"
+#include "runtime/process.h"
+#include "runtime/shutdown.h"
+#include "slammtt_msgs/velocity_command_t.hpp"
+
+namespace {
+
+// The longest the loop waits in the link's Read: the latency of a VELOCITY_COMMAND, since the
+// link (a ByteStream) offers no descriptor to wait on together with the bus.
+constexpr int kLinkWaitMs = 10;
+
+int Main(int argc, char** argv) {
+  using namespace slammtt;
+  CommandLine cl("slammtt-p3dx", "[options]",
+                 "Pioneer P3-DX base driver: publishes ODOMETRY and BASE_STATUS, drives the base "
+                 "from VELOCITY_COMMAND, stops it when commands stop and on exit.");
+  AddStandardOptions(&cl);
+  AddP3dxDriverOptions(&cl);
+  if (!cl.Parse(argc, argv)) return 0;
+  const ProcessSettings settings = LoadProcessSettings(cl);
+  const Config section = settings.config.Child("p3dx");
+  P3dxDriverOptions options = ReadP3dxDriverOptions(section);
+  section.CheckUnused();
+  ApplyP3dxDriverCommandLine(cl, &options);
+
+  std::unique_ptr<lcm::LCM> lcm = OpenLcm(settings.lcm_url);
+  LcmSink sink(lcm.get());
+  SystemDriverClock clock;
+  P3dxDriverChannels channels;
+  channels.odometry = settings.channels.Get("odometry");
+  channels.base_status = settings.channels.Get("base_status");
+  P3dxDriver driver(
+      options, [](const std::string& endpoint, int baud) { return OpenByteStream(endpoint, baud); },
+      &clock, &sink, channels);
+
+  struct Context {
+    P3dxDriver* driver;
+    int64_t undecodable = 0;
+  } context{&driver};
+  lcm->subscribeFunction(
+      settings.channels.Get("velocity_command"),
+      +[](const lcm::ReceiveBuffer* buffer, const std::string& channel, Context* c) {
+        slammtt_msgs::velocity_command_t command;
+        if (!Decode(buffer->data, static_cast<int>(buffer->data_size), &command)) {
+          if (c->undecodable++ % 100 == 0) {
+            LogWarning() << channel << ": undecodable message skipped (" << c->undecodable
+                         << " so far)";
+          }
+          return;
+        }
+        c->driver->HandleVelocityCommand(command);
+      },
+      &context);
+  LogInfo() << "driving " << options.port << " (max " << options.max_linear_mps << " m/s, "
+            << options.max_angular_radps << " rad/s, command timeout "
+            << options.command_timeout_s << " s)";
+
+  pollfd fds[2] = {{lcm->getFileno(), POLLIN, 0}, {ShutdownFd(), POLLIN, 0}};
+  while (!ShutdownRequested()) {
+    driver.Poll(kLinkWaitMs);
+    // Without a link there is nothing to wait in: wait on the bus until the next attempt.
+    const int wait_ms = driver.link_open() ? 0 : std::min(driver.MillisecondsUntilNextAttempt(), 100);
+    if (poll(fds, 2, wait_ms) > 0 && (fds[0].revents & POLLIN) != 0) {
+      // Everything that is waiting, without blocking.
+      do {
+        if (lcm->handle() != 0) throw std::runtime_error("LCM failed while receiving");
+      } while (poll(fds, 1, 0) > 0 && (fds[0].revents & POLLIN) != 0);
+    }
+  }
+  driver.Shutdown();
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) { return slammtt::ProcessMain(argc, argv, "slammtt-p3dx", Main); }
