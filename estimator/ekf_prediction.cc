@@ -1,0 +1,64 @@
+#include "estimator/ekf_prediction.h"
+
+#include "estimator/constant_velocity_model.h"
+
+namespace slammtt {
+
+void ApplyRobotPrediction(const Eigen::Vector3d& new_pose, const Eigen::Matrix3d& jacobian,
+                          const Eigen::Matrix3d& noise, SlamState* state) {
+  auto cov = state->covariance();
+  // Rows, then columns: (F P) F^T restricted to the robot's rows and columns.
+  const Eigen::Matrix<double, 3, Eigen::Dynamic> rows = jacobian * cov.topRows(3);
+  cov.topRows(3) = rows;
+  const Eigen::Matrix<double, Eigen::Dynamic, 3> cols = cov.leftCols(3) * jacobian.transpose();
+  cov.leftCols(3) = cols;
+  const Eigen::Matrix3d robot = cov.topLeftCorner<3, 3>() + noise;
+  cov.topLeftCorner<3, 3>() = 0.5 * (robot + robot.transpose());
+  state->mean().head<3>() = new_pose;
+}
+
+void PredictMovers(double dt_s, double sigma_q_mps2, SlamState* state) {
+  auto mean = state->mean();
+  auto cov = state->covariance();
+  const Eigen::Matrix4d q = ConstantVelocityProcessNoise(dt_s, sigma_q_mps2);
+  for (const StateObject& o : state->objects()) {
+    if (!o.has_velocity()) continue;
+    const int p = o.position_index;
+    const int v = o.velocity_index;
+    mean.segment<2>(p) += dt_s * mean.segment<2>(v);
+    // T P T^T with T = [I dt I; 0 I] on this object's rows and columns (eq. 7).
+    cov.row(p) += dt_s * cov.row(v);
+    cov.row(p + 1) += dt_s * cov.row(v + 1);
+    cov.col(p) += dt_s * cov.col(v);
+    cov.col(p + 1) += dt_s * cov.col(v + 1);
+    // Eq. 8 on the (p, v) blocks.
+    cov.block<2, 2>(p, p) += q.topLeftCorner<2, 2>();
+    cov.block<2, 2>(p, v) += q.topRightCorner<2, 2>();
+    cov.block<2, 2>(v, p) += q.bottomLeftCorner<2, 2>();
+    cov.block<2, 2>(v, v) += q.bottomRightCorner<2, 2>();
+  }
+}
+
+void InflateMoverVelocities(const Eigen::Matrix2d& added, SlamState* state) {
+  auto cov = state->covariance();
+  for (const StateObject& o : state->objects()) {
+    if (!o.has_velocity()) continue;
+    cov.block<2, 2>(o.velocity_index, o.velocity_index) += added;
+  }
+}
+
+RobotMotionAccumulator::RobotMotionAccumulator(const Eigen::Vector3d& start_pose)
+    : pose_(start_pose) {}
+
+void RobotMotionAccumulator::Add(const OdometryIncrement& increment,
+                                 const Eigen::Matrix2d& increment_covariance) {
+  Eigen::Matrix3d f;
+  Eigen::Matrix<double, 3, 2> g;
+  pose_ = PredictRobotPose(pose_, increment, &f, &g);
+  jacobian_ = f * jacobian_;
+  noise_ = f * noise_ * f.transpose() + g * increment_covariance * g.transpose();
+}
+
+void RobotMotionAccumulator::AddPoseNoise(const Eigen::Matrix3d& noise) { noise_ += noise; }
+
+}  // namespace slammtt

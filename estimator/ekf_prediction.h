@@ -1,0 +1,49 @@
+// EKF prediction of the whole state to the next scan (paper eqs. 9, 18-19), exploiting its
+// block structure: the transition of eq. 9 is block-diagonal (robot F, landmarks I, movers T),
+// so only the robot's and the movers' rows and columns change, in O(n) per robot step and per
+// mover; no dense n x n Jacobian is ever formed and landmark-landmark blocks are not touched.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "estimator/robot_motion_model.h"
+#include "estimator/slam_state.h"
+
+namespace slammtt {
+
+// Robot part of eq. 19: P_rr <- F P_rr F^T + Q, P_rx <- F P_rx (and the mirror), mean <- pose.
+// `new_pose` is f(x) (eq. 18), `jacobian` is F, `noise` is G Q G^T (3x3).
+void ApplyRobotPrediction(const Eigen::Vector3d& new_pose, const Eigen::Matrix3d& jacobian,
+                          const Eigen::Matrix3d& noise, SlamState* state);
+
+// Mover part of eq. 9: every object with velocity states follows eq. 6 over dt_s with the
+// process noise of eq. 8 (sigma_q_mps2).
+void PredictMovers(double dt_s, double sigma_q_mps2, SlamState* state);
+
+// Adds `added` (2x2, symmetric PSD) to the velocity covariance of every object with velocity
+// states: used when the time since the last scan is too long to trust the constant-velocity
+// model (the estimator's time-gap handling).
+void InflateMoverVelocities(const Eigen::Matrix2d& added, SlamState* state);
+
+// A chain of eq.-1 steps composed into one robot transition: the composed pose, Jacobian
+// F = F_k ... F_1 and noise Q = sum of the step noises propagated through the later steps.
+// Applying it once costs the same O(n) as one step, whatever the number of odometry messages
+// between two scans.
+class RobotMotionAccumulator {
+ public:
+  explicit RobotMotionAccumulator(const Eigen::Vector3d& start_pose);
+  // One eq.-1 step with the covariance (2x2 over distance, rotation) of its increment.
+  void Add(const OdometryIncrement& increment, const Eigen::Matrix2d& increment_covariance);
+  // Adds pose noise directly (3x3), e.g. for unmodelled motion.
+  void AddPoseNoise(const Eigen::Matrix3d& noise);
+  const Eigen::Vector3d& pose() const { return pose_; }
+  const Eigen::Matrix3d& jacobian() const { return jacobian_; }
+  const Eigen::Matrix3d& noise() const { return noise_; }
+
+ private:
+  Eigen::Vector3d pose_;
+  Eigen::Matrix3d jacobian_ = Eigen::Matrix3d::Identity();
+  Eigen::Matrix3d noise_ = Eigen::Matrix3d::Zero();
+};
+
+}  // namespace slammtt

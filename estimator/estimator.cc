@@ -1,0 +1,612 @@
+#include "estimator/estimator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "estimator/angle.h"
+#include "estimator/ekf_prediction.h"
+#include "estimator/ekf_update.h"
+
+namespace slammtt {
+namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+double Seconds(int64_t microseconds) { return 1e-6 * static_cast<double>(microseconds); }
+
+bool AllFinite(const Eigen::Vector3d& v) { return v.allFinite(); }
+
+// Which measurement each object got, and the reverse.
+struct Assignment {
+  std::vector<int> object_of_measurement;
+  std::vector<int> measurement_of_object;
+  Assignment(int measurements, int objects)
+      : object_of_measurement(static_cast<size_t>(measurements), -1),
+        measurement_of_object(static_cast<size_t>(objects), -1) {}
+  bool MeasurementFree(int i) const { return object_of_measurement[static_cast<size_t>(i)] < 0; }
+  bool ObjectFree(int j) const { return measurement_of_object[static_cast<size_t>(j)] < 0; }
+  void Set(int i, int j) {
+    object_of_measurement[static_cast<size_t>(i)] = j;
+    measurement_of_object[static_cast<size_t>(j)] = i;
+  }
+};
+
+// Applies `pairs` (gated by gate_chi2 at the current state) and records the applied ones.
+int ApplyPairs(const std::vector<Candidate>& pairs,
+               const std::vector<PointMeasurement>& measurements, double gate_chi2,
+               const EstimatorOptions& options, SlamState* state, Assignment* assignment,
+               StepCounts* counts) {
+  // ApplyObservations skips gated-out pairs; gate here first so that the assignment records
+  // exactly the applied pairs.
+  const std::vector<ObjectPrediction> predictions = PredictObservations(*state, options.sensor);
+  std::vector<ObjectObservation> observations;
+  std::vector<Candidate> applied;
+  for (const Candidate& c : pairs) {
+    if (!assignment->MeasurementFree(c.measurement) || !assignment->ObjectFree(c.object)) continue;
+    const PointMeasurement& z = measurements[static_cast<size_t>(c.measurement)];
+    const double nis =
+        NormalizedInnovationSquared(z, predictions[static_cast<size_t>(c.object)], gate_chi2);
+    if (!(nis < gate_chi2)) continue;
+    observations.push_back({c.object, z});
+    applied.push_back(c);
+    assignment->Set(c.measurement, c.object);
+  }
+  if (observations.empty()) return 0;
+  const UpdateStats stats = ApplyObservations(observations, options.sensor, kInfinity,
+                                              options.update_group_size, state);
+  counts->updates_failed += stats.failed;
+  return stats.applied;
+}
+
+// Greedy one-to-one choice among pairs in increasing NIS (global nearest neighbour, greedy).
+std::vector<Candidate> GreedyOneToOne(std::vector<Candidate> pairs, const Assignment& taken) {
+  std::stable_sort(pairs.begin(), pairs.end(),
+                   [](const Candidate& a, const Candidate& b) { return a.nis < b.nis; });
+  Assignment local = taken;
+  std::vector<Candidate> chosen;
+  for (const Candidate& c : pairs) {
+    if (!local.MeasurementFree(c.measurement) || !local.ObjectFree(c.object)) continue;
+    local.Set(c.measurement, c.object);
+    chosen.push_back(c);
+  }
+  return chosen;
+}
+
+}  // namespace
+
+const char* AssociationModeName(AssociationMode mode) {
+  switch (mode) {
+    case AssociationMode::kMlRansac:
+      return "ml_ransac";
+    case AssociationMode::kStaticNearestNeighbour:
+      return "static_nn";
+    case AssociationMode::kRansacAllPairs:
+      return "ransac_all_pairs";
+  }
+  return "?";
+}
+
+const char* SubstageName(Substage substage) {
+  switch (substage) {
+    case Substage::kPredict:
+      return "predict";
+    case Substage::kGating:
+      return "gating";
+    case Substage::kLevel1:
+      return "level1";
+    case Substage::kRansac:
+      return "ransac";
+    case Substage::kLevel23:
+      return "level2_3";
+    case Substage::kTrackManagement:
+      return "track_management";
+  }
+  return "?";
+}
+
+std::string CheckEstimatorOptions(const EstimatorOptions& o) {
+  auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
+  auto non_negative = [](double v) { return std::isfinite(v) && v >= 0.0; };
+  if (!o.initial_pose.allFinite()) return "initial_pose must be finite";
+  if (!std::isfinite(o.sensor.forward_m) || !std::isfinite(o.sensor.left_m)) {
+    return "sensor offset must be finite";
+  }
+  if (!positive(o.default_range_sigma_m)) return "range_sigma_m must be > 0";
+  if (!positive(o.default_bearing_sigma_rad)) return "bearing_sigma_deg must be > 0";
+  if (!non_negative(o.min_range_sigma_m) || !non_negative(o.min_bearing_sigma_rad)) {
+    return "noise floors must be >= 0";
+  }
+  if (!non_negative(o.min_range_m) || !positive(o.max_range_m) || o.max_range_m <= o.min_range_m) {
+    return "need 0 <= min_range_m < max_range_m";
+  }
+  if (!positive(o.field_of_view_rad) || o.field_of_view_rad > 2.0 * M_PI + 1e-9) {
+    return "field_of_view_deg must be in (0, 360]";
+  }
+  const OdometryNoiseOptions& n = o.odometry_noise;
+  if (!non_negative(n.distance_var_per_m) || !non_negative(n.rotation_var_per_rad) ||
+      !non_negative(n.rotation_var_per_m) || !non_negative(n.distance_var_per_s) ||
+      !non_negative(n.rotation_var_per_s)) {
+    return "odometry noise variances must be >= 0";
+  }
+  if (!non_negative(o.mover_acceleration_sigma_mps2)) return "acceleration_sigma must be >= 0";
+  if (!positive(o.new_object_velocity_sigma_mps)) return "new_object_velocity_sigma must be > 0";
+  if (!positive(o.max_time_gap_s)) return "max_time_gap_s must be > 0";
+  if (!non_negative(o.gap_robot_position_sigma_mps) ||
+      !non_negative(o.gap_robot_heading_sigma_radps) ||
+      !non_negative(o.gap_mover_velocity_sigma_mps) ||
+      !non_negative(o.extrapolation_speed_sigma_mps) ||
+      !non_negative(o.extrapolation_turn_sigma_radps)) {
+    return "inflation sigmas must be >= 0";
+  }
+  if (o.max_objects < 0) return "max_objects must be >= 0";
+  if (!positive(o.gate_d1_chi2)) return "gate_d1 must be > 0";
+  if (o.level3 && !(o.gate_d2_chi2 > o.gate_d1_chi2 && std::isfinite(o.gate_d2_chi2))) {
+    return "gate_d2 must be > gate_d1";
+  }
+  if (!positive(o.new_object_gate_dn_chi2)) return "gate_dn must be > 0";
+  if (!(o.ransac.success_probability > 0.0 && o.ransac.success_probability < 1.0)) {
+    return "ransac_probability must be in (0, 1)";
+  }
+  if (o.ransac.max_hypotheses < 1) return "max_hypotheses must be >= 1";
+  if (!positive(o.ransac.inlier_chi2)) return "ransac_inlier_chi2 must be > 0";
+  if (o.update_group_size < 1) return "update_group_size must be >= 1";
+  if (o.tracks.confirm_hits < 1) return "confirm_hits must be >= 1";
+  if (!non_negative(o.tracks.prune_unseen_s) || !non_negative(o.tracks.tentative_prune_unseen_s) ||
+      !non_negative(o.tracks.static_prune_unseen_in_view_s)) {
+    return "prune times must be >= 0";
+  }
+  const MotionClassifierOptions& c = o.classifier;
+  if (!non_negative(c.moving_chi2) || !non_negative(c.moving_min_speed_mps) ||
+      !non_negative(c.still_max_speed_mps) || !non_negative(c.still_max_sigma_mps) ||
+      !non_negative(c.still_hold_s) || !non_negative(c.started_moving_nis)) {
+    return "classifier thresholds must be >= 0";
+  }
+  if (c.moving_confirm_scans < 1 || c.started_moving_scans < 1) {
+    return "classifier scan counts must be >= 1";
+  }
+  return "";
+}
+
+Estimator::Estimator(const EstimatorOptions& options)
+    : options_(options), state_(options.initial_pose, Eigen::Matrix3d::Zero()) {}
+
+bool Estimator::AddOdometry(const OdometryReading& reading) {
+  if (!AllFinite(reading.pose) || !std::isfinite(reading.linear_mps) ||
+      !std::isfinite(reading.angular_radps)) {
+    ++counters_.odometry_rejected;
+    Event("odometry at utime " + std::to_string(reading.utime) + " rejected: not finite");
+    return false;
+  }
+  if (last_odometry_utime_ && reading.utime <= *last_odometry_utime_) {
+    ++counters_.messages_out_of_order;
+    Event("odometry at utime " + std::to_string(reading.utime) +
+          " dropped: not newer than the last one (" + std::to_string(*last_odometry_utime_) + ")");
+    return false;
+  }
+  last_odometry_utime_ = reading.utime;
+  ++counters_.odometry_processed;
+  OdometryReading r = reading;
+  r.pose(2) = WrapAngle(r.pose(2));
+  if (!cursor_) {
+    // The first reading anchors the odometry: motion is measured from here on.
+    cursor_ = OdometryCursor{r.utime, r.pose, r.linear_mps, r.angular_radps};
+    return true;
+  }
+  if (r.utime <= cursor_->utime) {
+    // Late reading (older than the last scan): its velocities are the freshest we have.
+    cursor_->linear_mps = r.linear_mps;
+    cursor_->angular_radps = r.angular_radps;
+    return true;
+  }
+  odometry_.push_back(r);
+  return true;
+}
+
+void Estimator::Predict(int64_t utime, bool first_scan, StepCounts* counts) {
+  (void)counts;
+  const double dt = first_scan ? 0.0 : Seconds(utime - *last_scan_utime_);
+  RobotMotionAccumulator motion(state_.robot_pose());
+  const double speed_var_rate = options_.extrapolation_speed_sigma_mps *
+                                options_.extrapolation_speed_sigma_mps;
+  const double turn_var_rate = options_.extrapolation_turn_sigma_radps *
+                               options_.extrapolation_turn_sigma_radps;
+  bool had_odometry = false;
+  if (cursor_) {
+    OdometryCursor previous = *cursor_;
+    while (!odometry_.empty() && odometry_.front().utime <= utime) {
+      const OdometryReading& r = odometry_.front();
+      const OdometryIncrement increment = IncrementBetweenOdometryPoses(previous.pose, r.pose);
+      motion.Add(increment, OdometryIncrementCovariance(increment, Seconds(r.utime - previous.utime),
+                                                        options_.odometry_noise));
+      previous = OdometryCursor{r.utime, r.pose, r.linear_mps, r.angular_radps};
+      odometry_.pop_front();
+      had_odometry = true;
+    }
+    if (!odometry_.empty()) {
+      // The scan falls between two readings: the part of the next increment up to the scan.
+      const OdometryReading& next = odometry_.front();
+      const double fraction = static_cast<double>(utime - previous.utime) /
+                              static_cast<double>(next.utime - previous.utime);
+      const OdometryIncrement full = IncrementBetweenOdometryPoses(previous.pose, next.pose);
+      const OdometryIncrement part{fraction * full.distance_m, fraction * full.rotation_rad};
+      motion.Add(part, OdometryIncrementCovariance(part, Seconds(utime - previous.utime),
+                                                   options_.odometry_noise));
+      cursor_ = OdometryCursor{utime, PredictRobotPose(previous.pose, part), next.linear_mps,
+                               next.angular_radps};
+      had_odometry = true;
+    } else {
+      // No reading at or after the scan yet: extrapolate with the last velocities, with noise
+      // that grows with the extrapolated time.
+      const double tau = Seconds(utime - previous.utime);
+      const OdometryIncrement part{previous.linear_mps * tau, previous.angular_radps * tau};
+      Eigen::Matrix2d covariance =
+          OdometryIncrementCovariance(part, tau, options_.odometry_noise);
+      covariance(0, 0) += speed_var_rate * tau * tau;
+      covariance(1, 1) += turn_var_rate * tau * tau;
+      motion.Add(part, covariance);
+      cursor_ = OdometryCursor{utime, PredictRobotPose(previous.pose, part), previous.linear_mps,
+                               previous.angular_radps};
+    }
+  } else if (!first_scan) {
+    // No odometry ever: a robot standing still, with the extrapolation noise.
+    Eigen::Matrix2d covariance = Eigen::Matrix2d::Zero();
+    covariance(0, 0) = speed_var_rate * dt * dt;
+    covariance(1, 1) = turn_var_rate * dt * dt;
+    motion.Add(OdometryIncrement{}, covariance);
+  }
+  if (!first_scan && !had_odometry) {
+    ++counters_.scans_without_odometry;
+    Event("scan at utime " + std::to_string(utime) +
+          ": no odometry since the previous scan, predicted with the last velocity");
+  }
+  if (dt > options_.max_time_gap_s) {
+    ++counters_.time_gaps;
+    std::ostringstream text;
+    text << "scan at utime " << utime << ": " << dt << " s since the previous scan (limit "
+         << options_.max_time_gap_s << " s), uncertainty inflated";
+    Event(text.str());
+    const double position_sigma = options_.gap_robot_position_sigma_mps * dt;
+    const double heading_sigma = options_.gap_robot_heading_sigma_radps * dt;
+    motion.AddPoseNoise(Eigen::Vector3d(position_sigma * position_sigma,
+                                        position_sigma * position_sigma,
+                                        heading_sigma * heading_sigma)
+                            .asDiagonal());
+    const double velocity_sigma = options_.gap_mover_velocity_sigma_mps;
+    InflateMoverVelocities(velocity_sigma * velocity_sigma * Eigen::Matrix2d::Identity(), &state_);
+  }
+  if (!first_scan) {
+    ApplyRobotPrediction(motion.pose(), motion.jacobian(), motion.noise(), &state_);
+    PredictMovers(dt, options_.mover_acceleration_sigma_mps2, &state_);
+  }
+}
+
+std::vector<PointMeasurement> Estimator::ValidateFeatures(
+    const std::vector<FeatureReading>& features, StepCounts* counts) {
+  std::vector<PointMeasurement> measurements;
+  measurements.reserve(features.size());
+  const double default_range_var = options_.default_range_sigma_m * options_.default_range_sigma_m;
+  const double default_bearing_var =
+      options_.default_bearing_sigma_rad * options_.default_bearing_sigma_rad;
+  int rejected = 0;
+  std::string first_reason;
+  for (const FeatureReading& f : features) {
+    std::string reason;
+    if (!std::isfinite(f.range_m) || !std::isfinite(f.bearing_rad) ||
+        !std::isfinite(f.range_var_m2) || !std::isfinite(f.bearing_var_rad2) ||
+        !std::isfinite(f.range_bearing_cov_m_rad)) {
+      reason = "not finite";
+    } else if (f.range_m < options_.min_range_m || f.range_m > options_.max_range_m) {
+      reason = "range " + std::to_string(f.range_m) + " m out of [" +
+               std::to_string(options_.min_range_m) + ", " + std::to_string(options_.max_range_m) +
+               "] m";
+    } else if (std::abs(f.bearing_rad) > M_PI + 1e-9) {
+      reason = "bearing " + std::to_string(f.bearing_rad) + " rad out of [-pi, pi]";
+    } else if (f.range_var_m2 < 0.0 || f.bearing_var_rad2 < 0.0 ||
+               f.range_bearing_cov_m_rad * f.range_bearing_cov_m_rad >
+                   f.range_var_m2 * f.bearing_var_rad2) {
+      reason = "covariance not positive semi-definite";
+    }
+    if (!reason.empty()) {
+      ++rejected;
+      if (first_reason.empty()) first_reason = reason;
+      continue;
+    }
+    PointMeasurement m;
+    m.range_bearing = Eigen::Vector2d(f.range_m, WrapAngle(f.bearing_rad));
+    if (options_.use_feature_covariance && f.range_var_m2 > 0.0 && f.bearing_var_rad2 > 0.0) {
+      m.covariance << f.range_var_m2, f.range_bearing_cov_m_rad, f.range_bearing_cov_m_rad,
+          f.bearing_var_rad2;
+      m.covariance(0, 0) = std::max(m.covariance(0, 0),
+                                    options_.min_range_sigma_m * options_.min_range_sigma_m);
+      m.covariance(1, 1) = std::max(m.covariance(1, 1),
+                                    options_.min_bearing_sigma_rad * options_.min_bearing_sigma_rad);
+    } else {
+      m.covariance << default_range_var, 0.0, 0.0, default_bearing_var;
+    }
+    measurements.push_back(m);
+  }
+  if (rejected > 0) {
+    counts->features_rejected = rejected;
+    counters_.features_rejected += rejected;
+    Event(std::to_string(rejected) + " feature(s) rejected, first: " + first_reason);
+  }
+  return measurements;
+}
+
+ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
+                                  StepObserver* observer) {
+  ScanResult result;
+  result.utime = scan.utime;
+  StepCounts& counts = result.counts;
+  counts.features = static_cast<int>(scan.features.size());
+  auto lap = [observer](Substage s) {
+    if (observer != nullptr) observer->SubstageDone(s);
+  };
+  if (last_scan_utime_ && scan.utime <= *last_scan_utime_) {
+    ++counters_.messages_out_of_order;
+    Event("scan at utime " + std::to_string(scan.utime) +
+          " dropped: not newer than the last processed scan (" +
+          std::to_string(*last_scan_utime_) + ")");
+    return result;
+  }
+  const bool first_scan = !last_scan_utime_;
+  const double dt = first_scan ? 0.0 : Seconds(scan.utime - *last_scan_utime_);
+
+  // --- predict (line 2)
+  const std::vector<PointMeasurement> measurements = ValidateFeatures(scan.features, &counts);
+  Predict(scan.utime, first_scan, &counts);
+  last_scan_utime_ = scan.utime;
+  lap(Substage::kPredict);
+
+  // --- gating (lines 3-4). Pairs are kept up to the widest gate any later step asks about.
+  const int num_measurements = static_cast<int>(measurements.size());
+  const int num_objects_before = state_.num_objects();
+  const double d1 = options_.gate_d1_chi2;
+  const double dn = options_.new_object_gate_dn_chi2;
+  const double widest = std::max({d1, dn, options_.level3 ? options_.gate_d2_chi2 : 0.0,
+                                  options_.classifier.started_moving_nis});
+  std::vector<ObjectPrediction> predictions = PredictObservations(state_, options_.sensor);
+  const std::vector<Candidate> gated = GatePairs(measurements, predictions, widest);
+  std::vector<double> nearest_nis(static_cast<size_t>(num_measurements), kInfinity);
+  std::vector<Candidate> compatible;  // J
+  for (const Candidate& c : gated) {
+    double& nearest = nearest_nis[static_cast<size_t>(c.measurement)];
+    nearest = std::min(nearest, c.nis);
+    if (c.nis < d1) compatible.push_back(c);
+  }
+  lap(Substage::kGating);
+
+  Assignment assignment(num_measurements, num_objects_before);
+  if (options_.mode == AssociationMode::kStaticNearestNeighbour) {
+    // --- nearest neighbour: each measurement's closest object in d1, one-to-one.
+    std::vector<Candidate> nearest;
+    for (const Candidate& c : compatible) {
+      if (nearest.empty() || nearest.back().measurement != c.measurement) {
+        nearest.push_back(c);
+      } else if (c.nis < nearest.back().nis) {
+        nearest.back() = c;
+      }
+    }
+    counts.level1_updates = ApplyPairs(GreedyOneToOne(nearest, assignment), measurements, d1,
+                                       options_, &state_, &assignment, &counts);
+    lap(Substage::kLevel1);
+    lap(Substage::kRansac);
+  } else {
+    std::vector<Candidate> sample_space;
+    if (options_.mode == AssociationMode::kMlRansac) {
+      // --- level 1 (lines 5-6)
+      const CompatibilitySplit split =
+          SplitCompatibility(compatible, num_measurements, num_objects_before);
+      counts.level1_updates = ApplyPairs(split.unambiguous, measurements, d1, options_, &state_,
+                                         &assignment, &counts);
+      lap(Substage::kLevel1);
+      // --- RANSAC over what J leaves ambiguous (line 7), re-judged at the updated state.
+      if (!split.ambiguous.empty()) {
+        predictions = PredictObservations(state_, options_.sensor);
+        for (const Candidate& c : split.ambiguous) {
+          if (!assignment.MeasurementFree(c.measurement) || !assignment.ObjectFree(c.object)) {
+            continue;
+          }
+          const double nis = NormalizedInnovationSquared(
+              measurements[static_cast<size_t>(c.measurement)],
+              predictions[static_cast<size_t>(c.object)], d1);
+          if (nis < d1) sample_space.push_back({c.measurement, c.object, nis});
+        }
+      }
+    } else {
+      lap(Substage::kLevel1);
+      // Plain RANSAC: every pair is a possible hypothesis.
+      for (int i = 0; i < num_measurements; ++i) {
+        for (int j = 0; j < num_objects_before; ++j) {
+          const double nis = NormalizedInnovationSquared(
+              measurements[static_cast<size_t>(i)], predictions[static_cast<size_t>(j)], kInfinity);
+          if (std::isfinite(nis)) sample_space.push_back({i, j, nis});
+        }
+      }
+    }
+    RansacOutcome ransac;
+    if (!sample_space.empty()) {
+      ransac = RunOnePointRansac(state_, measurements, predictions, sample_space, sample_space,
+                                 options_.sensor, options_.ransac, rng);
+    }
+    counts.hypotheses = ransac.hypotheses;
+    counters_.hypotheses_generated += ransac.hypotheses;
+    lap(Substage::kRansac);
+    // --- level 2: the best hypothesis' pairs, gated by d1 (line 7.e)
+    counts.level2_updates =
+        ApplyPairs(ransac.consensus, measurements, d1, options_, &state_, &assignment, &counts);
+  }
+  // --- level 3 (line 9): what is left, with the wider gate d2
+  if (options_.level3 && options_.mode != AssociationMode::kStaticNearestNeighbour) {
+    predictions = PredictObservations(state_, options_.sensor);
+    std::vector<Candidate> remaining;
+    for (int i = 0; i < num_measurements; ++i) {
+      if (!assignment.MeasurementFree(i)) continue;
+      for (int j = 0; j < num_objects_before; ++j) {
+        if (!assignment.ObjectFree(j)) continue;
+        const double nis = NormalizedInnovationSquared(measurements[static_cast<size_t>(i)],
+                                                       predictions[static_cast<size_t>(j)],
+                                                       options_.gate_d2_chi2);
+        if (nis < options_.gate_d2_chi2) remaining.push_back({i, j, nis});
+      }
+    }
+    counts.level3_updates = ApplyPairs(GreedyOneToOne(remaining, assignment), measurements,
+                                       options_.gate_d2_chi2, options_, &state_, &assignment,
+                                       &counts);
+  }
+  lap(Substage::kLevel23);
+
+  // --- track management (lines 11-13)
+  // Hits and misses.
+  std::vector<double> assigned_nis(static_cast<size_t>(num_objects_before), kInfinity);
+  std::vector<uint8_t> misfit_nearby(static_cast<size_t>(num_objects_before), 0);
+  for (const Candidate& c : gated) {
+    const int assigned = assignment.object_of_measurement[static_cast<size_t>(c.measurement)];
+    if (assigned == c.object) assigned_nis[static_cast<size_t>(c.object)] = c.nis;
+    if (assigned < 0 && c.nis < dn) misfit_nearby[static_cast<size_t>(c.object)] = 1;
+  }
+  const Eigen::Vector3d robot = state_.robot_pose();
+  for (int j = 0; j < num_objects_before; ++j) {
+    ObjectRecord& record = state_.object(j).record;
+    if (!assignment.ObjectFree(j)) {
+      RecordHit(scan.utime, options_.tracks, &record);
+    } else {
+      RecordMiss(dt, InFieldOfView(robot, state_.position(j), options_.sensor,
+                                   options_.max_range_m, options_.field_of_view_rad),
+                 &record);
+    }
+  }
+  // Classification (line 12).
+  if (options_.mode != AssociationMode::kStaticNearestNeighbour) {
+    for (int j = 0; j < num_objects_before; ++j) {
+      StateObject& object = state_.object(j);
+      ObjectRecord& record = object.record;
+      if (object.has_velocity()) {
+        const Eigen::Matrix2d velocity_cov =
+            state_.covariance().block<2, 2>(object.velocity_index, object.velocity_index);
+        const ClassChange change = ClassifyMover(state_.velocity(j), velocity_cov, dt,
+                                                 options_.classifier, &record);
+        if (change == ClassChange::kBecameMoving) {
+          record.class_change_utime = scan.utime;
+          ++counts.became_moving;
+        } else if (change == ClassChange::kBecameStatic) {
+          state_.RemoveVelocityAssumingZero(j);
+          ObjectRecord& r = state_.object(j).record;
+          r.object_class = ObjectClass::kStatic;
+          r.class_change_utime = scan.utime;
+          r.static_evidence_s = 0.0;
+          r.moving_evidence_scans = 0;
+          r.motion_evidence_scans = 0;
+          ++counts.became_static;
+        }
+      } else {
+        StaticObservation seen = StaticObservation::kNothing;
+        if (!assignment.ObjectFree(j)) {
+          seen = assigned_nis[static_cast<size_t>(j)] > options_.classifier.started_moving_nis
+                     ? StaticObservation::kMisfits
+                     : StaticObservation::kFits;
+        } else if (misfit_nearby[static_cast<size_t>(j)]) {
+          seen = StaticObservation::kMisfits;
+        }
+        if (ClassifyLandmark(seen, options_.classifier, &record) == ClassChange::kStartedMoving) {
+          const double sigma = options_.new_object_velocity_sigma_mps;
+          state_.AddVelocity(j, Eigen::Vector2d::Zero(),
+                             sigma * sigma * Eigen::Matrix2d::Identity());
+          ObjectRecord& r = state_.object(j).record;
+          r.object_class = ObjectClass::kUndecided;
+          r.class_change_utime = scan.utime;
+          r.static_evidence_s = 0.0;
+          r.moving_evidence_scans = 0;
+          ++counts.started_moving;
+        }
+      }
+    }
+  }
+  // Pruning (line 11).
+  std::vector<int> prune;
+  for (int j = 0; j < num_objects_before; ++j) {
+    const StateObject& object = state_.object(j);
+    if (ShouldPrune(object.record, object.has_velocity(), scan.utime, options_.tracks)) {
+      prune.push_back(j);
+    }
+  }
+  counts.pruned = static_cast<int>(prune.size());
+  state_.RemoveObjects(prune);
+  // New objects (line 13): unassigned measurements outside gate dn of every object.
+  const bool static_world = options_.mode == AssociationMode::kStaticNearestNeighbour;
+  for (int i = 0; i < num_measurements; ++i) {
+    if (!assignment.MeasurementFree(i) || nearest_nis[static_cast<size_t>(i)] < dn) continue;
+    if (state_.num_objects() >= options_.max_objects) {
+      ++counts.objects_refused;
+      continue;
+    }
+    const PointMeasurement& z = measurements[static_cast<size_t>(i)];
+    Eigen::Matrix<double, 2, 3> jacobian_robot;
+    Eigen::Matrix2d jacobian_measurement;
+    const Eigen::Vector2d position = PointFromRangeBearing(
+        state_.robot_pose(), z.range_bearing, options_.sensor, &jacobian_robot,
+        &jacobian_measurement);
+    const ObjectRecord record = NewObjectRecord(
+        next_id_++, scan.utime, static_world ? ObjectClass::kStatic : ObjectClass::kUndecided);
+    const int k = state_.AddObject(position, jacobian_robot,
+                                   jacobian_measurement * z.covariance *
+                                       jacobian_measurement.transpose(),
+                                   record);
+    if (!static_world) {
+      const double sigma = options_.new_object_velocity_sigma_mps;
+      state_.AddVelocity(k, Eigen::Vector2d::Zero(), sigma * sigma * Eigen::Matrix2d::Identity());
+    }
+    ++counts.new_objects;
+  }
+  if (counts.objects_refused > 0) {
+    counters_.object_cap_hits += counts.objects_refused;
+    Event("scan at utime " + std::to_string(scan.utime) + ": " +
+          std::to_string(counts.objects_refused) + " new object(s) refused, cap of " +
+          std::to_string(options_.max_objects) + " objects reached");
+  }
+  if (counts.updates_failed > 0) {
+    counters_.updates_failed += counts.updates_failed;
+    Event("scan at utime " + std::to_string(scan.utime) + ": " +
+          std::to_string(counts.updates_failed) + " observation(s) numerically unusable");
+  }
+  lap(Substage::kTrackManagement);
+
+  ++counters_.scans_processed;
+  result.processed = true;
+  result.pose = state_.robot_pose();
+  result.pose_covariance = state_.robot_covariance();
+  result.objects.reserve(static_cast<size_t>(state_.num_objects()));
+  for (int j = 0; j < state_.num_objects(); ++j) {
+    const ObjectRecord& record = state_.object(j).record;
+    ObjectEstimate e;
+    e.id = record.id;
+    e.object_class = record.object_class;
+    e.confirmed = record.confirmed;
+    e.position = state_.position(j);
+    e.velocity = state_.velocity(j);
+    e.covariance = state_.ObjectCovariance(j);
+    e.first_seen_utime = record.first_seen_utime;
+    e.last_seen_utime = record.last_seen_utime;
+    e.hits = record.hits;
+    result.objects.push_back(e);
+  }
+  return result;
+}
+
+int Estimator::NumObjectsOfClass(ObjectClass object_class, bool confirmed_only) const {
+  int n = 0;
+  for (const StateObject& o : state_.objects()) {
+    if (o.record.object_class == object_class && (o.record.confirmed || !confirmed_only)) ++n;
+  }
+  return n;
+}
+
+int Estimator::NumTentative() const {
+  int n = 0;
+  for (const StateObject& o : state_.objects()) n += o.record.confirmed ? 0 : 1;
+  return n;
+}
+
+}  // namespace slammtt

@@ -1,0 +1,63 @@
+// Individual compatibility of measurements with objects (paper Algorithm 2, lines 3-4, and
+// eqs. 20-21): predicted observation h_i, innovation covariance S_i = H_i P H_i^T + R_i and the
+// Mahalanobis distance (normalized innovation squared, NIS) of every measurement to every
+// object; the compatibility matrix J marks the pairs inside a gate.
+//
+// Gates are thresholds on the NIS, which is chi-square with 2 degrees of freedom for a correct
+// pair (e.g. 9.21 keeps 99 % of correct pairs). Cost: H P H^T is computed once per object
+// (it does not depend on the measurement), then each pair costs a 2x2 solve; a pair whose
+// range or bearing alone already exceeds the gate (nu_r^2 / S_rr >= gate or
+// nu_b^2 / S_bb >= gate, both lower bounds of the NIS) is rejected without the solve.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "estimator/point_measurement.h"
+#include "estimator/range_bearing_model.h"
+#include "estimator/slam_state.h"
+
+namespace slammtt {
+
+// The predicted observation of one object at the current state.
+struct ObjectPrediction {
+  bool valid = false;  // false when the object sits at the sensor (bearing undefined)
+  Eigen::Vector2d range_bearing = Eigen::Vector2d::Zero();
+  Eigen::Matrix<double, 2, 3> jacobian_robot = Eigen::Matrix<double, 2, 3>::Zero();
+  Eigen::Matrix2d jacobian_position = Eigen::Matrix2d::Zero();
+  Eigen::Matrix2d hph = Eigen::Matrix2d::Zero();  // H P H^T (S without R)
+};
+
+// Predictions of every object of the state (index = object index).
+std::vector<ObjectPrediction> PredictObservations(const SlamState& state,
+                                                  const SensorMount& mount);
+
+// A measurement-object pair with its NIS.
+struct Candidate {
+  int measurement = -1;
+  int object = -1;
+  double nis = 0.0;
+};
+
+// NIS of measurement z (with covariance R) against a prediction; +infinity when the prediction
+// is invalid. `gate_chi2` only enables the cheap lower-bound rejection (returns +infinity for
+// pairs proven to be >= gate_chi2); pass +infinity to always compute the exact value.
+double NormalizedInnovationSquared(const PointMeasurement& measurement,
+                                   const ObjectPrediction& prediction, double gate_chi2);
+
+// Every pair (measurement i, object j) with NIS < gate_chi2, listed by measurement then object.
+std::vector<Candidate> GatePairs(const std::vector<PointMeasurement>& measurements,
+                                 const std::vector<ObjectPrediction>& predictions,
+                                 double gate_chi2);
+
+// The compatibility matrix J of Algorithm 2 (line 4), as the list of its non-zero pairs, split
+// into the pairs that J settles (line 5: the only candidate of its measurement and of its
+// object) and the ambiguous rest (measurements or objects with two or more candidates).
+struct CompatibilitySplit {
+  std::vector<Candidate> unambiguous;
+  std::vector<Candidate> ambiguous;
+};
+CompatibilitySplit SplitCompatibility(const std::vector<Candidate>& pairs, int num_measurements,
+                                      int num_objects);
+
+}  // namespace slammtt

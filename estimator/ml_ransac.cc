@@ -1,0 +1,185 @@
+#include "estimator/ml_ransac.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "estimator/angle.h"
+#include "estimator/range_bearing_model.h"
+
+namespace slammtt {
+
+uint64_t UniformIndex(std::mt19937_64* rng, uint64_t n) {
+  const uint64_t max = std::numeric_limits<uint64_t>::max();
+  const uint64_t limit = max - max % n;  // accept [0, limit), a multiple of n
+  uint64_t x = (*rng)();
+  while (x >= limit) x = (*rng)();
+  return x % n;
+}
+
+double RequiredHypotheses(double inlier_ratio, double success_probability) {
+  if (inlier_ratio >= 1.0) return 0.0;
+  if (inlier_ratio <= 0.0) return std::numeric_limits<double>::infinity();
+  return std::log(1.0 - success_probability) / std::log(1.0 - inlier_ratio);
+}
+
+namespace {
+
+struct Hypothesis {
+  int consensus = 0;
+  double cost = 0.0;
+  int pair = -1;
+  std::vector<Candidate> pairs;
+};
+
+bool Better(const Hypothesis& a, const Hypothesis& b) {
+  if (a.consensus != b.consensus) return a.consensus > b.consensus;
+  if (a.cost != b.cost) return a.cost < b.cost;
+  return a.pair < b.pair;
+}
+
+double Nis(const Eigen::Vector2d& nu, const Eigen::Matrix2d& s) {
+  const double det = s(0, 0) * s(1, 1) - s(0, 1) * s(1, 0);
+  if (!(det > 0.0)) return std::numeric_limits<double>::infinity();
+  return (s(1, 1) * nu(0) * nu(0) - (s(0, 1) + s(1, 0)) * nu(0) * nu(1) +
+          s(0, 0) * nu(1) * nu(1)) /
+         det;
+}
+
+}  // namespace
+
+RansacOutcome RunOnePointRansac(const SlamState& state,
+                                const std::vector<PointMeasurement>& measurements,
+                                const std::vector<ObjectPrediction>& predictions,
+                                const std::vector<Candidate>& sample_space,
+                                const std::vector<Candidate>& evaluation,
+                                const SensorMount& mount, const RansacOptions& options,
+                                std::mt19937_64* rng) {
+  RansacOutcome outcome;
+  if (sample_space.empty()) return outcome;
+
+  // Objects whose predictions a hypothesis must recompute, and their rows in the reduced
+  // gain: robot rows 0-2, then 2 rows per object.
+  std::vector<int> row_of(static_cast<size_t>(state.num_objects()), -1);
+  std::vector<int> involved;
+  auto involve = [&](int object) {
+    if (row_of[static_cast<size_t>(object)] < 0) {
+      row_of[static_cast<size_t>(object)] = 3 + 2 * static_cast<int>(involved.size());
+      involved.push_back(object);
+    }
+  };
+  for (const Candidate& c : sample_space) involve(c.object);
+  for (const Candidate& c : evaluation) involve(c.object);
+  const int rows = 3 + 2 * static_cast<int>(involved.size());
+  std::vector<int> state_index(static_cast<size_t>(rows));
+  for (int r = 0; r < 3; ++r) state_index[static_cast<size_t>(r)] = r;
+  for (size_t k = 0; k < involved.size(); ++k) {
+    const int p = state.object(involved[k]).position_index;
+    state_index[3 + 2 * k] = p;
+    state_index[3 + 2 * k + 1] = p + 1;
+  }
+
+  const auto cov = state.covariance();
+  const auto mean = state.mean();
+  const Eigen::Vector3d robot = state.robot_pose();
+  Eigen::Matrix<double, Eigen::Dynamic, 2> w(rows, 2);
+  std::vector<Eigen::Vector2d> predicted(involved.size());
+  std::vector<Eigen::Matrix2d> conditioned_hph(involved.size());
+  std::vector<Candidate> inliers;
+  std::vector<uint8_t> measurement_used(measurements.size(), 0);
+  std::vector<uint8_t> object_used(static_cast<size_t>(state.num_objects()), 0);
+
+  auto evaluate = [&](int pair_index) {
+    const Candidate& h = sample_space[static_cast<size_t>(pair_index)];
+    const ObjectPrediction& ph = predictions[static_cast<size_t>(h.object)];
+    const PointMeasurement& zh = measurements[static_cast<size_t>(h.measurement)];
+    const int p = state.object(h.object).position_index;
+    // W = P H^T on the involved rows only.
+    for (int r = 0; r < rows; ++r) {
+      const int i = state_index[static_cast<size_t>(r)];
+      const Eigen::RowVector3d pr(cov(i, 0), cov(i, 1), cov(i, 2));
+      const Eigen::RowVector2d pp(cov(i, p), cov(i, p + 1));
+      w.row(r) = pr * ph.jacobian_robot.transpose() + pp * ph.jacobian_position.transpose();
+    }
+    const Eigen::Matrix2d s = ph.hph + zh.covariance;
+    const Eigen::Matrix2d s_inverse = s.inverse();
+    Eigen::Vector2d nu = zh.range_bearing - ph.range_bearing;
+    nu(1) = WrapAngle(nu(1));
+    const Eigen::Matrix<double, Eigen::Dynamic, 1> delta = w * (s_inverse * nu);
+    Eigen::Vector3d robot_h = robot + delta.head<3>();
+    robot_h(2) = WrapAngle(robot_h(2));
+    for (size_t k = 0; k < involved.size(); ++k) {
+      const int object = involved[k];
+      const ObjectPrediction& pk = predictions[static_cast<size_t>(object)];
+      const Eigen::Vector2d position =
+          mean.segment<2>(state.object(object).position_index) + delta.segment<2>(3 + 2 * k);
+      predicted[k] = pk.valid ? PredictRangeBearing(robot_h, position, mount)
+                              : Eigen::Vector2d::Zero();
+      const Eigen::Matrix2d g = pk.jacobian_robot * w.topRows<3>() +
+                                pk.jacobian_position * w.middleRows<2>(3 + 2 * static_cast<int>(k));
+      conditioned_hph[k] = pk.hph - g * s_inverse * g.transpose();
+    }
+    inliers.clear();
+    for (const Candidate& c : evaluation) {
+      if (c.measurement == h.measurement || c.object == h.object) continue;
+      const size_t k = static_cast<size_t>((row_of[static_cast<size_t>(c.object)] - 3) / 2);
+      if (!predictions[static_cast<size_t>(c.object)].valid) continue;
+      const PointMeasurement& z = measurements[static_cast<size_t>(c.measurement)];
+      Eigen::Vector2d innovation = z.range_bearing - predicted[k];
+      innovation(1) = WrapAngle(innovation(1));
+      const double nis = Nis(innovation, conditioned_hph[k] + z.covariance);
+      if (nis < options.inlier_chi2) inliers.push_back({c.measurement, c.object, nis});
+    }
+    std::stable_sort(inliers.begin(), inliers.end(),
+                     [](const Candidate& a, const Candidate& b) { return a.nis < b.nis; });
+    Hypothesis hypothesis;
+    hypothesis.pair = pair_index;
+    hypothesis.pairs.push_back(h);
+    hypothesis.cost = h.nis;
+    measurement_used[static_cast<size_t>(h.measurement)] = 1;
+    object_used[static_cast<size_t>(h.object)] = 1;
+    for (const Candidate& c : inliers) {
+      if (measurement_used[static_cast<size_t>(c.measurement)] ||
+          object_used[static_cast<size_t>(c.object)]) {
+        continue;
+      }
+      measurement_used[static_cast<size_t>(c.measurement)] = 1;
+      object_used[static_cast<size_t>(c.object)] = 1;
+      hypothesis.pairs.push_back(c);
+      hypothesis.cost += c.nis;
+    }
+    for (const Candidate& c : hypothesis.pairs) {
+      measurement_used[static_cast<size_t>(c.measurement)] = 0;
+      object_used[static_cast<size_t>(c.object)] = 0;
+    }
+    hypothesis.consensus = static_cast<int>(hypothesis.pairs.size());
+    return hypothesis;
+  };
+
+  // Draw without replacement: a partial Fisher-Yates shuffle of the pair indices.
+  const int space = static_cast<int>(sample_space.size());
+  std::vector<int> order(static_cast<size_t>(space));
+  for (int k = 0; k < space; ++k) order[static_cast<size_t>(k)] = k;
+  double needed = static_cast<double>(options.max_hypotheses);
+  Hypothesis best;
+  for (int k = 0; k < space && k < options.max_hypotheses && static_cast<double>(k) < needed;
+       ++k) {
+    const int pick = k + static_cast<int>(UniformIndex(rng, static_cast<uint64_t>(space - k)));
+    std::swap(order[static_cast<size_t>(k)], order[static_cast<size_t>(pick)]);
+    Hypothesis hypothesis = evaluate(order[static_cast<size_t>(k)]);
+    ++outcome.hypotheses;
+    if (best.pair < 0 || Better(hypothesis, best)) {
+      const bool more_consensus = best.pair < 0 || hypothesis.consensus > best.consensus;
+      best = std::move(hypothesis);
+      if (more_consensus) {
+        const double inlier_ratio = static_cast<double>(best.consensus) / space;
+        needed = std::min(needed, RequiredHypotheses(inlier_ratio, options.success_probability));
+      }
+    }
+  }
+  outcome.consensus = std::move(best.pairs);
+  outcome.best_pair = best.pair;
+  return outcome;
+}
+
+}  // namespace slammtt

@@ -1,0 +1,54 @@
+#include "estimator/robot_motion_model.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "estimator/angle.h"
+
+namespace slammtt {
+
+Eigen::Vector3d PredictRobotPose(const Eigen::Vector3d& pose, const OdometryIncrement& increment,
+                                 Eigen::Matrix3d* jacobian_pose,
+                                 Eigen::Matrix<double, 3, 2>* jacobian_increment) {
+  const double d = increment.distance_m;
+  const double heading_after = pose(2) + increment.rotation_rad;
+  const double c = std::cos(heading_after);
+  const double s = std::sin(heading_after);
+  if (jacobian_pose != nullptr) {
+    *jacobian_pose << 1.0, 0.0, -d * s,  //
+        0.0, 1.0, d * c,                 //
+        0.0, 0.0, 1.0;
+  }
+  if (jacobian_increment != nullptr) {
+    *jacobian_increment << c, -d * s,  //
+        s, d * c,                      //
+        0.0, 1.0;
+  }
+  return Eigen::Vector3d(pose(0) + d * c, pose(1) + d * s, WrapAngle(heading_after));
+}
+
+OdometryIncrement IncrementBetweenOdometryPoses(const Eigen::Vector3d& from,
+                                                const Eigen::Vector3d& to) {
+  OdometryIncrement increment;
+  increment.rotation_rad = WrapAngle(to(2) - from(2));
+  const double dx = to(0) - from(0);
+  const double dy = to(1) - from(1);
+  const double length = std::hypot(dx, dy);
+  const double along = dx * std::cos(to(2)) + dy * std::sin(to(2));
+  increment.distance_m = along < 0.0 ? -length : length;
+  return increment;
+}
+
+Eigen::Matrix2d OdometryIncrementCovariance(const OdometryIncrement& increment, double dt_s,
+                                            const OdometryNoiseOptions& noise) {
+  const double distance = std::abs(increment.distance_m);
+  const double rotation = std::abs(increment.rotation_rad);
+  const double dt = std::max(0.0, dt_s);
+  Eigen::Matrix2d covariance = Eigen::Matrix2d::Zero();
+  covariance(0, 0) = noise.distance_var_per_m * distance + noise.distance_var_per_s * dt;
+  covariance(1, 1) = noise.rotation_var_per_rad * rotation + noise.rotation_var_per_m * distance +
+                     noise.rotation_var_per_s * dt;
+  return covariance;
+}
+
+}  // namespace slammtt

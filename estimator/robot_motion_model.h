@@ -1,0 +1,52 @@
+// Differential-drive motion of the robot (paper section 2.1, eq. 1) and the noise of the
+// odometry increments that drive it.
+//
+// Eq. 1 advances the pose (x, y, phi) by a travelled distance d = Omega^r * dt and a heading
+// change delta = Omega^d * dt, the distance being travelled along the *new* heading:
+//   x' = x + d cos(phi + delta),  y' = y + d sin(phi + delta),  phi' = phi + delta.
+// The estimator feeds it increments measured by the base: the difference of two integrated
+// odometry poses (odometry_t), or velocity times time when no odometry arrived.
+#pragma once
+
+#include <Eigen/Core>
+
+namespace slammtt {
+
+// One step of eq. 1: the distance travelled by the axle centre (signed, negative when
+// reversing) and the heading change (CCW positive).
+struct OdometryIncrement {
+  double distance_m = 0.0;
+  double rotation_rad = 0.0;
+};
+
+// Eq. 1. Optionally returns the Jacobians with respect to the pose (F, 3x3) and to the
+// increment (G, 3x2) for the EKF prediction (eq. 19: P' = F P F^T + G Q G^T).
+Eigen::Vector3d PredictRobotPose(const Eigen::Vector3d& pose, const OdometryIncrement& increment,
+                                 Eigen::Matrix3d* jacobian_pose = nullptr,
+                                 Eigen::Matrix<double, 3, 2>* jacobian_increment = nullptr);
+
+// The increment of eq. 1 that takes the odometry pose `from` to `to` (both in the base's own
+// odometry frame): rotation = wrapped heading difference, distance = length of the
+// displacement, negative when the displacement points backwards with respect to the heading at
+// `to` (eq. 1 moves along the new heading). Exact inverse of PredictRobotPose for poses that
+// eq. 1 produced; for other integration schemes the distance is still exact and the direction
+// differs by at most half the rotation of the step.
+OdometryIncrement IncrementBetweenOdometryPoses(const Eigen::Vector3d& from,
+                                                const Eigen::Vector3d& to);
+
+// Noise of one odometry increment, as variances that grow with the motion (independent
+// encoder errors accumulate linearly in variance with the distance rolled, as in the usual
+// odometry error models, e.g. Thrun, Burgard and Fox, Probabilistic Robotics, section 5.4).
+struct OdometryNoiseOptions {
+  double distance_var_per_m = 0.0025;          // [m^2 per m travelled] (5 cm after 1 m)
+  double rotation_var_per_rad = 0.0025;        // [rad^2 per rad turned]
+  double rotation_var_per_m = 0.0004;          // [rad^2 per m travelled] (wheel slip)
+  double distance_var_per_s = 1e-6;            // floor that keeps a standing robot well-posed
+  double rotation_var_per_s = 1e-6;
+};
+
+// Covariance (2x2, diagonal) over (distance_m, rotation_rad) of an increment spanning dt_s.
+Eigen::Matrix2d OdometryIncrementCovariance(const OdometryIncrement& increment, double dt_s,
+                                            const OdometryNoiseOptions& noise);
+
+}  // namespace slammtt

@@ -1,0 +1,176 @@
+#include "estimator/slam_state.h"
+
+#include <Eigen/Cholesky>
+#include <algorithm>
+
+namespace slammtt {
+
+SlamState::SlamState(const Eigen::Vector3d& pose, const Eigen::Matrix3d& pose_covariance) {
+  Reserve(64);
+  dim_ = kRobotDim;
+  mean_.head<3>() = pose;
+  cov_.topLeftCorner<3, 3>() = 0.5 * (pose_covariance + pose_covariance.transpose());
+}
+
+void SlamState::Reserve(int dim) {
+  const Eigen::Index capacity = cov_.rows();
+  if (dim <= capacity) return;
+  const Eigen::Index new_capacity = std::max<Eigen::Index>(dim, 2 * capacity);
+  Eigen::VectorXd mean = Eigen::VectorXd::Zero(new_capacity);
+  Eigen::MatrixXd cov = Eigen::MatrixXd::Zero(new_capacity, new_capacity);
+  mean.head(dim_) = mean_.head(dim_);
+  cov.topLeftCorner(dim_, dim_) = cov_.topLeftCorner(dim_, dim_);
+  mean_.swap(mean);
+  cov_.swap(cov);
+}
+
+int SlamState::AppendStates(int count) {
+  Reserve(dim_ + count);
+  const int first = dim_;
+  dim_ += count;
+  return first;
+}
+
+Eigen::Vector2d SlamState::velocity(int k) const {
+  const StateObject& o = object(k);
+  if (!o.has_velocity()) return Eigen::Vector2d::Zero();
+  return mean_.segment<2>(o.velocity_index);
+}
+
+Eigen::Matrix4d SlamState::ObjectCovariance(int k) const {
+  const StateObject& o = object(k);
+  Eigen::Matrix4d c = Eigen::Matrix4d::Zero();
+  const int p = o.position_index;
+  c.topLeftCorner<2, 2>() = cov_.block<2, 2>(p, p);
+  if (o.has_velocity()) {
+    const int v = o.velocity_index;
+    c.topRightCorner<2, 2>() = cov_.block<2, 2>(p, v);
+    c.bottomLeftCorner<2, 2>() = cov_.block<2, 2>(v, p);
+    c.bottomRightCorner<2, 2>() = cov_.block<2, 2>(v, v);
+  }
+  return c;
+}
+
+int SlamState::AddObject(const Eigen::Vector2d& position,
+                         const Eigen::Matrix<double, 2, 3>& jacobian_robot,
+                         const Eigen::Matrix2d& independent_covariance,
+                         const ObjectRecord& record) {
+  const int old_dim = dim_;
+  const int p = AppendStates(2);
+  mean_.segment<2>(p) = position;
+  // Cross covariance with everything that was there: G * P_r,x.
+  const Eigen::MatrixXd cross = jacobian_robot * cov_.topLeftCorner(3, old_dim);
+  cov_.block(p, 0, 2, old_dim) = cross;
+  cov_.block(0, p, old_dim, 2) = cross.transpose();
+  const Eigen::Matrix2d own = jacobian_robot * cov_.topLeftCorner<3, 3>() *
+                                  jacobian_robot.transpose() +
+                              independent_covariance;
+  cov_.block<2, 2>(p, p) = 0.5 * (own + own.transpose());
+  StateObject object;
+  object.position_index = p;
+  object.record = record;
+  objects_.push_back(object);
+  return num_objects() - 1;
+}
+
+void SlamState::AddVelocity(int k, const Eigen::Vector2d& velocity,
+                            const Eigen::Matrix2d& covariance) {
+  if (object(k).has_velocity()) return;
+  const int v = AppendStates(2);
+  mean_.segment<2>(v) = velocity;
+  cov_.block(v, 0, 2, v).setZero();
+  cov_.block(0, v, v, 2).setZero();
+  cov_.block<2, 2>(v, v) = 0.5 * (covariance + covariance.transpose());
+  object(k).velocity_index = v;
+}
+
+void SlamState::RemoveVelocityAssumingZero(int k) {
+  StateObject& o = object(k);
+  if (!o.has_velocity()) return;
+  const int v = o.velocity_index;
+  const Eigen::Matrix2d pvv = cov_.block<2, 2>(v, v);
+  Eigen::LLT<Eigen::Matrix2d> llt(pvv);
+  if (llt.info() == Eigen::Success) {
+    // Perfect pseudo-measurement v = 0: x -= P_xv Pvv^-1 v, P -= P_xv Pvv^-1 P_vx, computed as
+    // a symmetric rank-2 downdate with W = P_xv L^-T.
+    Eigen::MatrixXd w_transposed = cov_.block(v, 0, 2, dim_);
+    llt.matrixL().solveInPlace(w_transposed);
+    const Eigen::Vector2d whitened = llt.matrixL().solve(mean_.segment<2>(v));
+    mean_.head(dim_).noalias() -= w_transposed.transpose() * whitened;
+    auto cov = cov_.topLeftCorner(dim_, dim_);
+    cov.selfadjointView<Eigen::Lower>().rankUpdate(w_transposed.transpose(), -1.0);
+    MirrorLowerTriangle();
+  }
+  // (A non-positive-definite Pvv means the velocity is already known exactly: dropping the
+  // states is then the whole operation.)
+  RemoveStates({v, v + 1});
+  o.velocity_index = -1;
+}
+
+void SlamState::RemoveObjects(std::vector<int> object_indices) {
+  std::sort(object_indices.begin(), object_indices.end());
+  object_indices.erase(std::unique(object_indices.begin(), object_indices.end()),
+                       object_indices.end());
+  if (object_indices.empty()) return;
+  std::vector<int> states;
+  for (int k : object_indices) {
+    const StateObject& o = object(k);
+    states.push_back(o.position_index);
+    states.push_back(o.position_index + 1);
+    if (o.has_velocity()) {
+      states.push_back(o.velocity_index);
+      states.push_back(o.velocity_index + 1);
+    }
+  }
+  std::vector<StateObject> kept;
+  kept.reserve(objects_.size() - object_indices.size());
+  size_t next_removed = 0;
+  for (int k = 0; k < num_objects(); ++k) {
+    if (next_removed < object_indices.size() && object_indices[next_removed] == k) {
+      ++next_removed;
+      continue;
+    }
+    kept.push_back(objects_[static_cast<size_t>(k)]);
+  }
+  objects_.swap(kept);
+  std::sort(states.begin(), states.end());
+  RemoveStates(states);
+}
+
+void SlamState::RemoveStates(const std::vector<int>& sorted_state_indices) {
+  if (sorted_state_indices.empty()) return;
+  // new_index[i] for every old state index (-1 when removed).
+  std::vector<int> new_index(static_cast<size_t>(dim_), 0);
+  for (int i : sorted_state_indices) new_index[static_cast<size_t>(i)] = -1;
+  int next = 0;
+  for (int i = 0; i < dim_; ++i) {
+    if (new_index[static_cast<size_t>(i)] == 0) new_index[static_cast<size_t>(i)] = next++;
+  }
+  const int new_dim = next;
+  // Compact columns, then rows; each destination index is <= its source, so in-place moves in
+  // increasing order never overwrite data still to be read.
+  for (int i = 0; i < dim_; ++i) {
+    const int to = new_index[static_cast<size_t>(i)];
+    if (to >= 0 && to != i) {
+      cov_.col(to).head(dim_) = cov_.col(i).head(dim_);
+      mean_(to) = mean_(i);
+    }
+  }
+  for (int i = 0; i < dim_; ++i) {
+    const int to = new_index[static_cast<size_t>(i)];
+    if (to >= 0 && to != i) cov_.row(to).head(new_dim) = cov_.row(i).head(new_dim);
+  }
+  dim_ = new_dim;
+  for (StateObject& o : objects_) {
+    o.position_index = new_index[static_cast<size_t>(o.position_index)];
+    if (o.has_velocity()) o.velocity_index = new_index[static_cast<size_t>(o.velocity_index)];
+  }
+}
+
+void SlamState::MirrorLowerTriangle() {
+  for (int j = 1; j < dim_; ++j) {
+    cov_.col(j).head(j) = cov_.row(j).head(j).transpose();
+  }
+}
+
+}  // namespace slammtt

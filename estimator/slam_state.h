@@ -1,0 +1,113 @@
+// The one EKF state of the estimator (paper eq. 2): robot pose, static landmarks and moving
+// objects, with a dense covariance and block access.
+//
+// Layout of the state vector: the robot pose (x, y, heading) at indices 0-2, then every object
+// in slots. An object always has a position slot (x, y); an object that carries velocity
+// states (a moving or undecided object, paper eq. 5) also has a velocity slot (vx, vy). The
+// two slots of one object need not be adjacent: a landmark that starts to move gets its
+// velocity slot appended at the end, and removing states compacts the vector, so objects refer
+// to their slots by index. A static landmark (eq. 4) has no velocity slot.
+//
+// The covariance is stored symmetric (both triangles valid) in a matrix with spare capacity so
+// that adding objects does not reallocate every time. Every operation keeps it symmetric; the
+// update routines (ekf_update.h) keep it positive semi-definite.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+namespace slammtt {
+
+// Same numbering as track_t's CLASS_* constants.
+enum class ObjectClass : int8_t { kStatic = 0, kMoving = 1, kUndecided = 2 };
+
+// Book-keeping of one object (track management and classification read and write it).
+struct ObjectRecord {
+  int64_t id = 0;
+  ObjectClass object_class = ObjectClass::kUndecided;
+  bool confirmed = false;
+  int hits = 0;                    // scans in which a measurement updated the object
+  int64_t first_seen_utime = 0;
+  int64_t last_seen_utime = 0;
+  double unseen_in_view_s = 0.0;   // time in the field of view without a measurement
+  // Classification evidence (motion_classifier.h).
+  int moving_evidence_scans = 0;   // consecutive scans whose velocity says "moving"
+  double static_evidence_s = 0.0;  // time the velocity has said "standing still"
+  int motion_evidence_scans = 0;   // static landmark: consecutive scans that say "it moved"
+  int64_t class_change_utime = 0;  // last change of object_class
+};
+
+struct StateObject {
+  int position_index = -1;  // x at position_index, y at position_index + 1
+  int velocity_index = -1;  // vx, vy; -1 for a static landmark
+  ObjectRecord record;
+  bool has_velocity() const { return velocity_index >= 0; }
+};
+
+class SlamState {
+ public:
+  static constexpr int kRobotDim = 3;
+
+  // A state with only the robot, at `pose` with covariance `pose_covariance`.
+  SlamState(const Eigen::Vector3d& pose, const Eigen::Matrix3d& pose_covariance);
+
+  int dim() const { return dim_; }
+  int num_objects() const { return static_cast<int>(objects_.size()); }
+
+  // Views of the active part of the mean and covariance (valid until the dimension changes).
+  Eigen::VectorBlock<Eigen::VectorXd> mean() { return mean_.head(dim_); }
+  Eigen::VectorBlock<const Eigen::VectorXd> mean() const { return mean_.head(dim_); }
+  Eigen::Block<Eigen::MatrixXd> covariance() { return cov_.topLeftCorner(dim_, dim_); }
+  Eigen::Block<const Eigen::MatrixXd> covariance() const {
+    return cov_.topLeftCorner(dim_, dim_);
+  }
+
+  Eigen::Vector3d robot_pose() const { return mean_.head<3>(); }
+  Eigen::Matrix3d robot_covariance() const { return cov_.topLeftCorner<3, 3>(); }
+
+  const std::vector<StateObject>& objects() const { return objects_; }
+  StateObject& object(int k) { return objects_[static_cast<size_t>(k)]; }
+  const StateObject& object(int k) const { return objects_[static_cast<size_t>(k)]; }
+
+  Eigen::Vector2d position(int k) const { return mean_.segment<2>(object(k).position_index); }
+  // Zero for a static landmark.
+  Eigen::Vector2d velocity(int k) const;
+  // 4x4 over (x, y, vx, vy); the velocity rows and columns are zero for a static landmark.
+  Eigen::Matrix4d ObjectCovariance(int k) const;
+
+  // Adds an object whose position error is G (robot error) plus an independent error of
+  // covariance `independent_covariance` (e.g. a point seen from the robot: G = d point / d
+  // robot, independent = J_z R J_z^T). So P_pp = G P_rr G^T + C and P_p,x = G P_r,x for every
+  // other state x. Returns the new object's index.
+  int AddObject(const Eigen::Vector2d& position, const Eigen::Matrix<double, 2, 3>& jacobian_robot,
+                const Eigen::Matrix2d& independent_covariance, const ObjectRecord& record);
+
+  // Gives object k velocity states with the given mean and a covariance independent of
+  // everything else (the prior of a landmark that starts to move). No-op if it has them.
+  void AddVelocity(int k, const Eigen::Vector2d& velocity, const Eigen::Matrix2d& covariance);
+
+  // Makes object k static: conditions the whole state on its velocity being exactly zero (a
+  // perfect pseudo-measurement v = 0), then removes the velocity states (marginalisation,
+  // which for a Gaussian is dropping rows and columns). No-op without velocity states.
+  void RemoveVelocityAssumingZero(int k);
+
+  // Removes the listed objects (indices into objects(), any order, duplicates ignored) and
+  // their states; the other objects keep their order.
+  void RemoveObjects(std::vector<int> object_indices);
+
+  // Copies the lower triangle onto the upper one.
+  void MirrorLowerTriangle();
+
+ private:
+  void Reserve(int dim);
+  int AppendStates(int count);  // uninitialised mean/covariance rows; returns first index
+  void RemoveStates(const std::vector<int>& sorted_state_indices);
+
+  Eigen::VectorXd mean_;
+  Eigen::MatrixXd cov_;  // capacity x capacity; the top-left dim_ x dim_ block is the state's
+  int dim_ = 0;
+  std::vector<StateObject> objects_;
+};
+
+}  // namespace slammtt

@@ -1,0 +1,175 @@
+// The estimator's models against numerical differentiation and against their own inverses.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+
+#include "estimator/angle.h"
+#include "estimator/constant_velocity_model.h"
+#include "estimator/range_bearing_model.h"
+#include "estimator/robot_motion_model.h"
+#include "tests/estimator/numerical_derivative.h"
+
+namespace slammtt {
+namespace {
+
+using testing::NumericalJacobian;
+
+TEST(AngleTest, WrapsIntoHalfOpenInterval) {
+  EXPECT_DOUBLE_EQ(WrapAngle(M_PI), M_PI);
+  EXPECT_DOUBLE_EQ(WrapAngle(-M_PI), M_PI);
+  EXPECT_NEAR(WrapAngle(3.0 * M_PI + 0.1), -M_PI + 0.1, 1e-12);
+  EXPECT_NEAR(WrapAngle(-0.5), -0.5, 1e-15);
+  EXPECT_NEAR(WrapAngle(2.0 * M_PI), 0.0, 1e-15);
+}
+
+TEST(RobotMotionModelTest, FollowsEquationOne) {
+  const Eigen::Vector3d pose(1.0, 2.0, 0.3);
+  const Eigen::Vector3d next = PredictRobotPose(pose, {0.5, 0.2});
+  EXPECT_NEAR(next(0), 1.0 + 0.5 * std::cos(0.5), 1e-12);
+  EXPECT_NEAR(next(1), 2.0 + 0.5 * std::sin(0.5), 1e-12);
+  EXPECT_NEAR(next(2), 0.5, 1e-12);
+}
+
+TEST(RobotMotionModelTest, JacobiansMatchNumericalDerivatives) {
+  const std::vector<Eigen::Vector3d> poses = {{0.0, 0.0, 0.0}, {1.0, -2.0, 3.1}, {-4.0, 2.5, -1.7}};
+  const std::vector<OdometryIncrement> increments = {{0.3, 0.05}, {-0.2, 0.4}, {1.5, -0.3}};
+  for (const Eigen::Vector3d& pose : poses) {
+    for (const OdometryIncrement& u : increments) {
+      Eigen::Matrix3d f;
+      Eigen::Matrix<double, 3, 2> g;
+      PredictRobotPose(pose, u, &f, &g);
+      const Eigen::MatrixXd f_numerical = NumericalJacobian(
+          [&](const Eigen::VectorXd& x) -> Eigen::VectorXd {
+            return PredictRobotPose(x, u);
+          },
+          pose, {2});
+      const Eigen::MatrixXd g_numerical = NumericalJacobian(
+          [&](const Eigen::VectorXd& x) -> Eigen::VectorXd {
+            return PredictRobotPose(pose, {x(0), x(1)});
+          },
+          Eigen::Vector2d(u.distance_m, u.rotation_rad), {2});
+      EXPECT_LT((f - f_numerical).cwiseAbs().maxCoeff(), 1e-7);
+      EXPECT_LT((g - g_numerical).cwiseAbs().maxCoeff(), 1e-7);
+    }
+  }
+}
+
+TEST(RobotMotionModelTest, IncrementBetweenPosesInvertsEquationOne) {
+  const Eigen::Vector3d from(0.5, -1.0, 3.0);
+  for (const OdometryIncrement& u :
+       {OdometryIncrement{0.4, 0.3}, OdometryIncrement{-0.25, -0.2}, OdometryIncrement{0.0, 1.0}}) {
+    const Eigen::Vector3d to = PredictRobotPose(from, u);
+    const OdometryIncrement back = IncrementBetweenOdometryPoses(from, to);
+    EXPECT_NEAR(back.distance_m, u.distance_m, 1e-12);
+    EXPECT_NEAR(back.rotation_rad, u.rotation_rad, 1e-12);
+  }
+}
+
+TEST(RobotMotionModelTest, IncrementNoiseGrowsWithMotion) {
+  OdometryNoiseOptions noise;
+  const Eigen::Matrix2d still = OdometryIncrementCovariance({0.0, 0.0}, 0.1, noise);
+  const Eigen::Matrix2d moving = OdometryIncrementCovariance({1.0, 0.5}, 0.1, noise);
+  EXPECT_GT(still(0, 0), 0.0);
+  EXPECT_GT(moving(0, 0), still(0, 0));
+  EXPECT_GT(moving(1, 1), still(1, 1));
+  EXPECT_DOUBLE_EQ(moving(0, 1), 0.0);
+}
+
+TEST(ConstantVelocityModelTest, TransitionAndNoiseFollowEquationsSevenAndEight) {
+  const double dt = 0.125;
+  const Eigen::Vector4d x(1.0, 2.0, 0.625, -0.75);
+  Eigen::Matrix4d jacobian;
+  const Eigen::Vector4d next = PredictConstantVelocity(x, dt, &jacobian);
+  EXPECT_NEAR(next(0), 1.0 + 0.625 * dt, 1e-15);
+  EXPECT_NEAR(next(1), 2.0 - 0.75 * dt, 1e-15);
+  EXPECT_EQ(next.tail<2>(), x.tail<2>());
+  const Eigen::MatrixXd numerical = NumericalJacobian(
+      [&](const Eigen::VectorXd& s) -> Eigen::VectorXd { return PredictConstantVelocity(s, dt); },
+      x);
+  EXPECT_LT((jacobian - numerical).cwiseAbs().maxCoeff(), 1e-9);
+  const Eigen::Matrix4d q = ConstantVelocityProcessNoise(dt, 0.5);
+  EXPECT_NEAR(q(0, 0), 0.25 * std::pow(dt, 4) / 4.0, 1e-15);
+  EXPECT_NEAR(q(0, 2), 0.25 * std::pow(dt, 3) / 2.0, 1e-15);
+  EXPECT_NEAR(q(2, 2), 0.25 * dt * dt, 1e-15);
+  EXPECT_EQ(q(0, 1), 0.0);
+  // Eq. 8 is G G^T sigma^2 with G = (dt^2/2, dt): rank 2, positive semi-definite.
+  EXPECT_TRUE(q.isApprox(q.transpose()));
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eigen(q);
+  EXPECT_GE(eigen.eigenvalues().minCoeff(), -1e-15);
+}
+
+TEST(RangeBearingModelTest, PredictsEquationsTenAndEleven) {
+  const SensorMount mount{0.2, 0.1};
+  const Eigen::Vector3d robot(1.0, 1.0, M_PI / 2.0);
+  // Sensor at (1 - 0.1, 1 + 0.2) = (0.9, 1.2); a point 3 m ahead of it along +y.
+  const Eigen::Vector2d z = PredictRangeBearing(robot, Eigen::Vector2d(0.9, 4.2), mount);
+  EXPECT_NEAR(z(0), 3.0, 1e-12);
+  EXPECT_NEAR(z(1), 0.0, 1e-12);
+  const Eigen::Vector2d left = PredictRangeBearing(robot, Eigen::Vector2d(-1.1, 1.2), mount);
+  EXPECT_NEAR(left(0), 2.0, 1e-12);
+  EXPECT_NEAR(left(1), M_PI / 2.0, 1e-12);
+}
+
+TEST(RangeBearingModelTest, JacobiansMatchNumericalDerivatives) {
+  const std::vector<SensorMount> mounts = {{0.0, 0.0}, {0.15, -0.05}};
+  const std::vector<Eigen::Vector3d> robots = {{0.0, 0.0, 0.0}, {2.0, -1.0, 2.9}, {-3.0, 4.0, -2.0}};
+  const std::vector<Eigen::Vector2d> points = {{5.0, 0.5}, {-3.0, -0.2}, {1.0, 7.0}};
+  for (const SensorMount& mount : mounts) {
+    for (const Eigen::Vector3d& robot : robots) {
+      for (const Eigen::Vector2d& point : points) {
+        Eigen::Matrix<double, 2, 3> h_robot;
+        Eigen::Matrix2d h_point;
+        PredictRangeBearing(robot, point, mount, &h_robot, &h_point);
+        const Eigen::MatrixXd h_robot_numerical = NumericalJacobian(
+            [&](const Eigen::VectorXd& x) -> Eigen::VectorXd {
+              return PredictRangeBearing(x, point, mount);
+            },
+            robot, {1});
+        const Eigen::MatrixXd h_point_numerical = NumericalJacobian(
+            [&](const Eigen::VectorXd& x) -> Eigen::VectorXd {
+              return PredictRangeBearing(robot, x, mount);
+            },
+            point, {1});
+        EXPECT_LT((h_robot - h_robot_numerical).cwiseAbs().maxCoeff(), 1e-7);
+        EXPECT_LT((h_point - h_point_numerical).cwiseAbs().maxCoeff(), 1e-7);
+
+        // The inverse model: its Jacobians, and that it inverts eq. 10.
+        const Eigen::Vector2d z = PredictRangeBearing(robot, point, mount);
+        Eigen::Matrix<double, 2, 3> g_robot;
+        Eigen::Matrix2d g_z;
+        const Eigen::Vector2d back = PointFromRangeBearing(robot, z, mount, &g_robot, &g_z);
+        EXPECT_LT((back - point).norm(), 1e-12);
+        const Eigen::MatrixXd g_robot_numerical = NumericalJacobian(
+            [&](const Eigen::VectorXd& x) -> Eigen::VectorXd {
+              return PointFromRangeBearing(x, z, mount);
+            },
+            robot);
+        const Eigen::MatrixXd g_z_numerical = NumericalJacobian(
+            [&](const Eigen::VectorXd& x) -> Eigen::VectorXd {
+              return PointFromRangeBearing(robot, x, mount);
+            },
+            z);
+        EXPECT_LT((g_robot - g_robot_numerical).cwiseAbs().maxCoeff(), 1e-7);
+        EXPECT_LT((g_z - g_z_numerical).cwiseAbs().maxCoeff(), 1e-7);
+      }
+    }
+  }
+}
+
+TEST(RangeBearingModelTest, BearingDifferentiatesAcrossTheSeam) {
+  // A point right behind the robot: bearing at +-pi, where a naive difference jumps by 2 pi.
+  const Eigen::Vector3d robot(0.0, 0.0, 0.0);
+  const Eigen::Vector2d point(-4.0, 1e-9);
+  Eigen::Matrix2d h_point;
+  PredictRangeBearing(robot, point, SensorMount{}, nullptr, &h_point);
+  const Eigen::MatrixXd numerical = NumericalJacobian(
+      [&](const Eigen::VectorXd& x) -> Eigen::VectorXd {
+        return PredictRangeBearing(robot, x, SensorMount{});
+      },
+      point, {1});
+  EXPECT_LT((h_point - numerical).cwiseAbs().maxCoeff(), 1e-7);
+}
+
+}  // namespace
+}  // namespace slammtt

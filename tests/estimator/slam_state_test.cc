@@ -1,0 +1,177 @@
+// The state's block operations against dense reference computations.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <random>
+
+#include "estimator/constant_velocity_model.h"
+#include "estimator/ekf_prediction.h"
+#include "estimator/slam_state.h"
+
+namespace slammtt {
+namespace {
+
+// A state with random correlated covariance: robot, 3 landmarks, 2 movers.
+SlamState RandomState(uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  SlamState state(Eigen::Vector3d(0.1, -0.2, 0.3), 0.01 * Eigen::Matrix3d::Identity());
+  for (int k = 0; k < 5; ++k) {
+    Eigen::Matrix<double, 2, 3> g;
+    for (int r = 0; r < 2; ++r) {
+      for (int c = 0; c < 3; ++c) g(r, c) = normal(rng);
+    }
+    ObjectRecord record;
+    record.id = k + 1;
+    const int j = state.AddObject(Eigen::Vector2d(normal(rng), normal(rng)) * 5.0, g,
+                                  0.04 * Eigen::Matrix2d::Identity(), record);
+    if (k >= 3) state.AddVelocity(j, Eigen::Vector2d(0.5, -0.25), 0.3 * Eigen::Matrix2d::Identity());
+  }
+  // Mix everything with a random full-rank transform so every block is correlated.
+  Eigen::MatrixXd a = Eigen::MatrixXd::Identity(state.dim(), state.dim());
+  for (int r = 0; r < state.dim(); ++r) {
+    for (int c = 0; c < state.dim(); ++c) a(r, c) += 0.1 * normal(rng);
+  }
+  const Eigen::MatrixXd p = a * state.covariance() * a.transpose() +
+                            1e-3 * Eigen::MatrixXd::Identity(state.dim(), state.dim());
+  state.covariance() = 0.5 * (p + p.transpose());
+  return state;
+}
+
+TEST(SlamStateTest, AddObjectCorrelatesThroughTheRobot) {
+  SlamState state(Eigen::Vector3d::Zero(), Eigen::Vector3d(0.1, 0.2, 0.05).asDiagonal());
+  Eigen::Matrix<double, 2, 3> g;
+  g << 1.0, 0.0, -2.0, 0.0, 1.0, 3.0;
+  const Eigen::Matrix2d c = Eigen::Vector2d(0.04, 0.09).asDiagonal();
+  const int j = state.AddObject(Eigen::Vector2d(3.0, 2.0), g, c, ObjectRecord{});
+  EXPECT_EQ(j, 0);
+  EXPECT_EQ(state.dim(), 5);
+  const Eigen::Matrix3d prr = state.robot_covariance();
+  EXPECT_TRUE((state.covariance().block<2, 2>(3, 3).isApprox(g * prr * g.transpose() + c)));
+  EXPECT_TRUE((state.covariance().block<2, 3>(3, 0).isApprox(g * prr)));
+  EXPECT_TRUE((state.covariance().block<3, 2>(0, 3).isApprox((g * prr).transpose())));
+  EXPECT_FALSE(state.object(0).has_velocity());
+}
+
+TEST(SlamStateTest, GrowsPastItsInitialCapacity) {
+  SlamState state(Eigen::Vector3d::Zero(), 0.01 * Eigen::Matrix3d::Identity());
+  Eigen::Matrix<double, 2, 3> g = Eigen::Matrix<double, 2, 3>::Zero();
+  g(0, 0) = 1.0;
+  g(1, 1) = 1.0;
+  for (int k = 0; k < 100; ++k) {
+    const int j = state.AddObject(Eigen::Vector2d(k, -k), g, Eigen::Matrix2d::Identity(), {});
+    state.AddVelocity(j, Eigen::Vector2d(k, 0.0), Eigen::Matrix2d::Identity());
+  }
+  EXPECT_EQ(state.dim(), 3 + 400);
+  EXPECT_EQ(state.position(57), Eigen::Vector2d(57, -57));
+  EXPECT_EQ(state.velocity(99), Eigen::Vector2d(99, 0));
+  EXPECT_DOUBLE_EQ(state.covariance()(3, 0), 0.01);
+  EXPECT_TRUE(state.covariance().isApprox(state.covariance().transpose()));
+}
+
+TEST(SlamStateTest, RemovingObjectsKeepsTheOtherBlocks) {
+  SlamState state = RandomState(1);
+  const Eigen::MatrixXd p = state.covariance();
+  const Eigen::VectorXd x = state.mean();
+  const int p3 = state.object(3).position_index;
+  const int v3 = state.object(3).velocity_index;
+  state.RemoveObjects({1, 4, 1});
+  ASSERT_EQ(state.num_objects(), 3);
+  EXPECT_EQ(state.dim(), 3 + 2 + 2 + 4);
+  EXPECT_EQ(state.object(2).record.id, 4);
+  // The mover that stayed (old object 3) keeps its mean and its blocks with the robot.
+  const int np = state.object(2).position_index;
+  const int nv = state.object(2).velocity_index;
+  EXPECT_EQ(state.mean().segment<2>(np), x.segment<2>(p3));
+  EXPECT_EQ(state.mean().segment<2>(nv), x.segment<2>(v3));
+  EXPECT_EQ(Eigen::Matrix2d(state.covariance().block(np, nv, 2, 2)), Eigen::Matrix2d(p.block(p3, v3, 2, 2)));
+  EXPECT_EQ(Eigen::MatrixXd(state.covariance().block(0, np, 3, 2)), Eigen::MatrixXd(p.block(0, p3, 3, 2)));
+  EXPECT_EQ(Eigen::Matrix3d(state.covariance().topLeftCorner(3, 3)), Eigen::Matrix3d(p.topLeftCorner(3, 3)));
+  EXPECT_TRUE(state.covariance().isApprox(state.covariance().transpose()));
+}
+
+TEST(SlamStateTest, RemovingVelocityConditionsOnZeroThenMarginalises) {
+  SlamState state = RandomState(2);
+  const Eigen::MatrixXd p = state.covariance();
+  const Eigen::VectorXd x = state.mean();
+  const int v = state.object(3).velocity_index;
+  // Reference: condition on x_v = 0 exactly (dense), then drop v.
+  const Eigen::MatrixXd p_xv = p.middleCols(v, 2);
+  const Eigen::Matrix2d p_vv = p.block<2, 2>(v, v);
+  const Eigen::VectorXd x_conditioned = x - p_xv * p_vv.inverse() * x.segment<2>(v);
+  const Eigen::MatrixXd p_conditioned = p - p_xv * p_vv.inverse() * p_xv.transpose();
+  std::vector<int> keep;
+  for (int i = 0; i < state.dim(); ++i) {
+    if (i != v && i != v + 1) keep.push_back(i);
+  }
+  state.RemoveVelocityAssumingZero(3);
+  EXPECT_FALSE(state.object(3).has_velocity());
+  ASSERT_EQ(state.dim(), static_cast<int>(keep.size()));
+  for (int r = 0; r < state.dim(); ++r) {
+    EXPECT_NEAR(state.mean()(r), x_conditioned(keep[static_cast<size_t>(r)]), 1e-12);
+    for (int c = 0; c < state.dim(); ++c) {
+      EXPECT_NEAR(state.covariance()(r, c),
+                  p_conditioned(keep[static_cast<size_t>(r)], keep[static_cast<size_t>(c)]), 1e-12);
+    }
+  }
+  EXPECT_EQ(state.covariance(), state.covariance().transpose());
+}
+
+TEST(EkfPredictionTest, BlockPredictionEqualsDenseEquationNine) {
+  SlamState state = RandomState(3);
+  const Eigen::MatrixXd p = state.covariance();
+  const Eigen::VectorXd x = state.mean();
+  const double dt = 0.125;
+  const double sigma_q = 0.7;
+  Eigen::Matrix3d f;
+  f << 1.0, 0.0, -0.2, 0.0, 1.0, 0.3, 0.0, 0.0, 1.0;
+  const Eigen::Matrix3d q_robot = Eigen::Vector3d(1e-3, 2e-3, 5e-4).asDiagonal();
+  const Eigen::Vector3d new_pose(0.4, -0.1, 0.35);
+  // Dense reference: F_full = blkdiag(F, I, T) per eq. 9, Q_full on robot and movers.
+  const int n = state.dim();
+  Eigen::MatrixXd f_full = Eigen::MatrixXd::Identity(n, n);
+  Eigen::MatrixXd q_full = Eigen::MatrixXd::Zero(n, n);
+  f_full.topLeftCorner<3, 3>() = f;
+  q_full.topLeftCorner<3, 3>() = q_robot;
+  Eigen::VectorXd x_expected = x;
+  x_expected.head<3>() = new_pose;
+  const Eigen::Matrix4d q_mover = ConstantVelocityProcessNoise(dt, sigma_q);
+  for (const StateObject& o : state.objects()) {
+    if (!o.has_velocity()) continue;
+    const int idx[4] = {o.position_index, o.position_index + 1, o.velocity_index,
+                        o.velocity_index + 1};
+    f_full(idx[0], idx[2]) = dt;
+    f_full(idx[1], idx[3]) = dt;
+    for (int r = 0; r < 4; ++r) {
+      for (int c = 0; c < 4; ++c) q_full(idx[r], idx[c]) = q_mover(r, c);
+    }
+    x_expected(idx[0]) += dt * x(idx[2]);
+    x_expected(idx[1]) += dt * x(idx[3]);
+  }
+  const Eigen::MatrixXd expected = f_full * p * f_full.transpose() + q_full;
+  ApplyRobotPrediction(new_pose, f, q_robot, &state);
+  PredictMovers(dt, sigma_q, &state);
+  EXPECT_LT((state.covariance() - expected).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_LT((state.mean() - x_expected).cwiseAbs().maxCoeff(), 1e-12);
+}
+
+TEST(EkfPredictionTest, AccumulatedOdometryEqualsStepByStepPrediction) {
+  SlamState stepwise = RandomState(4);
+  SlamState composed = stepwise;
+  const std::vector<OdometryIncrement> steps = {{0.1, 0.02}, {0.12, -0.05}, {0.09, 0.3}};
+  const Eigen::Matrix2d noise = Eigen::Vector2d(1e-4, 3e-4).asDiagonal();
+  RobotMotionAccumulator accumulator(composed.robot_pose());
+  for (const OdometryIncrement& u : steps) {
+    Eigen::Matrix3d f;
+    Eigen::Matrix<double, 3, 2> g;
+    const Eigen::Vector3d pose = PredictRobotPose(stepwise.robot_pose(), u, &f, &g);
+    ApplyRobotPrediction(pose, f, g * noise * g.transpose(), &stepwise);
+    accumulator.Add(u, noise);
+  }
+  ApplyRobotPrediction(accumulator.pose(), accumulator.jacobian(), accumulator.noise(), &composed);
+  EXPECT_LT((stepwise.covariance() - composed.covariance()).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_LT((stepwise.mean() - composed.mean()).cwiseAbs().maxCoeff(), 1e-12);
+}
+
+}  // namespace
+}  // namespace slammtt
