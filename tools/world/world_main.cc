@@ -3,6 +3,7 @@
 //   slammtt-world --scenario rplidar-a2                            # live, real time
 #include <filesystem>
 #include <iomanip>
+#include <iostream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -12,6 +13,7 @@
 #include "runtime/log.h"
 #include "runtime/process.h"
 #include "tools/world/scenario_loader.h"
+#include "tools/world/scenario_report.h"
 #include "tools/world/world_runner.h"
 
 namespace {
@@ -59,6 +61,9 @@ int Run(int argc, char** argv) {
   cl.AddOption("output", "features|scans|both", "sensor output (default: the scenario's)");
   cl.AddOption("duration", "S", "simulated seconds (default: the scenario's duration_s)");
   cl.AddOption("rate-factor", "F", "live mode: run F times faster than real time (default 1)");
+  cl.AddFlag("report",
+             "print what the scenario offers an estimator (visibility, occlusions, closest "
+             "approaches per mover) and exit without publishing");
   cl.AddFlag("follow-commands",
              "live mode: drive the robot from VELOCITY_COMMAND (it stops 0.5 s after the last "
              "command) instead of the scenario's motion");
@@ -91,6 +96,14 @@ int Run(int argc, char** argv) {
     scenario.duration_s = *duration;
   }
   slammtt::WorldSimulator world(scenario, static_cast<uint64_t>(seed), scenario.output);
+  if (cl.Flag("report")) {
+    std::cout << scenario.name << " seed " << seed << " output "
+              << slammtt::SensorOutputName(scenario.output) << " duration " << scenario.duration_s
+              << " s\n"
+              << slammtt::FormatScenarioReport(
+                     slammtt::ReportScenario(scenario, static_cast<uint64_t>(seed)));
+    return 0;
+  }
 
   slammtt::WorldChannels channels;
   channels.odometry = settings.channels.Get("odometry");

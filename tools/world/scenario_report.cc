@@ -1,0 +1,154 @@
+#include "tools/world/scenario_report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+namespace slammtt {
+
+ScenarioReporter::ScenarioReporter(const LaserSpec& laser, double robot_radius_m)
+    : laser_(laser), robot_radius_m_(robot_radius_m), period_s_(1.0 / laser.rate_hz) {
+  report_.scan_period_s = period_s_;
+  report_.min_statics_visible = 1 << 30;
+}
+
+namespace {
+
+void Closer(ClosestApproach* best, double gap, int64_t a, int64_t b, double t) {
+  if (gap < best->gap_m) *best = ClosestApproach{gap, a, b, t};
+}
+
+}  // namespace
+
+void ScenarioReporter::AddScan(const SensorFrame& frame) {
+  const TruthSnapshot& truth = frame.truth;
+  const double t = static_cast<double>(frame.time_us) * 1e-6;
+  ++report_.scans;
+  const Pose2D& robot = truth.robot.pose;
+  if (have_previous_) {
+    report_.robot_path_m += std::hypot(robot.x_m - previous_pose_.x_m, robot.y_m - previous_pose_.y_m);
+  }
+  have_previous_ = true;
+  previous_pose_ = robot;
+  report_.robot_max_speed_mps = std::max(report_.robot_max_speed_mps, std::abs(truth.robot.linear_mps));
+
+  const Pose2D& sensor = truth.robot.sensor_pose;
+  const bool full_circle = laser_.fov_deg >= 360.0 - 1e-9;
+  const double half_fov = 0.5 * laser_.fov_deg * M_PI / 180.0;
+  int statics_visible = 0;
+  std::vector<Circle> circles;
+  for (const ObjectTruth& o : truth.objects) circles.push_back(Circle{o.x_m, o.y_m, o.radius_m});
+  for (size_t i = 0; i < truth.objects.size(); ++i) {
+    const ObjectTruth& o = truth.objects[i];
+    Closer(&report_.robot_object,
+           std::hypot(o.x_m - robot.x_m, o.y_m - robot.y_m) - o.radius_m - robot_radius_m_, -1, o.id, t);
+    for (size_t j = i + 1; j < truth.objects.size(); ++j) {
+      const ObjectTruth& p = truth.objects[j];
+      if (o.is_static && p.is_static) continue;
+      const double gap = std::hypot(o.x_m - p.x_m, o.y_m - p.y_m) - o.radius_m - p.radius_m;
+      Closer(o.is_static || p.is_static ? &report_.mover_static : &report_.mover_mover, gap, o.id,
+             p.id, t);
+    }
+    if (o.is_static) {
+      statics_visible += o.visible ? 1 : 0;
+      continue;
+    }
+    if (movers_.count(o.id) == 0) order_.push_back(o.id);
+    MoverState& m = movers_[o.id];
+    m.report.id = o.id;
+    m.report.exists_s += period_s_;
+    const double range = std::hypot(o.x_m - sensor.x_m, o.y_m - sensor.y_m);
+    const double bearing = WrapAngle(std::atan2(o.y_m - sensor.y_m, o.x_m - sensor.x_m) - sensor.heading_rad);
+    const bool in_view = (full_circle || std::abs(bearing) <= half_fov) && range >= laser_.min_range_m &&
+                         range <= laser_.max_range_m;
+    if (in_view) m.report.in_view_s += period_s_;
+    if (o.visible) {
+      m.report.visible_s += period_s_;
+      m.visible_run_s += period_s_;
+      m.report.longest_visible_s = std::max(m.report.longest_visible_s, m.visible_run_s);
+    } else {
+      m.visible_run_s = 0.0;
+    }
+    const bool occluded = in_view && !o.visible;
+    if (occluded) {
+      if (!m.occluded) {
+        ++m.report.occlusions;
+        OcclusionEpisode episode;
+        episode.id = o.id;
+        episode.start_s = t;
+        const BeamHit hit = CastRay(sensor.x_m, sensor.y_m,
+                                    std::atan2(o.y_m - sensor.y_m, o.x_m - sensor.x_m), circles);
+        episode.occluder_id = hit.circle >= 0 && static_cast<size_t>(hit.circle) != i
+                                  ? truth.objects[static_cast<size_t>(hit.circle)].id
+                                  : -1;
+        episode.occluder_is_static =
+            hit.circle >= 0 && truth.objects[static_cast<size_t>(hit.circle)].is_static;
+        m.episode = report_.occlusions.size();
+        report_.occlusions.push_back(episode);
+      }
+      report_.occlusions[m.episode].end_s = t;
+      m.occlusion_s += period_s_;
+      m.report.longest_occlusion_s = std::max(m.report.longest_occlusion_s, m.occlusion_s);
+    } else {
+      m.occlusion_s = 0.0;
+    }
+    m.occluded = occluded;
+  }
+  if (statics_visible < report_.min_statics_visible) {
+    report_.min_statics_visible = statics_visible;
+    report_.min_statics_visible_time_s = t;
+  }
+  if (statics_visible < 3) ++report_.scans_with_fewer_than_3_statics;
+  statics_visible_sum_ += statics_visible;
+}
+
+ScenarioReport ScenarioReporter::Finish() const {
+  ScenarioReport report = report_;
+  if (report.scans == 0) report.min_statics_visible = 0;
+  report.mean_statics_visible =
+      report.scans > 0 ? static_cast<double>(statics_visible_sum_) / report.scans : 0.0;
+  for (int64_t id : order_) report.movers.push_back(movers_.at(id).report);
+  return report;
+}
+
+ScenarioReport ReportScenario(const Scenario& scenario, uint64_t seed) {
+  WorldSimulator world(scenario, seed, scenario.output);
+  ScenarioReporter reporter(scenario.laser);
+  while (!world.Done()) {
+    const WorldEvent event = world.Next();
+    if (event.kind == WorldEvent::Kind::kSensor) reporter.AddScan(event.sensor);
+  }
+  return reporter.Finish();
+}
+
+std::string FormatScenarioReport(const ScenarioReport& r) {
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(2);
+  auto approach = [&](const char* what, const ClosestApproach& a) {
+    out << "closest " << what << ": gap " << a.gap_m << " m (ids " << a.id_a << ", " << a.id_b
+        << ") at " << a.time_s << " s\n";
+  };
+  out << "scans " << r.scans << ", robot path " << r.robot_path_m << " m, max speed "
+      << r.robot_max_speed_mps << " m/s\n";
+  out << "static objects visible per scan: min " << r.min_statics_visible << " (first at "
+      << r.min_statics_visible_time_s << " s), mean " << r.mean_statics_visible
+      << ", scans with fewer than 3: " << r.scans_with_fewer_than_3_statics << "\n";
+  if (r.mover_mover.gap_m < 1e299) approach("mover-mover", r.mover_mover);
+  if (r.mover_static.gap_m < 1e299) approach("mover-static", r.mover_static);
+  if (r.robot_object.gap_m < 1e299) approach("robot-object (robot radius 0.26 m)", r.robot_object);
+  out << "movers: " << r.movers.size()
+      << " (id: exists / in view / visible s, occlusions, longest occlusion s, longest visible s)\n";
+  for (const MoverReport& m : r.movers) {
+    out << "  " << m.id << ": " << m.exists_s << " / " << m.in_view_s << " / " << m.visible_s << ", "
+        << m.occlusions << ", " << m.longest_occlusion_s << ", " << m.longest_visible_s << "\n";
+  }
+  out << "occlusions: " << r.occlusions.size() << " (mover hidden by occluder, from - to s)\n";
+  for (const OcclusionEpisode& e : r.occlusions) {
+    out << "  " << e.id << " by " << e.occluder_id << (e.occluder_is_static ? " (static)" : "")
+        << ": " << e.start_s << " - " << e.end_s << "\n";
+  }
+  return out.str();
+}
+
+}  // namespace slammtt

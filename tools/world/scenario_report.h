@@ -1,0 +1,92 @@
+// What a scenario offers an estimator, measured on a run of the simulator: how long each mover
+// is in view and visible, how often and how long it is occluded, how many static landmarks are
+// visible per scan, and the closest approaches (surface gaps) between objects and to the robot.
+// Used to design fair scenarios (docs/world.md quotes the figures of the shipped ones) and by the
+// tests that keep them so; `slammtt-world --report` prints it.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "tools/world/world_simulator.h"
+
+namespace slammtt {
+
+struct MoverReport {
+  int64_t id = 0;
+  double exists_s = 0.0;    // scan periods in which it existed
+  double in_view_s = 0.0;   // ... with its centre inside the field of view and range
+  double visible_s = 0.0;   // ... and visible (truth `visible`)
+  int occlusions = 0;       // episodes in view but not visible
+  double longest_occlusion_s = 0.0;
+  double longest_visible_s = 0.0;  // longest run of consecutive visible scans
+};
+
+// A time in which a mover was in view but not visible.
+struct OcclusionEpisode {
+  int64_t id = 0;
+  int64_t occluder_id = 0;  // first object on the line of sight at the start; -1 if none
+  bool occluder_is_static = false;
+  double start_s = 0.0;     // first scan without visibility
+  double end_s = 0.0;       // last scan without visibility
+};
+
+// A closest approach between two things at one scan time.
+struct ClosestApproach {
+  double gap_m = 1e300;  // surface gap: centre distance minus radii (negative: overlap)
+  int64_t id_a = 0;      // object ids; -1 stands for the robot
+  int64_t id_b = 0;
+  double time_s = 0.0;
+};
+
+struct ScenarioReport {
+  int scans = 0;
+  double scan_period_s = 0.0;
+  int min_statics_visible = 0;       // over all scans
+  double mean_statics_visible = 0.0;
+  double min_statics_visible_time_s = 0.0;  // first scan with the minimum
+  int scans_with_fewer_than_3_statics = 0;
+  double robot_path_m = 0.0;
+  double robot_max_speed_mps = 0.0;
+  ClosestApproach mover_mover;   // two movers
+  ClosestApproach mover_static;  // a mover and a static object
+  ClosestApproach robot_object;  // the robot (robot_radius_m) and any object
+  std::vector<MoverReport> movers;  // in order of first appearance
+  std::vector<OcclusionEpisode> occlusions;  // in order of their start
+};
+
+class ScenarioReporter {
+ public:
+  // `robot_radius_m`: footprint used for robot gaps (P3-DX: about 0.26 m).
+  ScenarioReporter(const LaserSpec& laser, double robot_radius_m = 0.26);
+  void AddScan(const SensorFrame& frame);
+  ScenarioReport Finish() const;
+
+ private:
+  struct MoverState {
+    MoverReport report;
+    bool occluded = false;
+    size_t episode = 0;  // index into report_.occlusions while occluded
+    double occlusion_s = 0.0;
+    double visible_run_s = 0.0;
+  };
+  LaserSpec laser_;
+  double robot_radius_m_;
+  double period_s_;
+  ScenarioReport report_;
+  int64_t statics_visible_sum_ = 0;
+  bool have_previous_ = false;
+  Pose2D previous_pose_;
+  std::vector<int64_t> order_;
+  std::map<int64_t, MoverState> movers_;
+};
+
+// Runs a whole scenario (with features when its output has them, else scans) and reports on it.
+ScenarioReport ReportScenario(const Scenario& scenario, uint64_t seed);
+
+// The report as human-readable text, one mover per line.
+std::string FormatScenarioReport(const ScenarioReport& report);
+
+}  // namespace slammtt
