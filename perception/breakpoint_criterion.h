@@ -12,6 +12,8 @@
 // (RPLIDAR) or across a dropped beam. For dtheta >= lambda no surface qualifies: always a break.
 #pragma once
 
+#include "perception/trig_series.h"
+
 namespace slammtt {
 
 // Reference form of eq. 15: D_max in metres, +infinity when dtheta_rad >= lambda_rad.
@@ -20,8 +22,7 @@ double BreakpointThresholdM(double range_m, double dtheta_rad, double lambda_rad
                             double sigma_r_m);
 
 // The same test, cheap enough for the per-beam loop: no division, no square root and no libm
-// call (sines and cosines of angles below pi/4 from their Taylor series to the 15th order, error
-// below 1e-13). For dtheta below max_gap_rad, Splits(r_i, r_j, dtheta) is
+// call (trig_series.h). For dtheta below max_gap_rad, Splits(r_i, r_j, dtheta) is
 // |p_j - p_i| > BreakpointThresholdM(r_i, dtheta, lambda, sigma_r), except within ~1e-12 m of
 // the threshold.
 class BreakpointCriterion {
@@ -34,9 +35,8 @@ class BreakpointCriterion {
   bool Splits(double range_i_m, double range_j_m, double dtheta_rad) const {
     if (dtheta_rad >= max_dtheta_rad_) return true;
     const double h = 0.5 * dtheta_rad;  // 0 <= h < pi/4
-    const double h2 = h * h;
-    const double sin_h = SinSeries(h, h2);
-    const double cos_h = CosSeries(h2);
+    const double sin_h = SinSeries(h);
+    const double cos_h = CosSeries(h);
     const double sin_d = 2.0 * sin_h * cos_h;
     const double cos_d = 1.0 - 2.0 * sin_h * sin_h;
     const double sin_lambda_minus_d = sin_lambda_ * cos_d - cos_lambda_ * sin_d;  // > 0
@@ -49,15 +49,6 @@ class BreakpointCriterion {
   }
 
  private:
-  static double SinSeries(double x, double x2) {
-    return x * (1.0 + x2 * (-1.0 / 6 + x2 * (1.0 / 120 + x2 * (-1.0 / 5040 + x2 * (1.0 / 362880 +
-           x2 * (-1.0 / 39916800 + x2 * (1.0 / 6227020800.0 + x2 * (-1.0 / 1307674368000.0))))))));
-  }
-  static double CosSeries(double x2) {
-    return 1.0 + x2 * (-1.0 / 2 + x2 * (1.0 / 24 + x2 * (-1.0 / 720 + x2 * (1.0 / 40320 +
-           x2 * (-1.0 / 3628800 + x2 * (1.0 / 479001600.0 + x2 * (-1.0 / 87178291200.0)))))));
-  }
-
   double max_dtheta_rad_;  // min(lambda, max_gap); at or beyond it, always a break
   double sin_lambda_;
   double cos_lambda_;

@@ -126,8 +126,10 @@ CentreEstimate CircleFitCentre(const ClusterView& cluster, double max_radius_m, 
   double distance = fallback.range_m;
   double bearing = fallback.bearing_rad;
   double radius = std::max(fallback.radius_m, 1e-3);
-  bool converged = false;
-  for (int iteration = 0; iteration < 20; ++iteration) {
+  // One step from a consistent start when both tangents are there; otherwise the start is
+  // biased (the extent is cut by the occluder) and the fit iterates to convergence.
+  const int max_steps = tangents == 2 ? 1 : 3;
+  for (int iteration = 0; iteration < max_steps; ++iteration) {
     const double cos_b = std::cos(bearing);
     const double sin_b = std::sin(bearing);
     const double cx = distance * cos_b;
@@ -141,10 +143,11 @@ CentreEstimate CircleFitCentre(const ClusterView& cluster, double max_radius_m, 
     for (size_t i = 0; i < n; ++i) {
       const double dx = cx - cluster.x_m[i];
       const double dy = cy - cluster.y_m[i];
-      const double d = std::hypot(dx, dy);
+      const double d = std::sqrt(dx * dx + dy * dy);
       if (!(d > 0.0)) return fallback;  // centre on a point: no gradient
-      const double ux = dx / d;
-      const double uy = dy / d;
+      const double inv_d = 1.0 / d;
+      const double ux = dx * inv_d;
+      const double uy = dy * inv_d;
       add(Eigen::Vector3d(ux * cos_b + uy * sin_b, distance * (-ux * sin_b + uy * cos_b), -1.0) *
               inv_sigma_r,
           (d - radius) * inv_sigma_r);
@@ -162,12 +165,22 @@ CentreEstimate CircleFitCentre(const ClusterView& cluster, double max_radius_m, 
       add(Eigen::Vector3d(dg_dd, 1.0, dg_dr) * inv_sigma_t,
           (bearing + g - last_tangent) * inv_sigma_t);
     }
-    const Eigen::LDLT<Eigen::Matrix3d> solver(normal);
-    if (solver.info() != Eigen::Success || !solver.isPositive() ||
-        !(solver.vectorD().minCoeff() > 1e-12 * solver.vectorD().maxCoeff())) {
-      return fallback;
-    }
-    const Eigen::Vector3d step = -solver.solve(gradient);
+    // Symmetric 3x3 solve by cofactors; refused when the system is near singular relative to
+    // its diagonal (det <= product of the diagonal for a positive semi-definite matrix).
+    const double a00 = normal(0, 0), a01 = normal(0, 1), a02 = normal(0, 2);
+    const double a11 = normal(1, 1), a12 = normal(1, 2), a22 = normal(2, 2);
+    const double c00 = a11 * a22 - a12 * a12;
+    const double c01 = a02 * a12 - a01 * a22;
+    const double c02 = a01 * a12 - a02 * a11;
+    const double c11 = a00 * a22 - a02 * a02;
+    const double c12 = a01 * a02 - a00 * a12;
+    const double c22 = a00 * a11 - a01 * a01;
+    const double det = a00 * c00 + a01 * c01 + a02 * c02;
+    if (!(det > 1e-12 * a00 * a11 * a22)) return fallback;
+    const double g0 = gradient(0), g1 = gradient(1), g2 = gradient(2);
+    const Eigen::Vector3d step(-(c00 * g0 + c01 * g1 + c02 * g2) / det,
+                               -(c01 * g0 + c11 * g1 + c12 * g2) / det,
+                               -(c02 * g0 + c12 * g1 + c22 * g2) / det);
     if (!step.allFinite()) return fallback;
     const double previous_distance = distance;
     const double previous_bearing = bearing;
@@ -178,13 +191,13 @@ CentreEstimate CircleFitCentre(const ClusterView& cluster, double max_radius_m, 
     // Stay in the admissible region: a positive radius, the sensor outside the object.
     if (!(distance > 0.0)) return fallback;
     radius = std::clamp(radius, 1e-4, std::min(max_radius_m, 0.99 * distance));
-    if (std::abs(distance - previous_distance) < 1e-9 && std::abs(radius - previous_radius) < 1e-9 &&
-        std::abs(bearing - previous_bearing) * distance < 1e-9) {
-      converged = true;
+    // Converged when nothing moves by more than 0.1 mm, far below any range noise.
+    if (std::abs(distance - previous_distance) < 1e-4 && std::abs(radius - previous_radius) < 1e-4 &&
+        std::abs(bearing - previous_bearing) * distance < 1e-4) {
       break;
     }
   }
-  if (!converged || !std::isfinite(distance) || !std::isfinite(bearing)) return fallback;
+  if (!std::isfinite(distance) || !std::isfinite(bearing)) return fallback;
   CentreEstimate estimate;
   estimate.range_m = distance;
   estimate.bearing_rad = bearing;

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "perception/centre_estimation.h"
+#include "perception/trig_series.h"
 
 namespace slammtt {
 namespace {
@@ -45,19 +46,33 @@ Segmenter::Segmenter(const SegmenterOptions& options)
       criterion_(options.lambda_rad, options.sigma_r_m, options.max_beam_gap_rad) {}
 
 const std::vector<Feature>& Segmenter::Segment(const ScanView& scan) {
+  PrepareBeams(scan);
+  FindClusters();
+  return MakeFeatures();
+}
+
+void Segmenter::PrepareBeams(const ScanView& scan) {
   stats_ = SegmentationStats{};
   features_.clear();
+  clusters_.clear();
   CollectBeams(scan);
   if (!beams_.empty()) {
     PutInCircularOrder();
     DropDuplicates();
-    FindClusters();
-    std::sort(features_.begin(), features_.end(), [](const Feature& a, const Feature& b) {
-      if (a.bearing_rad != b.bearing_rad) return a.bearing_rad < b.bearing_rad;
-      return a.range_m < b.range_m;
-    });
   }
   stats_.beams_used = static_cast<int64_t>(beams_.size());
+}
+
+const std::vector<Feature>& Segmenter::MakeFeatures() {
+  features_.clear();
+  stats_.clusters_too_few_points = 0;
+  stats_.clusters_too_wide = 0;
+  stats_.circle_fit_fallbacks = 0;
+  for (const Cluster& cluster : clusters_) MakeFeature(cluster);
+  std::sort(features_.begin(), features_.end(), [](const Feature& a, const Feature& b) {
+    if (a.bearing_rad != b.bearing_rad) return a.bearing_rad < b.bearing_rad;
+    return a.range_m < b.range_m;
+  });
   stats_.features = static_cast<int64_t>(features_.size());
   return features_;
 }
@@ -129,9 +144,12 @@ void Segmenter::DropDuplicates() {
 }
 
 void Segmenter::FindClusters() {
+  clusters_.clear();
   const size_t m = beams_.size();
+  if (m == 0) return;
   if (m == 1) {
-    MakeFeature(0, 1);
+    clusters_.push_back(Cluster{0, 1});
+    stats_.clusters = 1;
     return;
   }
   if (splits_.size() < m) splits_.resize(m);
@@ -144,27 +162,31 @@ void Segmenter::FindClusters() {
     if (split && first_split == m) first_split = k;
   }
   if (first_split == m) {  // one closed cluster around the sensor
-    MakeFeature(0, m);
-    return;
-  }
-  size_t cluster_start = first_split + 1 < m ? first_split + 1 : 0;
-  size_t count = 0;
-  size_t k = cluster_start;
-  for (size_t step = 0; step < m; ++step) {
-    ++count;
-    if (splits_[k]) {
-      MakeFeature(cluster_start, count);
-      cluster_start = k + 1 < m ? k + 1 : 0;
-      count = 0;
+    clusters_.push_back(Cluster{0, m});
+  } else {
+    size_t cluster_start = first_split + 1 < m ? first_split + 1 : 0;
+    size_t count = 0;
+    size_t k = cluster_start;
+    for (size_t step = 0; step < m; ++step) {
+      ++count;
+      if (splits_[k]) {
+        clusters_.push_back(Cluster{cluster_start, count});
+        cluster_start = k + 1 < m ? k + 1 : 0;
+        count = 0;
+      }
+      k = k + 1 < m ? k + 1 : 0;
     }
-    k = k + 1 < m ? k + 1 : 0;
+  }
+  stats_.clusters = static_cast<int64_t>(clusters_.size());
+  for (const Cluster& c : clusters_) {
+    if (c.ring_start + c.count > m || (c.count == m && m > 1)) ++stats_.clusters_across_seam;
   }
 }
 
-void Segmenter::MakeFeature(size_t ring_start, size_t count) {
-  ++stats_.clusters;
+void Segmenter::MakeFeature(const Cluster& c) {
+  const size_t ring_start = c.ring_start;
+  const size_t count = c.count;
   const size_t m = beams_.size();
-  if (ring_start + count > m || (count == m && m > 1)) ++stats_.clusters_across_seam;
   if (count < static_cast<size_t>(options_.min_points)) {
     ++stats_.clusters_too_few_points;
     return;
@@ -192,14 +214,26 @@ void Segmenter::MakeFeature(size_t ring_start, size_t count) {
     ++stats_.clusters_too_wide;
     return;
   }
-  for (size_t i = 0; i < count; ++i) {
-    x_[i] = range_[i] * std::cos(bearing_[i]);
-    y_[i] = range_[i] * std::sin(bearing_[i]);
-  }
-  const double width = std::hypot(x_[count - 1] - x_[0], y_[count - 1] - y_[0]);
+  // First-to-last distance by the law of cosines, before any per-point trigonometry: most beams
+  // of an indoor scan are on walls, which stop here.
+  const double r_first = range_[0];
+  const double r_last = range_[count - 1];
+  const double width = std::sqrt(std::max(
+      0.0, r_first * r_first + r_last * r_last - 2.0 * r_first * r_last * std::cos(extent)));
   if (width > options_.max_width_m) {
     ++stats_.clusters_too_wide;
     return;
+  }
+  // The centre rules are rotation invariant: work in a frame turned to the middle point's
+  // bearing, where every point is within pi of the x axis and trig_series.h applies.
+  const double reference_bearing = bearing_[count / 2];
+  for (size_t i = 0; i < count; ++i) {
+    bearing_[i] -= reference_bearing;
+    double sin_b = 0.0;
+    double cos_b = 0.0;
+    SinCosSeries(bearing_[i], &sin_b, &cos_b);
+    x_[i] = range_[i] * cos_b;
+    y_[i] = range_[i] * sin_b;
   }
 
   const double spacing = count > 1 ? extent / static_cast<double>(count - 1) : 0.0;
@@ -248,7 +282,7 @@ void Segmenter::MakeFeature(size_t ring_start, size_t count) {
   const double lateral = f * radius / centre.range_m;
   Feature feature;
   feature.range_m = centre.range_m;
-  feature.bearing_rad = WrapAngle(centre.bearing_rad);
+  feature.bearing_rad = WrapAngle(reference_bearing + centre.bearing_rad);
   feature.width_m = width;
   feature.num_points = static_cast<int>(count);
   feature.radius_m = centre.radius_m;

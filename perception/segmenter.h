@@ -75,6 +75,13 @@ class Segmenter {
   // beams are dropped and counted in stats(), never a crash or a NaN in the result.
   const std::vector<Feature>& Segment(const ScanView& scan);
 
+  // Segment() in its three steps, for a caller that times them (the stage adapter); call them
+  // in this order. PrepareBeams: steps 1-2 (filter, order, duplicates). FindClusters: step 3.
+  // MakeFeatures: steps 4-5, returns what Segment() returns.
+  void PrepareBeams(const ScanView& scan);
+  void FindClusters();
+  const std::vector<Feature>& MakeFeatures();
+
   const SegmentationStats& stats() const { return stats_; }
   const SegmenterOptions& options() const { return options_; }
 
@@ -84,17 +91,21 @@ class Segmenter {
     double range_m;
     int32_t index;     // position in the input scan
   };
+  struct Cluster {
+    size_t ring_start;  // ring index of the first point
+    size_t count;
+  };
   void CollectBeams(const ScanView& scan);
   void PutInCircularOrder();
   void DropDuplicates();
-  void FindClusters();
-  void MakeFeature(size_t ring_start, size_t count);
+  void MakeFeature(const Cluster& cluster);
 
   SegmenterOptions options_;
   BreakpointCriterion criterion_;
   SegmentationStats stats_;
   std::vector<Beam> beams_;          // the ring of usable beams in circular angle order
   std::vector<uint8_t> splits_;      // splits_[k]: a break between ring k and k + 1 (mod size)
+  std::vector<Cluster> clusters_;
   std::vector<double> bearing_;      // one cluster's unwrapped bearings...
   std::vector<double> range_;        // ...ranges...
   std::vector<double> x_;            // ...and Cartesian points

@@ -1,0 +1,189 @@
+#include "perception/segmenter_stage.h"
+
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <utility>
+
+#include "runtime/log.h"
+#include "slammtt_msgs/features_t.hpp"
+#include "slammtt_msgs/laser_scan_t.hpp"
+#include "slammtt_msgs/stage_timing_t.hpp"
+
+namespace slammtt {
+namespace {
+
+constexpr double kDegToRad = M_PI / 180.0;
+
+// laser_scan_t's encoding: 8-byte type hash, utime, sequence, scan_duration_us (8 each),
+// range_min_m, range_max_m (4 each), num_beams (int32, big-endian), then 4 + 4 + 4 + 1 bytes
+// per beam. Checked before decoding so that a corrupt num_beams cannot make the decoder
+// allocate gigabytes.
+constexpr int kUtimeOffset = 8;
+constexpr int kNumBeamsOffset = 40;
+constexpr int64_t kHeaderBytes = 44;
+constexpr int64_t kBytesPerBeam = 13;
+
+uint64_t BigEndian(const uint8_t* bytes, int count) {
+  uint64_t value = 0;
+  for (int i = 0; i < count; ++i) value = (value << 8) | bytes[i];
+  return value;
+}
+
+double PositiveDouble(const Config& section, const std::string& key, double fallback) {
+  const double value = section.GetDouble(key, fallback);
+  if (!(value > 0.0)) section.FailKey(key, "must be positive");
+  return value;
+}
+
+double NonNegativeDouble(const Config& section, const std::string& key, double fallback) {
+  const double value = section.GetDouble(key, fallback);
+  if (!(value >= 0.0)) section.FailKey(key, "must not be negative");
+  return value;
+}
+
+}  // namespace
+
+SegmenterOptions ReadSegmenterOptions(const Config& section) {
+  SegmenterOptions o;
+  const double lambda_deg = section.GetDouble("lambda_deg", o.lambda_rad / kDegToRad);
+  if (!(lambda_deg > 0.0 && lambda_deg < 90.0)) {
+    section.FailKey("lambda_deg", "must be in (0, 90) degrees");
+  }
+  o.lambda_rad = lambda_deg * kDegToRad;
+  o.sigma_r_m = PositiveDouble(section, "sigma_r_m", o.sigma_r_m);
+  o.max_beam_gap_rad =
+      PositiveDouble(section, "max_beam_gap_deg", o.max_beam_gap_rad / kDegToRad) * kDegToRad;
+  const double duplicate_deg = NonNegativeDouble(section, "duplicate_angle_tolerance_deg",
+                                                 o.duplicate_angle_tolerance_rad / kDegToRad);
+  if (!(duplicate_deg < 0.5)) {
+    section.FailKey("duplicate_angle_tolerance_deg", "must be below 0.5 degrees");
+  }
+  o.duplicate_angle_tolerance_rad = duplicate_deg * kDegToRad;
+  o.min_range_m = NonNegativeDouble(section, "min_range_m", o.min_range_m);
+  if (section.Has("max_range_m")) {
+    o.max_range_m = section.GetDouble("max_range_m", 0.0);
+    if (!(o.max_range_m > o.min_range_m)) {
+      section.FailKey("max_range_m", "must be greater than min_range_m");
+    }
+  }
+  const int64_t min_points = section.GetInt("min_points", o.min_points);
+  if (min_points < 1 || min_points > 100000) {
+    section.FailKey("min_points", "must be between 1 and 100000");
+  }
+  o.min_points = static_cast<int>(min_points);
+  o.max_width_m = PositiveDouble(section, "max_width_m", o.max_width_m);
+  const std::string rule = section.GetString("centre_rule", CentreRuleName(o.centre_rule));
+  if (!ParseCentreRule(rule, &o.centre_rule)) {
+    section.FailKey("centre_rule", "expected circle_fit, radius_corrected or middle_point, got '" +
+                                       rule + "'");
+  }
+  o.max_object_radius_m = PositiveDouble(section, "max_object_radius_m", o.max_object_radius_m);
+  o.bearing_sigma_rad =
+      PositiveDouble(section, "bearing_sigma_deg", o.bearing_sigma_rad / kDegToRad) * kDegToRad;
+  o.shape_sigma_fraction =
+      NonNegativeDouble(section, "shape_sigma_fraction", o.shape_sigma_fraction);
+  section.CheckUnused();
+  const std::string problem = CheckSegmenterOptions(o);
+  if (!problem.empty()) section.Fail(problem);
+  return o;
+}
+
+SegmenterStage::SegmenterStage(const SegmenterOptions& options, std::string laser_scan_channel,
+                               std::string features_channel, std::string stage_timing_channel)
+    : segmenter_(options),
+      laser_scan_channel_(std::move(laser_scan_channel)),
+      features_channel_(std::move(features_channel)),
+      stage_timing_channel_(std::move(stage_timing_channel)) {}
+
+SegmenterStage::SegmenterStage(const ProcessSettings& settings)
+    : SegmenterStage(ReadSegmenterOptions(settings.config.Child("segmenter")),
+                     settings.channels.Get("laser_scan"), settings.channels.Get("features"),
+                     settings.channels.Get("stage_timing")) {}
+
+void SegmenterStage::Reject(const std::string& reason) {
+  ++counters_.scans_rejected;
+  const int64_t n = counters_.scans_rejected;
+  // 1st, 10th, 100th, ...: visible, but a flood of bad messages cannot flood the log.
+  int64_t power = 1;
+  while (power < n && power <= std::numeric_limits<int64_t>::max() / 10) power *= 10;
+  if (power == n) {
+    LogWarning() << "segmenter: rejected message on " << laser_scan_channel_ << ": " << reason
+                 << " (" << n << " rejected so far)";
+  }
+}
+
+void SegmenterStage::Handle(const std::string& channel, const void* data, int size,
+                            MessageSink& out) {
+  if (channel != laser_scan_channel_) return;
+  if (data == nullptr || size < kHeaderBytes) {
+    Reject("message of " + std::to_string(size) + " bytes is too short for a laser_scan_t");
+    return;
+  }
+  const auto* bytes = static_cast<const uint8_t*>(data);
+  // The timer starts before decoding, so it needs the utime from the bytes (big-endian).
+  StageTimer timer(Name(), static_cast<int64_t>(BigEndian(bytes + kUtimeOffset, 8)));
+  const int64_t num_beams = static_cast<int32_t>(BigEndian(bytes + kNumBeamsOffset, 4));
+  if (num_beams < 0 || kHeaderBytes + kBytesPerBeam * num_beams != size) {
+    Reject("num_beams " + std::to_string(num_beams) + " does not match the message size of " +
+           std::to_string(size) + " bytes");
+    return;
+  }
+  slammtt_msgs::laser_scan_t scan;
+  if (!Decode(data, size, &scan)) {
+    Reject("not a laser_scan_t (type hash or encoding mismatch)");
+    return;
+  }
+  timer.Lap("decode");
+
+  ScanView view = MakeScanView(scan.angle_rad, scan.range_m, scan.valid);
+  view.range_min_m = scan.range_min_m;
+  view.range_max_m = scan.range_max_m;
+  segmenter_.PrepareBeams(view);
+  timer.Lap("sort");
+  segmenter_.FindClusters();
+  timer.Lap("cluster");
+  const std::vector<Feature>& features = segmenter_.MakeFeatures();
+  timer.Lap("features");
+
+  slammtt_msgs::features_t message;
+  message.utime = scan.utime;
+  message.sequence = scan.sequence;
+  message.num_features = static_cast<int32_t>(features.size());
+  message.features.reserve(features.size());
+  for (const Feature& f : features) {
+    slammtt_msgs::feature_t m;
+    m.range_m = f.range_m;
+    m.bearing_rad = f.bearing_rad;
+    m.width_m = f.width_m;
+    m.num_points = f.num_points;
+    m.range_var_m2 = f.covariance(0, 0);
+    m.bearing_var_rad2 = f.covariance(1, 1);
+    m.range_bearing_cov_m_rad = f.covariance(0, 1);
+    message.features.push_back(m);
+  }
+  out.PublishMessage(features_channel_, message);
+  timer.Lap("publish");
+
+  const SegmentationStats& stats = segmenter_.stats();
+  const int64_t dropped =
+      stats.beams_flagged_invalid + stats.beams_non_finite + stats.beams_out_of_range;
+  timer.Count("beams", stats.beams);
+  timer.Count("beams_used", stats.beams_used);
+  timer.Count("beams_dropped", dropped);
+  timer.Count("beams_duplicate", stats.beams_duplicate);
+  timer.Count("clusters", stats.clusters);
+  timer.Count("features", stats.features);
+  timer.Count("circle_fit_fallbacks", stats.circle_fit_fallbacks);
+  timer.Count("sorted", stats.beams_were_sorted ? 1 : 0);
+  ++counters_.scans_handled;
+  counters_.features_published += stats.features;
+  counters_.beams_dropped += dropped;
+  out.PublishMessage(stage_timing_channel_, timer.Finish());
+}
+
+std::unique_ptr<Stage> CreateSegmenterStage(const ProcessSettings& settings) {
+  return std::make_unique<SegmenterStage>(settings);
+}
+
+}  // namespace slammtt

@@ -1,0 +1,75 @@
+// The segmenter as a processing stage (runtime/stage.h): LASER_SCAN in, FEATURES and
+// STAGE_TIMING out. The live process (slammtt-segmenter) and slammtt-replay run this same object;
+// it depends on nothing live (no clock except StageTimer's durations, no LCM handle).
+//
+// Per laser_scan_t message it publishes, in this order:
+//  - features_t on the `features` channel: the scan's utime and sequence, one feature_t per
+//    Feature (range, bearing, width, points, covariance); an empty list when nothing was found.
+//  - stage_timing_t on the `stage_timing` channel: stage "segmenter", substages "decode",
+//    "sort" (filter, order, duplicates), "cluster" (eq. 15), "features" (centres, covariance),
+//    "publish"; counters "beams", "beams_used", "beams_dropped" (invalid, non-finite, out of
+//    range), "beams_duplicate", "clusters", "features", "circle_fit_fallbacks", "sorted" (1 when
+//    the beams were not in angle order).
+// A message that is not a laser_scan_t, or whose size does not match its num_beams, is counted
+// (counters().scans_rejected) and reported on stderr (the 1st, 10th, 100th, ... time), and
+// nothing is published for it: there is no trustworthy utime to publish with.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "perception/segmenter.h"
+#include "perception/segmenter_options.h"
+#include "runtime/config.h"
+#include "runtime/process.h"
+#include "runtime/stage.h"
+
+namespace slammtt {
+
+// Reads the `segmenter:` section of the stack configuration; absent keys keep the defaults of
+// SegmenterOptions. Keys (units in the names):
+//   lambda_deg (20), sigma_r_m (0.03), max_beam_gap_deg (5), duplicate_angle_tolerance_deg
+//   (0.001), min_range_m (0), max_range_m (no limit), min_points (3), max_width_m (1.5),
+//   centre_rule (circle_fit | radius_corrected | middle_point), max_object_radius_m (1.0),
+//   bearing_sigma_deg (0.5), shape_sigma_fraction (0.3).
+// Throws ConfigError naming file, line and key for a wrong type, a bad value or an unknown key
+// (CheckUnused()).
+SegmenterOptions ReadSegmenterOptions(const Config& section);
+
+struct SegmenterStageCounters {
+  int64_t scans_handled = 0;   // scans segmented and published
+  int64_t scans_rejected = 0;  // undecodable or inconsistent messages
+  int64_t features_published = 0;
+  int64_t beams_dropped = 0;   // invalid, non-finite or out of range, over all scans
+};
+
+class SegmenterStage : public Stage {
+ public:
+  SegmenterStage(const SegmenterOptions& options, std::string laser_scan_channel,
+                 std::string features_channel, std::string stage_timing_channel);
+  // Options from settings.config's `segmenter:` section, channels from settings.channels.
+  explicit SegmenterStage(const ProcessSettings& settings);
+
+  std::string Name() const override { return "segmenter"; }
+  std::vector<std::string> InputChannels() const override { return {laser_scan_channel_}; }
+  void Handle(const std::string& channel, const void* data, int size, MessageSink& out) override;
+
+  const SegmenterStageCounters& counters() const { return counters_; }
+  const Segmenter& segmenter() const { return segmenter_; }
+
+ private:
+  void Reject(const std::string& reason);
+
+  Segmenter segmenter_;
+  std::string laser_scan_channel_;
+  std::string features_channel_;
+  std::string stage_timing_channel_;
+  SegmenterStageCounters counters_;
+};
+
+// The factory slammtt-replay and slammtt-segmenter use.
+std::unique_ptr<Stage> CreateSegmenterStage(const ProcessSettings& settings);
+
+}  // namespace slammtt

@@ -1,0 +1,295 @@
+// The stage adapter on encoded messages, through a capturing MessageSink (what replay does), and
+// the `segmenter:` configuration section.
+#include "perception/segmenter_stage.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "runtime/command_line.h"
+#include "runtime/lcm_io.h"
+#include "slammtt_msgs/features_t.hpp"
+#include "slammtt_msgs/laser_scan_t.hpp"
+#include "slammtt_msgs/odometry_t.hpp"
+#include "slammtt_msgs/stage_timing_t.hpp"
+#include "tests/perception/synthetic_scan.h"
+
+namespace slammtt {
+namespace {
+
+using testing_support::CastScan;
+using testing_support::Circle;
+using testing_support::EvenAngles;
+
+struct Published {
+  std::string channel;
+  std::vector<uint8_t> bytes;
+};
+
+class CapturingSink : public MessageSink {
+ public:
+  void Publish(const std::string& channel, const void* data, int size) override {
+    const auto* p = static_cast<const uint8_t*>(data);
+    messages.push_back(Published{channel, std::vector<uint8_t>(p, p + size)});
+  }
+  std::vector<Published> messages;
+};
+
+const std::vector<Circle> kScene = {{2.0, 0.5, 0.2}, {-1.5, 2.5, 0.25}, {0.5, -3.0, 0.15}};
+
+slammtt_msgs::laser_scan_t MakeScanMessage(int64_t utime, int64_t sequence,
+                                           const std::vector<Circle>& scene = kScene) {
+  const testing_support::TestScan scan = CastScan(scene, EvenAngles(0.0, 2.0 * M_PI, 400, true));
+  slammtt_msgs::laser_scan_t msg;
+  msg.utime = utime;
+  msg.sequence = sequence;
+  msg.scan_duration_us = 100000;
+  msg.range_min_m = 0.15f;
+  msg.range_max_m = 12.0f;
+  msg.num_beams = static_cast<int32_t>(scan.size());
+  msg.angle_rad = scan.angle_rad;
+  msg.range_m = scan.range_m;
+  msg.intensity.assign(scan.size(), 1.0f);
+  msg.valid = scan.valid;
+  return msg;
+}
+
+SegmenterStage MakeStage() {
+  return SegmenterStage(SegmenterOptions{}, "LASER_SCAN", "FEATURES", "STAGE_TIMING");
+}
+
+TEST(SegmenterStageTest, PublishesFeaturesWithTheScanTimeAndTiming) {
+  SegmenterStage stage = MakeStage();
+  EXPECT_EQ(stage.Name(), "segmenter");
+  ASSERT_EQ(stage.InputChannels(), std::vector<std::string>{"LASER_SCAN"});
+  const slammtt_msgs::laser_scan_t scan = MakeScanMessage(1700000000123456, 42);
+  const std::vector<uint8_t> bytes = Encode(scan);
+  CapturingSink sink;
+  stage.Handle("LASER_SCAN", bytes.data(), static_cast<int>(bytes.size()), sink);
+  ASSERT_EQ(sink.messages.size(), 2u);
+  ASSERT_EQ(sink.messages[0].channel, "FEATURES");
+  ASSERT_EQ(sink.messages[1].channel, "STAGE_TIMING");
+
+  slammtt_msgs::features_t features;
+  ASSERT_TRUE(Decode(sink.messages[0].bytes.data(),
+                     static_cast<int>(sink.messages[0].bytes.size()), &features));
+  EXPECT_EQ(features.utime, 1700000000123456);
+  EXPECT_EQ(features.sequence, 42);
+  ASSERT_EQ(features.num_features, 3);
+  // Same numbers as the library gives for the same scan.
+  ScanView view = MakeScanView(scan.angle_rad, scan.range_m, scan.valid);
+  view.range_min_m = scan.range_min_m;
+  view.range_max_m = scan.range_max_m;
+  const std::vector<Feature> expected = SegmentScan(view, SegmenterOptions{});
+  ASSERT_EQ(expected.size(), 3u);
+  for (size_t i = 0; i < expected.size(); ++i) {
+    const slammtt_msgs::feature_t& f = features.features[i];
+    EXPECT_EQ(f.range_m, expected[i].range_m);
+    EXPECT_EQ(f.bearing_rad, expected[i].bearing_rad);
+    EXPECT_EQ(f.width_m, expected[i].width_m);
+    EXPECT_EQ(f.num_points, expected[i].num_points);
+    EXPECT_EQ(f.range_var_m2, expected[i].covariance(0, 0));
+    EXPECT_EQ(f.bearing_var_rad2, expected[i].covariance(1, 1));
+    EXPECT_EQ(f.range_bearing_cov_m_rad, 0.0);
+    EXPECT_GT(f.range_var_m2, 0.0);
+    EXPECT_GT(f.bearing_var_rad2, 0.0);
+  }
+
+  slammtt_msgs::stage_timing_t timing;
+  ASSERT_TRUE(Decode(sink.messages[1].bytes.data(),
+                     static_cast<int>(sink.messages[1].bytes.size()), &timing));
+  EXPECT_EQ(timing.utime, 1700000000123456);
+  EXPECT_EQ(timing.stage, "segmenter");
+  EXPECT_EQ(timing.substage,
+            (std::vector<std::string>{"decode", "sort", "cluster", "features", "publish"}));
+  ASSERT_EQ(timing.num_counters, static_cast<int32_t>(timing.counter_name.size()));
+  auto counter = [&](const std::string& name) -> int64_t {
+    for (size_t i = 0; i < timing.counter_name.size(); ++i) {
+      if (timing.counter_name[i] == name) return timing.counter_value[i];
+    }
+    ADD_FAILURE() << "no counter " << name;
+    return -1;
+  };
+  EXPECT_EQ(counter("beams"), 400);
+  EXPECT_EQ(counter("features"), 3);
+  EXPECT_EQ(counter("clusters"), 3);
+  EXPECT_EQ(counter("beams_used") + counter("beams_dropped"), 400);
+  EXPECT_EQ(counter("sorted"), 0);
+  EXPECT_GE(timing.total_ns, 0);
+  EXPECT_EQ(stage.counters().scans_handled, 1);
+  EXPECT_EQ(stage.counters().features_published, 3);
+}
+
+TEST(SegmenterStageTest, FeaturesOutputIsByteIdenticalRunToRun) {
+  const std::vector<uint8_t> bytes = Encode(MakeScanMessage(1000, 1));
+  CapturingSink a;
+  CapturingSink b;
+  SegmenterStage first = MakeStage();
+  SegmenterStage second = MakeStage();
+  first.Handle("LASER_SCAN", bytes.data(), static_cast<int>(bytes.size()), a);
+  second.Handle("LASER_SCAN", bytes.data(), static_cast<int>(bytes.size()), b);
+  first.Handle("LASER_SCAN", bytes.data(), static_cast<int>(bytes.size()), a);
+  ASSERT_EQ(a.messages.size(), 4u);
+  EXPECT_EQ(a.messages[0].bytes, b.messages[0].bytes);
+  EXPECT_EQ(a.messages[0].bytes, a.messages[2].bytes);
+}
+
+TEST(SegmenterStageTest, EmptyScanPublishesAnEmptyFeatureList) {
+  SegmenterStage stage = MakeStage();
+  slammtt_msgs::laser_scan_t scan = MakeScanMessage(5, 6, {});  // nothing in range
+  CapturingSink sink;
+  std::vector<uint8_t> bytes = Encode(scan);
+  stage.Handle("LASER_SCAN", bytes.data(), static_cast<int>(bytes.size()), sink);
+  scan.num_beams = 0;  // and a scan without beams at all
+  scan.angle_rad.clear();
+  scan.range_m.clear();
+  scan.intensity.clear();
+  scan.valid.clear();
+  bytes = Encode(scan);
+  stage.Handle("LASER_SCAN", bytes.data(), static_cast<int>(bytes.size()), sink);
+  ASSERT_EQ(sink.messages.size(), 4u);
+  for (size_t i : {0u, 2u}) {
+    slammtt_msgs::features_t features;
+    ASSERT_TRUE(Decode(sink.messages[i].bytes.data(),
+                       static_cast<int>(sink.messages[i].bytes.size()), &features));
+    EXPECT_EQ(features.utime, 5);
+    EXPECT_EQ(features.sequence, 6);
+    EXPECT_EQ(features.num_features, 0);
+  }
+  EXPECT_EQ(stage.counters().scans_handled, 2);
+  EXPECT_EQ(stage.counters().scans_rejected, 0);
+}
+
+TEST(SegmenterStageTest, MalformedMessagesAreCountedNotThrownNorPublished) {
+  SegmenterStage stage = MakeStage();
+  CapturingSink sink;
+  const std::vector<uint8_t> good = Encode(MakeScanMessage(7, 8));
+  // Garbage, empty, a null pointer.
+  const uint8_t garbage[5] = {1, 2, 3, 4, 5};
+  stage.Handle("LASER_SCAN", garbage, 5, sink);
+  stage.Handle("LASER_SCAN", good.data(), 0, sink);
+  stage.Handle("LASER_SCAN", nullptr, 100, sink);
+  // Truncated.
+  stage.Handle("LASER_SCAN", good.data(), static_cast<int>(good.size()) - 1, sink);
+  // A num_beams that claims 2^31 - 1 beams (the decoder would try to allocate 13 GB).
+  std::vector<uint8_t> huge = good;
+  huge[40] = 0x7f;
+  huge[41] = huge[42] = huge[43] = 0xff;
+  stage.Handle("LASER_SCAN", huge.data(), static_cast<int>(huge.size()), sink);
+  // Negative num_beams.
+  std::vector<uint8_t> negative = good;
+  negative[40] = 0xff;
+  stage.Handle("LASER_SCAN", negative.data(), static_cast<int>(negative.size()), sink);
+  // Right size, wrong type hash.
+  std::vector<uint8_t> wrong_hash = good;
+  wrong_hash[0] ^= 0x55;
+  stage.Handle("LASER_SCAN", wrong_hash.data(), static_cast<int>(wrong_hash.size()), sink);
+  // Another message type on the scan channel.
+  slammtt_msgs::odometry_t odometry{};
+  const std::vector<uint8_t> other = Encode(odometry);
+  stage.Handle("LASER_SCAN", other.data(), static_cast<int>(other.size()), sink);
+  EXPECT_TRUE(sink.messages.empty());
+  EXPECT_EQ(stage.counters().scans_rejected, 8);
+  EXPECT_EQ(stage.counters().scans_handled, 0);
+  // A message on a channel the stage does not consume is ignored, not rejected.
+  stage.Handle("ODOMETRY", other.data(), static_cast<int>(other.size()), sink);
+  EXPECT_EQ(stage.counters().scans_rejected, 8);
+  // The stage still works.
+  stage.Handle("LASER_SCAN", good.data(), static_cast<int>(good.size()), sink);
+  EXPECT_EQ(sink.messages.size(), 2u);
+  EXPECT_EQ(stage.counters().scans_handled, 1);
+}
+
+TEST(SegmenterStageTest, ReadsOptionsFromTheSegmenterSection) {
+  const Config config = Config::FromString(
+      "segmenter:\n"
+      "  lambda_deg: 15\n"
+      "  sigma_r_m: 0.05\n"
+      "  max_beam_gap_deg: 3\n"
+      "  duplicate_angle_tolerance_deg: 0.01\n"
+      "  min_range_m: 0.2\n"
+      "  max_range_m: 8\n"
+      "  min_points: 4\n"
+      "  max_width_m: 1.0\n"
+      "  centre_rule: middle_point\n"
+      "  max_object_radius_m: 0.5\n"
+      "  bearing_sigma_deg: 2\n"
+      "  shape_sigma_fraction: 0.1\n",
+      "stack.yaml");
+  const SegmenterOptions o = ReadSegmenterOptions(config.Child("segmenter"));
+  EXPECT_DOUBLE_EQ(o.lambda_rad, 15.0 * M_PI / 180.0);
+  EXPECT_DOUBLE_EQ(o.sigma_r_m, 0.05);
+  EXPECT_DOUBLE_EQ(o.max_beam_gap_rad, 3.0 * M_PI / 180.0);
+  EXPECT_DOUBLE_EQ(o.duplicate_angle_tolerance_rad, 0.01 * M_PI / 180.0);
+  EXPECT_DOUBLE_EQ(o.min_range_m, 0.2);
+  EXPECT_DOUBLE_EQ(o.max_range_m, 8.0);
+  EXPECT_EQ(o.min_points, 4);
+  EXPECT_DOUBLE_EQ(o.max_width_m, 1.0);
+  EXPECT_EQ(o.centre_rule, CentreRule::kMiddlePoint);
+  EXPECT_DOUBLE_EQ(o.max_object_radius_m, 0.5);
+  EXPECT_DOUBLE_EQ(o.bearing_sigma_rad, 2.0 * M_PI / 180.0);
+  EXPECT_DOUBLE_EQ(o.shape_sigma_fraction, 0.1);
+  // An absent section gives the defaults (the paper's lambda and sigma).
+  const SegmenterOptions defaults = ReadSegmenterOptions(Config());
+  EXPECT_DOUBLE_EQ(defaults.lambda_rad, 20.0 * M_PI / 180.0);
+  EXPECT_DOUBLE_EQ(defaults.sigma_r_m, 0.03);
+  EXPECT_EQ(defaults.centre_rule, CentreRule::kCircleFit);
+  EXPECT_TRUE(std::isinf(defaults.max_range_m));
+}
+
+void ExpectConfigError(const std::string& yaml, const std::string& expected_text) {
+  const Config config = Config::FromString(yaml, "stack.yaml");
+  try {
+    ReadSegmenterOptions(config.Child("segmenter"));
+    ADD_FAILURE() << "no error for:\n" << yaml;
+  } catch (const ConfigError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(expected_text), std::string::npos) << what;
+    EXPECT_NE(what.find("stack.yaml"), std::string::npos) << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+  }
+}
+
+TEST(SegmenterStageTest, BadConfigurationNamesTheKey) {
+  ExpectConfigError("segmenter:\n  lamda_deg: 20\n", "lamda_deg");
+  ExpectConfigError("segmenter:\n  lambda_deg: twenty\n", "lambda_deg");
+  ExpectConfigError("segmenter:\n  lambda_deg: 95\n", "lambda_deg");
+  ExpectConfigError("segmenter:\n  sigma_r_m: -0.03\n", "sigma_r_m");
+  ExpectConfigError("segmenter:\n  min_points: 0\n", "min_points");
+  ExpectConfigError("segmenter:\n  min_points: 2.5\n", "min_points");
+  ExpectConfigError("segmenter:\n  centre_rule: centroid\n", "centre_rule");
+  ExpectConfigError("segmenter:\n  min_range_m: 5\n  max_range_m: 4\n", "max_range_m");
+  ExpectConfigError("segmenter:\n  bearing_sigma_deg: 0\n", "bearing_sigma_deg");
+}
+
+TEST(SegmenterStageTest, FactoryUsesTheStackConfigurationAndChannelNames) {
+  CommandLine command_line("test", "", "");
+  AddStandardOptions(&command_line);
+  const char* argv[] = {"test", "--channel", "laser_scan=SCAN_SIM", "--channel",
+                        "features=FEATURES_SIM"};
+  ASSERT_TRUE(command_line.Parse(5, argv));
+  ProcessSettings settings = LoadProcessSettings(command_line);
+  settings.config = Config::FromString("segmenter:\n  min_points: 200\n");
+  const std::unique_ptr<Stage> stage = CreateSegmenterStage(settings);
+  ASSERT_EQ(stage->InputChannels(), std::vector<std::string>{"SCAN_SIM"});
+  CapturingSink sink;
+  const std::vector<uint8_t> bytes = Encode(MakeScanMessage(1, 1));
+  stage->Handle("LASER_SCAN", bytes.data(), static_cast<int>(bytes.size()), sink);
+  EXPECT_TRUE(sink.messages.empty());  // not its channel any more
+  stage->Handle("SCAN_SIM", bytes.data(), static_cast<int>(bytes.size()), sink);
+  ASSERT_EQ(sink.messages.size(), 2u);
+  EXPECT_EQ(sink.messages[0].channel, "FEATURES_SIM");
+  EXPECT_EQ(sink.messages[1].channel, "STAGE_TIMING");
+  slammtt_msgs::features_t features;
+  ASSERT_TRUE(Decode(sink.messages[0].bytes.data(),
+                     static_cast<int>(sink.messages[0].bytes.size()), &features));
+  EXPECT_EQ(features.num_features, 0);  // min_points 200 from the configuration
+
+  settings.config = Config::FromString("segmenter:\n  typo: 1\n");
+  EXPECT_THROW(CreateSegmenterStage(settings), ConfigError);
+}
+
+}  // namespace
+}  // namespace slammtt
