@@ -11,6 +11,7 @@ ScenarioReporter::ScenarioReporter(const LaserSpec& laser, double robot_radius_m
     : laser_(laser), robot_radius_m_(robot_radius_m), period_s_(1.0 / laser.rate_hz) {
   report_.scan_period_s = period_s_;
   report_.min_statics_visible = 1 << 30;
+  report_.min_movers_visible = 1 << 30;
 }
 
 namespace {
@@ -37,11 +38,12 @@ void ScenarioReporter::AddScan(const SensorFrame& frame) {
   const bool full_circle = laser_.fov_deg >= 360.0 - 1e-9;
   const double half_fov = 0.5 * laser_.fov_deg * M_PI / 180.0;
   int statics_visible = 0;
+  int movers_visible = 0;
   std::vector<Circle> circles;
   for (const ObjectTruth& o : truth.objects) circles.push_back(Circle{o.x_m, o.y_m, o.radius_m});
   for (size_t i = 0; i < truth.objects.size(); ++i) {
     const ObjectTruth& o = truth.objects[i];
-    Closer(&report_.robot_object,
+    Closer(o.is_static ? &report_.robot_static : &report_.robot_mover,
            std::hypot(o.x_m - robot.x_m, o.y_m - robot.y_m) - o.radius_m - robot_radius_m_, -1, o.id, t);
     for (size_t j = i + 1; j < truth.objects.size(); ++j) {
       const ObjectTruth& p = truth.objects[j];
@@ -64,6 +66,7 @@ void ScenarioReporter::AddScan(const SensorFrame& frame) {
                          range <= laser_.max_range_m;
     if (in_view) m.report.in_view_s += period_s_;
     if (o.visible) {
+      ++movers_visible;
       m.report.visible_s += period_s_;
       m.visible_run_s += period_s_;
       m.report.longest_visible_s = std::max(m.report.longest_visible_s, m.visible_run_s);
@@ -100,12 +103,19 @@ void ScenarioReporter::AddScan(const SensorFrame& frame) {
     report_.min_statics_visible_time_s = t;
   }
   if (statics_visible < 3) ++report_.scans_with_fewer_than_3_statics;
+  report_.min_movers_visible = std::min(report_.min_movers_visible, movers_visible);
+  movers_visible_sum_ += movers_visible;
   statics_visible_sum_ += statics_visible;
 }
 
 ScenarioReport ScenarioReporter::Finish() const {
   ScenarioReport report = report_;
-  if (report.scans == 0) report.min_statics_visible = 0;
+  if (report.scans == 0) {
+    report.min_statics_visible = 0;
+    report.min_movers_visible = 0;
+  }
+  report.mean_movers_visible =
+      report.scans > 0 ? static_cast<double>(movers_visible_sum_) / report.scans : 0.0;
   report.mean_statics_visible =
       report.scans > 0 ? static_cast<double>(statics_visible_sum_) / report.scans : 0.0;
   for (int64_t id : order_) report.movers.push_back(movers_.at(id).report);
@@ -134,9 +144,12 @@ std::string FormatScenarioReport(const ScenarioReport& r) {
   out << "static objects visible per scan: min " << r.min_statics_visible << " (first at "
       << r.min_statics_visible_time_s << " s), mean " << r.mean_statics_visible
       << ", scans with fewer than 3: " << r.scans_with_fewer_than_3_statics << "\n";
+  out << "movers visible per scan: min " << r.min_movers_visible << ", mean " << r.mean_movers_visible
+      << "\n";
   if (r.mover_mover.gap_m < 1e299) approach("mover-mover", r.mover_mover);
   if (r.mover_static.gap_m < 1e299) approach("mover-static", r.mover_static);
-  if (r.robot_object.gap_m < 1e299) approach("robot-object (robot radius 0.26 m)", r.robot_object);
+  if (r.robot_static.gap_m < 1e299) approach("robot-static (robot radius 0.26 m)", r.robot_static);
+  if (r.robot_mover.gap_m < 1e299) approach("robot-mover (robot radius 0.26 m)", r.robot_mover);
   out << "movers: " << r.movers.size()
       << " (id: exists / in view / visible s, occlusions, longest occlusion s, longest visible s)\n";
   for (const MoverReport& m : r.movers) {

@@ -48,11 +48,14 @@ struct ScenarioReport {
   double mean_statics_visible = 0.0;
   double min_statics_visible_time_s = 0.0;  // first scan with the minimum
   int scans_with_fewer_than_3_statics = 0;
+  int min_movers_visible = 0;        // over all scans
+  double mean_movers_visible = 0.0;
   double robot_path_m = 0.0;
   double robot_max_speed_mps = 0.0;
   ClosestApproach mover_mover;   // two movers
   ClosestApproach mover_static;  // a mover and a static object
-  ClosestApproach robot_object;  // the robot (robot_radius_m) and any object
+  ClosestApproach robot_static;  // the robot (robot_radius_m) and a static object
+  ClosestApproach robot_mover;   // the robot and a mover
   std::vector<MoverReport> movers;  // in order of first appearance
   std::vector<OcclusionEpisode> occlusions;  // in order of their start
 };
@@ -77,6 +80,7 @@ class ScenarioReporter {
   double period_s_;
   ScenarioReport report_;
   int64_t statics_visible_sum_ = 0;
+  int64_t movers_visible_sum_ = 0;
   bool have_previous_ = false;
   Pose2D previous_pose_;
   std::vector<int64_t> order_;
