@@ -1,5 +1,6 @@
 #include "estimator/estimator.h"
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -160,12 +161,11 @@ std::string CheckEstimatorOptions(const EstimatorOptions& o) {
   const MotionClassifierOptions& c = o.classifier;
   if (!non_negative(c.moving_chi2) || !non_negative(c.moving_min_speed_mps) ||
       !non_negative(c.still_max_speed_mps) || !non_negative(c.still_max_sigma_mps) ||
-      !non_negative(c.still_hold_s) || !non_negative(c.started_moving_nis)) {
+      !non_negative(c.still_hold_s) || !non_negative(c.still_leak) ||
+      !positive(c.started_moving_chi2)) {
     return "classifier thresholds must be >= 0";
   }
-  if (c.moving_confirm_scans < 1 || c.started_moving_scans < 1) {
-    return "classifier scan counts must be >= 1";
-  }
+  if (c.moving_confirm_scans < 1) return "moving_confirm_scans must be >= 1";
   return "";
 }
 
@@ -365,8 +365,7 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
   const int num_objects_before = state_.num_objects();
   const double d1 = options_.gate_d1_chi2;
   const double dn = options_.new_object_gate_dn_chi2;
-  const double widest = std::max({d1, dn, options_.level3 ? options_.gate_d2_chi2 : 0.0,
-                                  options_.classifier.started_moving_nis});
+  const double widest = std::max({d1, dn, options_.level3 ? options_.gate_d2_chi2 : 0.0});
   std::vector<ObjectPrediction> predictions = PredictObservations(state_, options_.sensor);
   const std::vector<Candidate> gated = GatePairs(measurements, predictions, widest);
   std::vector<double> nearest_nis(static_cast<size_t>(num_measurements), kInfinity);
@@ -460,13 +459,6 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
 
   // --- track management (lines 11-13)
   // Hits and misses.
-  std::vector<double> assigned_nis(static_cast<size_t>(num_objects_before), kInfinity);
-  std::vector<uint8_t> misfit_nearby(static_cast<size_t>(num_objects_before), 0);
-  for (const Candidate& c : gated) {
-    const int assigned = assignment.object_of_measurement[static_cast<size_t>(c.measurement)];
-    if (assigned == c.object) assigned_nis[static_cast<size_t>(c.object)] = c.nis;
-    if (assigned < 0 && c.nis < dn) misfit_nearby[static_cast<size_t>(c.object)] = 1;
-  }
   const Eigen::Vector3d robot = state_.robot_pose();
   for (int j = 0; j < num_objects_before; ++j) {
     ObjectRecord& record = state_.object(j).record;
@@ -480,6 +472,24 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
   }
   // Classification (line 12).
   if (options_.mode != AssociationMode::kStaticNearestNeighbour) {
+    // For static landmarks: the measurement that speaks about each (its own, or else the
+    // nearest unassociated one inside gate dn), judged at the state after the updates.
+    std::vector<int> landmark_measurement(static_cast<size_t>(num_objects_before), -1);
+    std::vector<double> landmark_nis(static_cast<size_t>(num_objects_before), kInfinity);
+    for (const Candidate& c : gated) {
+      if (state_.object(c.object).has_velocity()) continue;
+      const int assigned = assignment.object_of_measurement[static_cast<size_t>(c.measurement)];
+      const size_t j = static_cast<size_t>(c.object);
+      if (assigned == c.object) {
+        landmark_measurement[j] = c.measurement;
+        landmark_nis[j] = -1.0;  // its own measurement wins
+      } else if (assigned < 0 && assignment.ObjectFree(c.object) && c.nis < dn &&
+                 c.nis < landmark_nis[j]) {
+        landmark_measurement[j] = c.measurement;
+        landmark_nis[j] = c.nis;
+      }
+    }
+    const std::vector<ObjectPrediction> judged = PredictObservations(state_, options_.sensor);
     for (int j = 0; j < num_objects_before; ++j) {
       StateObject& object = state_.object(j);
       ObjectRecord& record = object.record;
@@ -498,29 +508,30 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
           r.class_change_utime = scan.utime;
           r.static_evidence_s = 0.0;
           r.moving_evidence_scans = 0;
-          r.motion_evidence_scans = 0;
+          ClearLandmarkEvidence(&r);
           ++counts.became_static;
         }
-      } else {
-        StaticObservation seen = StaticObservation::kNothing;
-        if (!assignment.ObjectFree(j)) {
-          seen = assigned_nis[static_cast<size_t>(j)] > options_.classifier.started_moving_nis
-                     ? StaticObservation::kMisfits
-                     : StaticObservation::kFits;
-        } else if (misfit_nearby[static_cast<size_t>(j)]) {
-          seen = StaticObservation::kMisfits;
-        }
-        if (ClassifyLandmark(seen, options_.classifier, &record) == ClassChange::kStartedMoving) {
-          const double sigma = options_.new_object_velocity_sigma_mps;
-          state_.AddVelocity(j, Eigen::Vector2d::Zero(),
-                             sigma * sigma * Eigen::Matrix2d::Identity());
-          ObjectRecord& r = state_.object(j).record;
-          r.object_class = ObjectClass::kUndecided;
-          r.class_change_utime = scan.utime;
-          r.static_evidence_s = 0.0;
-          r.moving_evidence_scans = 0;
-          ++counts.started_moving;
-        }
+        continue;
+      }
+      const int i = landmark_measurement[static_cast<size_t>(j)];
+      const ObjectPrediction& prediction = judged[static_cast<size_t>(j)];
+      if (i < 0 || !prediction.valid) continue;
+      const PointMeasurement& z = measurements[static_cast<size_t>(i)];
+      const Eigen::Vector2d measured = PointFromRangeBearing(state_.robot_pose(), z.range_bearing,
+                                                             options_.sensor);
+      const Eigen::Matrix2d to_map = prediction.jacobian_position.inverse();
+      const Eigen::Matrix2d covariance =
+          to_map * (prediction.hph + z.covariance) * to_map.transpose();
+      if (ClassifyLandmark(measured - state_.position(j), covariance, options_.classifier,
+                           &record) == ClassChange::kStartedMoving) {
+        const double sigma = options_.new_object_velocity_sigma_mps;
+        state_.AddVelocity(j, Eigen::Vector2d::Zero(), sigma * sigma * Eigen::Matrix2d::Identity());
+        ObjectRecord& r = state_.object(j).record;
+        r.object_class = ObjectClass::kUndecided;
+        r.class_change_utime = scan.utime;
+        r.static_evidence_s = 0.0;
+        r.moving_evidence_scans = 0;
+        ++counts.started_moving;
       }
     }
   }

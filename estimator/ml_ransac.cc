@@ -1,5 +1,6 @@
 #include "estimator/ml_ransac.h"
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <limits>

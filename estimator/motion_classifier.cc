@@ -28,7 +28,17 @@ ClassChange ClassifyMover(const Eigen::Vector2d& velocity, const Eigen::Matrix2d
       speed < options.still_max_speed_mps && largest_sigma < options.still_max_sigma_mps;
 
   record->moving_evidence_scans = moving ? record->moving_evidence_scans + 1 : 0;
-  record->static_evidence_s = still ? record->static_evidence_s + dt_s : 0.0;
+  // Still evidence leaks away instead of resetting on one noisy scan (a static object's velocity
+  // estimate fluctuates around zero with the steady-state spread that sigma_Q leaves); evidence
+  // of motion clears it.
+  if (moving) {
+    record->static_evidence_s = 0.0;
+  } else if (still) {
+    record->static_evidence_s += dt_s;
+  } else {
+    record->static_evidence_s =
+        std::max(0.0, record->static_evidence_s - options.still_leak * dt_s);
+  }
 
   if (record->object_class == ObjectClass::kUndecided &&
       record->moving_evidence_scans >= options.moving_confirm_scans) {
@@ -39,23 +49,37 @@ ClassChange ClassifyMover(const Eigen::Vector2d& velocity, const Eigen::Matrix2d
   return ClassChange::kNone;
 }
 
-ClassChange ClassifyLandmark(StaticObservation observation,
+ClassChange ClassifyLandmark(const Eigen::Vector2d& offset_m, const Eigen::Matrix2d& covariance,
                              const MotionClassifierOptions& options, ObjectRecord* record) {
-  switch (observation) {
-    case StaticObservation::kFits:
-      record->motion_evidence_scans = 0;
-      break;
-    case StaticObservation::kMisfits:
-      ++record->motion_evidence_scans;
-      break;
-    case StaticObservation::kNothing:
-      break;
+  constexpr int kWindow = ObjectRecord::kOffsetWindow;
+  record->offsets_m[static_cast<size_t>(record->next_offset)] = offset_m;
+  record->offset_covariances[static_cast<size_t>(record->next_offset)] = covariance;
+  record->next_offset = (record->next_offset + 1) % kWindow;
+  record->num_offsets = std::min(kWindow, record->num_offsets + 1);
+  if (record->num_offsets < kWindow) return ClassChange::kNone;
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  Eigen::Matrix2d covariance_sum = Eigen::Matrix2d::Zero();
+  for (int k = 0; k < kWindow; ++k) {
+    sum += record->offsets_m[static_cast<size_t>(k)];
+    covariance_sum += record->offset_covariances[static_cast<size_t>(k)];
   }
-  if (record->motion_evidence_scans >= options.started_moving_scans) {
-    record->motion_evidence_scans = 0;
+  // mean = sum / k, Cov(mean) = covariance_sum / k^2: mean^T Cov^-1 mean = sum^T covsum^-1 sum.
+  const Eigen::Matrix2d c = 0.5 * (covariance_sum + covariance_sum.transpose());
+  const double det = c(0, 0) * c(1, 1) - c(0, 1) * c(0, 1);
+  if (!(det > 0.0)) return ClassChange::kNone;
+  const double statistic =
+      (c(1, 1) * sum(0) * sum(0) - 2.0 * c(0, 1) * sum(0) * sum(1) + c(0, 0) * sum(1) * sum(1)) /
+      det;
+  if (statistic > options.started_moving_chi2) {
+    ClearLandmarkEvidence(record);
     return ClassChange::kStartedMoving;
   }
   return ClassChange::kNone;
+}
+
+void ClearLandmarkEvidence(ObjectRecord* record) {
+  record->num_offsets = 0;
+  record->next_offset = 0;
 }
 
 }  // namespace slammtt

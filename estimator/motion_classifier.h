@@ -9,15 +9,23 @@
 //   "still" evidence:  |v| < still_max_speed_mps and the largest velocity standard deviation
 //                      is below still_max_sigma_mps (we know it well enough to say it is slow).
 // UNDECIDED -> MOVING after moving_confirm_scans consecutive "moving" scans.
-// UNDECIDED or MOVING -> STATIC after still_hold_s of uninterrupted "still" evidence; the
+// UNDECIDED or MOVING -> STATIC once still_hold_s of "still" evidence has accumulated: each
+// still scan adds its duration, a scan that is neither still nor moving removes still_leak
+// times its duration, a moving scan clears it (a static object's velocity estimate fluctuates
+// around zero, so one noisy scan must not restart the count); the
 // estimator then conditions the state on v = 0 and removes the velocity states
 // (SlamState::RemoveVelocityAssumingZero).
-// A STATIC landmark has no velocity to judge; it is judged on its measurements instead: a scan
-// in which its associated measurement has a normalized innovation squared above
-// started_moving_nis, or in which it got no measurement while an unassociated measurement lies
-// within the new-object gate of it, is "it moved" evidence; a well-fitting measurement resets
-// it. After started_moving_scans consecutive such scans the landmark gets velocity states
-// again (zero mean, prior covariance) and becomes UNDECIDED, so the velocity test above
+// A STATIC landmark has no velocity to judge; it is judged on its measurements instead. Each
+// scan that has a measurement of it (its associated one, or else an unassociated measurement
+// inside the new-object gate of it: most likely the landmark, moved) adds the offset d of the
+// measured point from the landmark in the map frame, with covariance C = H_p^-1 S H_p^-T (the
+// innovation mapped to the map frame). Over the last k = ObjectRecord::kOffsetWindow offsets,
+// the mean offset d_mean has covariance C_mean = (sum C) / k^2 if the landmark is where the
+// map says (EKF innovations are white), and
+//   d_mean^T C_mean^-1 d_mean > started_moving_chi2
+// says it moved: a steady drift accumulates in the mean while noise averages out, so a person
+// walking off is caught before leaving the association gate. The landmark then gets velocity
+// states again (zero mean, prior covariance) and becomes UNDECIDED, so the velocity test above
 // decides from then on.
 #pragma once
 
@@ -34,8 +42,8 @@ struct MotionClassifierOptions {
   double still_max_speed_mps = 0.2;
   double still_max_sigma_mps = 0.25;
   double still_hold_s = 2.0;
-  double started_moving_nis = 9.21;
-  int started_moving_scans = 2;
+  double still_leak = 1.0;
+  double started_moving_chi2 = 23.0;      // 1e-5 false alarms per scan and landmark (2 dof)
 };
 
 enum class ClassChange {
@@ -45,13 +53,6 @@ enum class ClassChange {
   kStartedMoving,      // STATIC -> UNDECIDED: add velocity states
 };
 
-// What a scan says about a static landmark's measurements.
-enum class StaticObservation {
-  kFits,          // associated, NIS <= started_moving_nis
-  kMisfits,       // associated with a large NIS, or an unassociated measurement near it
-  kNothing,       // not observed (occluded, out of view): no evidence either way
-};
-
 // Judges an object with velocity states and updates its evidence; dt_s is the time since the
 // previous scan. Returns the class change to apply (the record's object_class is updated for
 // kBecameMoving; the caller updates it for the other changes once the state is changed).
@@ -59,8 +60,12 @@ ClassChange ClassifyMover(const Eigen::Vector2d& velocity, const Eigen::Matrix2d
                           double dt_s, const MotionClassifierOptions& options,
                           ObjectRecord* record);
 
-// Judges a static landmark from what this scan saw of it.
-ClassChange ClassifyLandmark(StaticObservation observation,
+// Adds one offset of a measured point from a static landmark (map frame, with covariance) and
+// judges the window. Returns kStartedMoving (and clears the window) when the landmark moved.
+ClassChange ClassifyLandmark(const Eigen::Vector2d& offset_m, const Eigen::Matrix2d& covariance,
                              const MotionClassifierOptions& options, ObjectRecord* record);
+
+// Forgets a landmark's offsets (after a class change).
+void ClearLandmarkEvidence(ObjectRecord* record);
 
 }  // namespace slammtt

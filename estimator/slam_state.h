@@ -14,6 +14,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -34,7 +35,13 @@ struct ObjectRecord {
   // Classification evidence (motion_classifier.h).
   int moving_evidence_scans = 0;   // consecutive scans whose velocity says "moving"
   double static_evidence_s = 0.0;  // time the velocity has said "standing still"
-  int motion_evidence_scans = 0;   // static landmark: consecutive scans that say "it moved"
+  // Static landmark: its last measurements' offsets from it in the map frame (measured point
+  // minus estimate) with their covariances, a ring of kOffsetWindow (motion_classifier.h).
+  static constexpr int kOffsetWindow = 4;
+  std::array<Eigen::Vector2d, kOffsetWindow> offsets_m;
+  std::array<Eigen::Matrix2d, kOffsetWindow> offset_covariances;
+  int num_offsets = 0;             // valid entries (at most kOffsetWindow)
+  int next_offset = 0;             // where the next one goes
   int64_t class_change_utime = 0;  // last change of object_class
 };
 
