@@ -1,6 +1,7 @@
 // slammtt-world: the synthetic world as a program (docs/world.md).
 //   slammtt-world --scenario s1-crossing --seed 7 --log OUT.lcm   # as fast as possible
 //   slammtt-world --scenario rplidar-a2                            # live, real time
+#include <algorithm>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -21,12 +22,18 @@ namespace {
 // Where --scenario NAME is looked up: the source tree this program was built from, then the
 // tree around the executable (build/bin/ -> ../../).
 std::vector<std::string> ScenarioSearchRoots() {
-  std::vector<std::string> roots = {SLAMMTT_WORLD_SOURCE_DIR};
+  std::vector<std::filesystem::path> candidates = {SLAMMTT_WORLD_SOURCE_DIR};
   std::error_code ec;
   const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
   if (!ec) {
-    roots.push_back((exe.parent_path() / ".." / "..").lexically_normal().string());
-    roots.push_back((exe.parent_path() / "..").lexically_normal().string());
+    candidates.push_back(exe.parent_path() / ".." / "..");
+    candidates.push_back(exe.parent_path() / "..");
+  }
+  std::vector<std::string> roots;
+  for (const std::filesystem::path& candidate : candidates) {
+    const std::string root = candidate.lexically_normal().string();
+    const std::string trimmed = root.size() > 1 && root.back() == '/' ? root.substr(0, root.size() - 1) : root;
+    if (std::find(roots.begin(), roots.end(), trimmed) == roots.end()) roots.push_back(trimmed);
   }
   return roots;
 }

@@ -1,0 +1,205 @@
+// slammtt-world on a live bus (runs in a network namespace of its own: NETNS in CMake). A
+// separate process, lcm-logger, records the bus while slammtt-world runs in real time (sped up);
+// the recording must hold every message of every channel, in order, and the same messages as
+// the log written as fast as possible (only utime differs: live runs start at the wall clock).
+// Also: lcm-logplayer plays a fast-mode log.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <map>
+#include <thread>
+
+#include "runtime/lcm_io.h"
+#include "slammtt_msgs/features_t.hpp"
+#include "slammtt_msgs/ground_truth_t.hpp"
+#include "slammtt_msgs/laser_scan_t.hpp"
+#include "slammtt_msgs/odometry_t.hpp"
+#include "slammtt_msgs/velocity_command_t.hpp"
+#include "tests/world/process_runner.h"
+
+namespace slammtt {
+namespace {
+
+namespace fs = std::filesystem;
+using namespace testing_world;
+
+const std::string kWorld = std::string(SLAMMTT_BIN_DIR) + "/slammtt-world";
+const std::string kUrl = "udpm://239.255.76.67:7667?ttl=0";
+constexpr int64_t kEpoch = 1700000000000000;
+
+// The events of one channel group of a log, in log order.
+std::vector<LogEvent> ReadEvents(const std::string& path, const std::vector<std::string>& channels) {
+  std::vector<LogEvent> events;
+  LogReader log(path);
+  while (std::optional<LogEvent> e = log.Next()) {
+    if (std::find(channels.begin(), channels.end(), e->channel) != channels.end()) {
+      events.push_back(std::move(*e));
+    }
+  }
+  return events;
+}
+
+bool LogHasChannel(const std::string& path, const std::string& channel) {
+  if (!fs::exists(path) || fs::file_size(path) == 0) return false;
+  try {
+    return !ReadEvents(path, {channel}).empty();
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+// Shifts the utime of a world message by -offset and re-encodes it.
+std::vector<uint8_t> Unshift(const LogEvent& e, int64_t offset, int64_t* utime, int64_t* sequence) {
+  const int size = static_cast<int>(e.data.size());
+  *sequence = -1;
+  if (e.channel == "ODOMETRY") {
+    slammtt_msgs::odometry_t m{};
+    EXPECT_TRUE(Decode(e.data.data(), size, &m));
+    *utime = m.utime;
+    *sequence = m.sequence;
+    m.utime -= offset;
+    return Encode(m);
+  }
+  if (e.channel == "GROUND_TRUTH") {
+    slammtt_msgs::ground_truth_t m{};
+    EXPECT_TRUE(Decode(e.data.data(), size, &m));
+    *utime = m.utime;
+    m.utime -= offset;
+    return Encode(m);
+  }
+  if (e.channel == "LASER_SCAN") {
+    slammtt_msgs::laser_scan_t m{};
+    EXPECT_TRUE(Decode(e.data.data(), size, &m));
+    *utime = m.utime;
+    *sequence = m.sequence;
+    m.utime -= offset;
+    return Encode(m);
+  }
+  slammtt_msgs::features_t m{};
+  EXPECT_TRUE(Decode(e.data.data(), size, &m));
+  *utime = m.utime;
+  *sequence = m.sequence;
+  m.utime -= offset;
+  return Encode(m);
+}
+
+class WorldLcmTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("slammtt_world_lcm_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    lcm_ = OpenLcm(kUrl);
+  }
+  void TearDown() override {
+    if (logger_ > 0) {
+      kill(logger_, SIGKILL);
+      WaitProcess(logger_);
+    }
+    fs::remove_all(dir_);
+  }
+  std::string Path(const std::string& name) const { return (dir_ / name).string(); }
+
+  // Starts lcm-logger on the bus and waits until it records (a PROBE message reaches its file).
+  void StartLogger(const std::string& path) {
+    logger_ = StartProcess({"lcm-logger", "-q", "-f", "--flush-interval=20", "--lcm-url=" + kUrl, path},
+                           Path("logger.out"), Path("logger.err"));
+    WaitForMarker(path, "PROBE_START");
+  }
+  // Publishes `channel` until the logger's file has it (at most 20 s).
+  void WaitForMarker(const std::string& path, const std::string& channel) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+    slammtt_msgs::velocity_command_t probe{};
+    while (!LogHasChannel(path, channel)) {
+      ASSERT_LT(std::chrono::steady_clock::now(), deadline) << "lcm-logger never recorded " << channel
+                                                            << ": " << ReadWholeFile(Path("logger.err"));
+      lcm_->publish(channel, &probe);
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+  }
+  // Marks the end (every earlier message has reached the logger once the marker has) and stops it.
+  void StopLogger(const std::string& path) {
+    WaitForMarker(path, "PROBE_END");
+    kill(logger_, SIGINT);
+    EXPECT_EQ(WaitProcess(logger_), 0);
+    logger_ = -1;
+  }
+
+  fs::path dir_;
+  std::unique_ptr<lcm::LCM> lcm_;
+  pid_t logger_ = -1;
+};
+
+TEST_F(WorldLcmTest, LoggerInAnotherProcessReceivesEveryMessageInOrder) {
+  const std::vector<std::string> channels = {"ODOMETRY", "GROUND_TRUTH", "LASER_SCAN", "FEATURES"};
+  const std::vector<std::string> common = {"--scenario", "s1-crossing", "--seed", "3", "--output",
+                                           "both", "--duration", "6"};
+  std::vector<std::string> fast = {kWorld};
+  fast.insert(fast.end(), common.begin(), common.end());
+  fast.insert(fast.end(), {"--log", Path("fast.lcm")});
+  ASSERT_EQ(RunProcess(fast, dir_.string()).exit_code, 0);
+
+  StartLogger(Path("bus.lcm"));
+  std::vector<std::string> live = {kWorld};
+  live.insert(live.end(), common.begin(), common.end());
+  live.insert(live.end(), {"--rate-factor", "10", "--lcm-url", kUrl});
+  const ProcessResult run = RunProcess(live, dir_.string());
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_NE(run.err.find("for 6.00 s simulated"), std::string::npos) << run.err;
+  StopLogger(Path("bus.lcm"));
+
+  const std::vector<LogEvent> expected = ReadEvents(Path("fast.lcm"), channels);
+  const std::vector<LogEvent> recorded = ReadEvents(Path("bus.lcm"), channels);
+  // 6 s: 121 odometry readings (20 Hz), 49 scan times (8 Hz) with three messages each.
+  ASSERT_EQ(expected.size(), 121u + 49u * 3u);
+  ASSERT_EQ(recorded.size(), expected.size());
+
+  std::map<std::string, int64_t> next_sequence;
+  int64_t offset = 0;
+  int64_t last_utime = 0;
+  for (size_t i = 0; i < recorded.size(); ++i) {
+    ASSERT_EQ(recorded[i].channel, expected[i].channel) << i;
+    int64_t utime = 0;
+    int64_t sequence = -1;
+    if (i == 0) {
+      int64_t ignored_utime = 0;
+      Unshift(recorded[0], 0, &ignored_utime, &sequence);
+      offset = ignored_utime - kEpoch;  // live: first message at the wall clock
+      EXPECT_GT(offset, 0);
+    }
+    const std::vector<uint8_t> unshifted = Unshift(recorded[i], offset, &utime, &sequence);
+    EXPECT_GE(utime, last_utime) << i;
+    last_utime = utime;
+    if (sequence >= 0) {
+      EXPECT_EQ(sequence, next_sequence[recorded[i].channel]) << recorded[i].channel;
+      next_sequence[recorded[i].channel] = sequence + 1;
+    }
+    EXPECT_TRUE(unshifted == expected[i].data) << "message " << i << " on " << recorded[i].channel;
+  }
+}
+
+TEST_F(WorldLcmTest, LogplayerPlaysAFastModeLog) {
+  const ProcessResult made = RunProcess(
+      {kWorld, "--scenario", "rplidar-a2", "--duration", "3", "--log", Path("fast.lcm")}, dir_.string());
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  StartLogger(Path("bus.lcm"));
+  const ProcessResult played =
+      RunProcess({"lcm-logplayer", "--speed=5", "--lcm-url=" + kUrl, Path("fast.lcm")}, dir_.string());
+  ASSERT_EQ(played.exit_code, 0) << played.err;
+  StopLogger(Path("bus.lcm"));
+  const std::vector<std::string> channels = {"ODOMETRY", "GROUND_TRUTH", "LASER_SCAN"};
+  const std::vector<LogEvent> expected = ReadEvents(Path("fast.lcm"), channels);
+  const std::vector<LogEvent> recorded = ReadEvents(Path("bus.lcm"), channels);
+  EXPECT_EQ(expected.size(), 61u + 31u + 31u);
+  ASSERT_EQ(recorded.size(), expected.size());
+  for (size_t i = 0; i < expected.size(); ++i) {
+    EXPECT_EQ(recorded[i].channel, expected[i].channel);
+    EXPECT_TRUE(recorded[i].data == expected[i].data) << i;  // played as written
+  }
+}
+
+}  // namespace
+}  // namespace slammtt
