@@ -244,9 +244,14 @@ void P3dxRobotModel::HostDisconnected() {
   if (link_state_ != LinkState::kOpen) link_state_ = LinkState::kWaitSync0;
 }
 
-void P3dxRobotModel::InjectGarbage(int bytes) {
+void P3dxRobotModel::InjectGarbage(int bytes, bool allow_header_byte) {
   std::uniform_int_distribution<int> byte(0, 255);
-  for (int i = 0; i < bytes; ++i) output_.push_back(static_cast<uint8_t>(byte(random_)));
+  for (int i = 0; i < bytes;) {
+    const uint8_t value = static_cast<uint8_t>(byte(random_));
+    if (!allow_header_byte && value == kP3dxHeader0) continue;
+    output_.push_back(value);
+    ++i;
+  }
 }
 
 void P3dxRobotModel::CorruptNextChecksums(int packets) { corrupt_checksums_ += packets; }

@@ -73,7 +73,9 @@ class P3dxRobotModel {
   void HostDisconnected();
 
   // Fault injection: each applies to what the robot sends from now on.
-  void InjectGarbage(int bytes);           // random bytes at once
+  // Random bytes at once; without 0xFA they can never start a packet, so a test can demand that
+  // not one of them is lost in a false frame.
+  void InjectGarbage(int bytes, bool allow_header_byte = true);
   void CorruptNextChecksums(int packets);  // flip a checksum bit of the next packets
   void DropNextBytes(int bytes);           // drop bytes from the middle of the next packet(s)
   void SendShortSips(int packets);         // valid frame, SIP cut after 12 payload bytes
