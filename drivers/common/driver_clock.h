@@ -16,6 +16,8 @@ class DriverClock {
   // Microseconds of a monotonic clock (CLOCK_MONOTONIC) for timeouts, rates and backoff:
   // never jumps when the wall clock is set.
   virtual int64_t NowMonotonicUs() = 0;
+  // Waits `duration_us` of the monotonic clock (a test clock just advances).
+  virtual void SleepUs(int64_t duration_us) = 0;
 };
 
 // The host's clocks.
@@ -23,6 +25,7 @@ class SystemDriverClock : public DriverClock {
  public:
   int64_t NowUtime() override;
   int64_t NowMonotonicUs() override;
+  void SleepUs(int64_t duration_us) override;
 };
 
 }  // namespace slammtt

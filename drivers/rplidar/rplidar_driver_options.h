@@ -1,0 +1,49 @@
+// Options of the RPLIDAR driver (`rplidar:` section of the stack configuration; --port,
+// --baud and --mode on the command line win). Defaults are the A2M8's (datasheet, SDK).
+#pragma once
+
+#include <string>
+
+#include "drivers/rplidar/rplidar_beams.h"
+#include "drivers/rplidar/rplidar_scan_decoder.h"
+#include "runtime/config.h"
+
+namespace slammtt {
+namespace rplidar {
+
+enum class ScanMode { kStandard, kExpress };
+// How the motor is started: auto asks GET_ACC_BOARD_FLAG (A2/A3) and uses SET_MOTOR_PWM when
+// the accessory board takes it, the DTR line otherwise; none leaves the motor alone.
+enum class MotorControl { kAuto, kDtr, kPwm, kNone };
+
+const char* ScanModeName(ScanMode mode);
+
+struct RplidarDriverOptions {
+  std::string port = "/dev/ttyUSB0";  // serial device path or tcp://HOST:PORT
+  int baud = 115200;                  // A2M8; A2M7/A2M12: 256000
+  ScanMode scan_mode = ScanMode::kExpress;  // express: 4000 samples/s (~0.9 deg at 10 Hz)
+  bool force_scan = false;            // standard mode: FORCE_SCAN instead of SCAN
+  MotorControl motor_control = MotorControl::kAuto;
+  int motor_pwm = kDefaultMotorPwm;   // 0..1023, with the accessory board
+  BeamConversionOptions beams;
+  StandardDecoderOptions decoder;
+  int connect_timeout_ms = 2000;      // TCP connect
+  int response_timeout_ms = 1000;     // a single reply (GET_INFO, GET_HEALTH, ...)
+  int first_data_timeout_ms = 5000;   // scan request to first data (motor spin-up)
+  int data_timeout_ms = 1000;         // silence while scanning before the link is reopened
+  int reset_wait_ms = 2000;           // RESET to the next request (the device reboots)
+  int reconnect_initial_ms = 200;     // backoff between reopen attempts, doubling ...
+  int reconnect_max_ms = 5000;        // ... up to this
+  double status_period_s = 1.0;       // LIDAR_STATUS period (also sent on every change)
+};
+
+// Reads the `rplidar:` section; ConfigError naming file, line and key on a bad value. The
+// caller calls CheckUnused() on the section afterwards.
+RplidarDriverOptions ReadRplidarDriverOptions(const Config& section);
+// "standard" / "express"; std::invalid_argument otherwise.
+ScanMode ParseScanMode(const std::string& text);
+// Throws std::invalid_argument with a one-line reason when options contradict each other.
+void CheckRplidarDriverOptions(const RplidarDriverOptions& options);
+
+}  // namespace rplidar
+}  // namespace slammtt

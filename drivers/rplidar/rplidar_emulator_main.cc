@@ -1,0 +1,193 @@
+// slammtt-rplidar-emulator: an RPLIDAR A2 on a pseudo-terminal or a TCP port, scanning a
+// simple room, with scheduled fault injection. Options in docs/rplidar.md.
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "drivers/rplidar/rplidar_emulator_server.h"
+#include "runtime/log.h"
+#include "runtime/process.h"
+#include "runtime/shutdown.h"
+
+namespace {
+
+using namespace slammtt;
+using namespace slammtt::rplidar;
+
+struct ScheduledFault {
+  std::string kind;   // garbage, bad-checksum, drop, silence, disconnect
+  double at_s = 0.0;
+  double argument = 0.0;
+  bool done = false;
+};
+
+// KIND@SECONDS[:ARG]
+ScheduledFault ParseFault(const std::string& text) {
+  const size_t at = text.find('@');
+  if (at == std::string::npos) throw UsageError("--fault " + text + ": expected KIND@SECONDS[:ARG]");
+  ScheduledFault fault;
+  fault.kind = text.substr(0, at);
+  const std::string rest = text.substr(at + 1);
+  const size_t colon = rest.find(':');
+  try {
+    size_t used = 0;
+    const std::string when = rest.substr(0, colon);
+    fault.at_s = std::stod(when, &used);
+    if (used != when.size() || fault.at_s < 0.0) throw std::invalid_argument("time");
+    if (colon != std::string::npos) {
+      const std::string argument = rest.substr(colon + 1);
+      fault.argument = std::stod(argument, &used);
+      if (used != argument.size() || fault.argument < 0.0) throw std::invalid_argument("arg");
+    }
+  } catch (const std::exception&) {
+    throw UsageError("--fault " + text + ": expected KIND@SECONDS[:ARG] with numbers >= 0");
+  }
+  const std::vector<std::string> kinds = {"garbage", "bad-checksum", "drop", "silence",
+                                          "disconnect"};
+  bool known = false;
+  for (const std::string& kind : kinds) known = known || kind == fault.kind;
+  if (!known) {
+    throw UsageError("--fault " + text +
+                     ": KIND is garbage, bad-checksum, drop, silence or disconnect");
+  }
+  if (colon == std::string::npos) {
+    fault.argument = (fault.kind == "silence" || fault.kind == "disconnect") ? 3.0
+                     : fault.kind == "garbage"                              ? 100.0
+                                                                            : 1.0;
+  }
+  return fault;
+}
+
+DeviceHealth ParseHealth(const std::string& text) {
+  DeviceHealth health;
+  if (text == "good") return health;
+  const size_t colon = text.find(':');
+  const std::string status = text.substr(0, colon);
+  if (status == "warning") {
+    health.status = HealthStatus::kWarning;
+  } else if (status == "error") {
+    health.status = HealthStatus::kError;
+  } else {
+    throw UsageError("--health " + text + ": expected good, warning:CODE or error:CODE");
+  }
+  if (colon != std::string::npos) {
+    try {
+      size_t used = 0;
+      const unsigned long code = std::stoul(text.substr(colon + 1), &used, 0);
+      if (used != text.size() - colon - 1 || code > 0xFFFF) throw std::out_of_range("code");
+      health.error_code = static_cast<uint16_t>(code);
+    } catch (const std::exception&) {
+      throw UsageError("--health " + text + ": CODE is a number 0..65535 (0x.. allowed)");
+    }
+  }
+  return health;
+}
+
+void WriteEndpointFile(const std::string& path, const std::string& endpoint) {
+  const std::string temporary = path + ".tmp";
+  {
+    std::ofstream file(temporary);
+    file << endpoint << "\n";
+    if (!file) throw std::runtime_error(path + ": cannot write the endpoint file");
+  }
+  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
+    throw std::runtime_error(path + ": cannot write the endpoint file");
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return ProcessMain(argc, argv, "slammtt-rplidar-emulator", [](int arg_count, char** args) {
+    CommandLine command_line(
+        "slammtt-rplidar-emulator", "[options]",
+        "Emulates an RPLIDAR A2 on a pseudo-terminal (default) or a TCP port: answers STOP, "
+        "RESET, SCAN, FORCE_SCAN, EXPRESS_SCAN (mode 0), GET_INFO, GET_HEALTH, GET_SAMPLERATE, "
+        "GET_ACC_BOARD_FLAG and SET_MOTOR_PWM, scanning a room with pillars and a box.");
+    command_line.AddOption("tcp", "PORT", "serve on this TCP port instead of a pty (0: any)");
+    command_line.AddOption("bind", "HOST", "TCP address to listen on (default 127.0.0.1)");
+    command_line.AddOption("link", "PATH", "keep a symlink to the pty here (stable across re-creation)");
+    command_line.AddOption("endpoint-file", "FILE",
+                           "write the endpoint a driver should open to FILE once ready");
+    command_line.AddOption("seed", "N", "noise seed (default 1)");
+    command_line.AddOption("rotation-hz", "HZ", "scan rate (default 10)");
+    command_line.AddOption("noise-m", "M", "range noise standard deviation (default 0.005)");
+    command_line.AddFlag("accessory-board", "answer GET_ACC_BOARD_FLAG with PWM motor control");
+    command_line.AddOption("health", "STATE", "good, warning:CODE or error:CODE (default good)");
+    command_line.AddFlag("health-persists", "a RESET does not clear the health problem");
+    command_line.AddRepeatedOption(
+        "fault", "KIND@S[:ARG]",
+        "at S seconds: garbage[:BYTES=100], bad-checksum[:PACKETS=1], drop[:PACKETS=1], "
+        "silence[:SECONDS=3], disconnect[:SECONDS=3]");
+    command_line.AddFlag("verbose", "print debug messages", 'v');
+    command_line.AddFlag("quiet", "print only warnings and errors", 'q');
+    if (!command_line.Parse(arg_count, args)) return 0;
+    if (command_line.Flag("verbose")) SetLogLevel(LogLevel::kDebug);
+    if (command_line.Flag("quiet")) SetLogLevel(LogLevel::kWarning);
+
+    RplidarDeviceOptions device;
+    if (auto seed = command_line.IntValue("seed")) device.seed = static_cast<uint64_t>(*seed);
+    if (auto hz = command_line.DoubleValue("rotation-hz")) {
+      if (*hz < 1.0 || *hz > 20.0) throw UsageError("--rotation-hz must be within 1..20");
+      device.rotation_hz = *hz;
+    }
+    if (auto noise = command_line.DoubleValue("noise-m")) {
+      if (*noise < 0.0 || *noise > 1.0) throw UsageError("--noise-m must be within 0..1");
+      device.range_noise_m = *noise;
+    }
+    device.accessory_board = command_line.Flag("accessory-board");
+    if (auto health = command_line.Value("health")) device.health = ParseHealth(*health);
+    device.health_persists_after_reset = command_line.Flag("health-persists");
+    std::vector<ScheduledFault> faults;
+    for (const std::string& text : command_line.Values("fault")) faults.push_back(ParseFault(text));
+
+    EmulatorTransportOptions transport;
+    if (auto port = command_line.IntValue("tcp")) {
+      if (*port < 0 || *port > 65535) throw UsageError("--tcp must be a port 0..65535");
+      transport.kind = EmulatorTransportOptions::Kind::kTcp;
+      transport.tcp_port = static_cast<int>(*port);
+      transport.bind_host = command_line.ValueOr("bind", "127.0.0.1");
+    } else {
+      if (command_line.Value("bind")) throw UsageError("--bind needs --tcp");
+      transport.link_path = command_line.ValueOr("link", "");
+    }
+
+    RplidarEmulatorServer server(device, transport);
+    const std::string endpoint = server.endpoint();
+    LogInfo() << "RPLIDAR A2 emulator on " << endpoint
+              << (device.accessory_board ? " (accessory board: motor by PWM)" : "");
+    if (auto file = command_line.Value("endpoint-file")) WriteEndpointFile(*file, endpoint);
+    server.Start();
+    const auto start = std::chrono::steady_clock::now();
+    while (!ShutdownRequested()) {
+      const double elapsed_s =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      for (ScheduledFault& fault : faults) {
+        if (fault.done || elapsed_s < fault.at_s) continue;
+        fault.done = true;
+        LogInfo() << "fault: " << fault.kind << " (" << fault.argument << ")";
+        if (fault.kind == "garbage") server.InjectGarbage(static_cast<size_t>(fault.argument));
+        if (fault.kind == "bad-checksum") server.CorruptPackets(static_cast<int>(fault.argument));
+        if (fault.kind == "drop") server.DropBytes(static_cast<int>(fault.argument));
+        if (fault.kind == "silence") server.Silence(static_cast<int>(fault.argument * 1000));
+        if (fault.kind == "disconnect") server.Disconnect(static_cast<int>(fault.argument * 1000));
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    server.Stop();
+    const EmulatorServerStats stats = server.stats();
+    LogInfo() << "stopped: " << stats.device.nodes_sent << " nodes, "
+              << stats.device.capsules_sent << " capsules, " << stats.device.resets
+              << " resets, " << stats.disconnects << " disconnects; scan "
+              << (stats.device.scanning ? "running" : "stopped") << ", motor "
+              << (stats.device.motor_running ? "running" : "stopped");
+    if (!transport.link_path.empty()) unlink(transport.link_path.c_str());
+    return 0;
+  });
+}

@@ -1,0 +1,339 @@
+// The driver's whole lifecycle against the device model, in virtual time: deterministic and
+// fast. Every fault of the issue: garbage, bad checksums and lost sync bits, dropped bytes,
+// silence, unplug and replug, health error (refused with its code) and warning (reset once),
+// and the clean stop.
+#include "drivers/rplidar/rplidar_driver.h"
+
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <memory>
+
+#include "rplidar_test_support.h"
+
+namespace slammtt {
+namespace rplidar {
+namespace {
+
+using testing_support::CountBeamsDisagreeingWithRoom;
+using testing_support::kUtimeBase;
+using testing_support::RecordingSink;
+using testing_support::VirtualClock;
+using testing_support::VirtualLink;
+
+struct Rig {
+  explicit Rig(RplidarDeviceOptions device_options = RplidarDeviceOptions(),
+               ScanMode mode = ScanMode::kExpress)
+      : device(device_options), model(device_options), sink(&clock) {
+    options.port = "virtual";
+    options.scan_mode = mode;
+  }
+
+  // Runs the driver until `done()`; `hook()` runs at every check (fault injection).
+  void Run(const std::function<bool()>& done, const std::function<void()>& hook = [] {}) {
+    RplidarDriver driver(
+        options,
+        [this]() -> std::unique_ptr<ByteStream> {
+          open_times_us.push_back(clock.now_us_);
+          if (unplugged) throw LinkError("virtual:rplidar: no such device");
+          return std::make_unique<VirtualLink>(&model, &clock, &unplugged);
+        },
+        &clock, &sink, "LASER_SCAN", "LIDAR_STATUS");
+    const int64_t limit_us = clock.now_us_ + 120 * 1000000LL;  // a broken driver cannot spin forever
+    driver.Run([&] {
+      hook();
+      return done() || clock.now_us_ > limit_us;
+    });
+    final_status = driver.status();
+  }
+
+  bool AnyStatus(const std::function<bool(const slammtt_msgs::lidar_status_t&)>& test) const {
+    for (const auto& status : sink.statuses()) {
+      if (test(status)) return true;
+    }
+    return false;
+  }
+
+  RplidarDeviceOptions device;
+  RplidarDeviceModel model;
+  VirtualClock clock;
+  RecordingSink sink;
+  RplidarDriverOptions options;
+  bool unplugged = false;
+  std::vector<int64_t> open_times_us;
+  slammtt_msgs::lidar_status_t final_status;
+};
+
+void ExpectScansMatchTheRoom(const Rig& rig, int min_beams, int max_beams) {
+  const auto scans = rig.sink.scans();
+  ASSERT_FALSE(scans.empty());
+  int64_t previous_utime = 0;
+  for (size_t i = 0; i < scans.size(); ++i) {
+    const auto& scan = scans[i];
+    EXPECT_EQ(scan.sequence, static_cast<int64_t>(i));
+    EXPECT_GE(scan.num_beams, min_beams) << "scan " << i;
+    EXPECT_LE(scan.num_beams, max_beams) << "scan " << i;
+    EXPECT_EQ(scan.angle_rad.size(), static_cast<size_t>(scan.num_beams));
+    EXPECT_EQ(scan.valid.size(), static_cast<size_t>(scan.num_beams));
+    EXPECT_EQ(CountBeamsDisagreeingWithRoom(scan, rig.device.room), 0) << "scan " << i;
+    EXPECT_GT(scan.utime, previous_utime);
+    previous_utime = scan.utime;
+  }
+}
+
+TEST(RplidarDriverTest, ExpressScansMatchTheRoomAndStatusDescribesTheDevice) {
+  Rig rig;
+  rig.Run([&] { return rig.sink.scan_count() >= 20; });
+  // 4000 samples/s at 10 Hz: 400 beams per revolution.
+  ExpectScansMatchTheRoom(rig, 398, 402);
+  const auto scans = rig.sink.scans();
+  int no_return = 0;
+  for (const auto& scan : scans) {
+    for (int8_t valid : scan.valid) no_return += valid ? 0 : 1;
+  }
+  EXPECT_GT(no_return, 0) << "the dark pane gives beams without a return";
+  const auto status = rig.sink.last_status();
+  ASSERT_TRUE(status);
+  EXPECT_EQ(status->model, 0x28);
+  EXPECT_EQ(status->firmware_major, 1);
+  EXPECT_EQ(status->firmware_minor, 29);
+  EXPECT_EQ(status->hardware, 7);
+  EXPECT_EQ(status->serial_number, "5EA13C001D429B278064C31107F2382A");
+  EXPECT_EQ(int{status->health}, int{slammtt_msgs::lidar_status_t::HEALTH_GOOD});
+  EXPECT_EQ(status->scan_mode, "express");
+  EXPECT_TRUE(rig.AnyStatus([](const auto& s) { return s.state == "scanning"; }));
+  EXPECT_EQ(rig.final_status.state, "stopped");
+  EXPECT_EQ(rig.final_status.resyncs, 0);
+  EXPECT_EQ(rig.final_status.checksum_errors, 0);
+  EXPECT_EQ(rig.final_status.reconnects, 0);
+  double last_scanning_rate_hz = 0.0;
+  for (const auto& s : rig.sink.statuses()) {
+    if (s.state == "scanning") last_scanning_rate_hz = s.scan_rate_hz;
+  }
+  EXPECT_NEAR(last_scanning_rate_hz, 10.0, 0.2);  // virtual time: the exact rotation
+}
+
+TEST(RplidarDriverTest, StandardScansMatchTheRoom) {
+  Rig rig(RplidarDeviceOptions(), ScanMode::kStandard);
+  rig.Run([&] { return rig.sink.scan_count() >= 20; });
+  // 2000 samples/s at 10 Hz: 200 beams per revolution.
+  ExpectScansMatchTheRoom(rig, 199, 201);
+  EXPECT_EQ(rig.final_status.scan_mode, "standard");
+  EXPECT_EQ(rig.model.stats().requests.count(kScan), 1u);
+}
+
+TEST(RplidarDriverTest, UtimeIsTheArrivalOfTheFirstSample) {
+  for (ScanMode mode : {ScanMode::kStandard, ScanMode::kExpress}) {
+    Rig rig(RplidarDeviceOptions(), mode);
+    rig.Run([&] { return rig.sink.scan_count() >= 10; });
+    const auto scans = rig.sink.scans();
+    const auto published = rig.sink.publish_utimes();
+    for (size_t i = 1; i < scans.size(); ++i) {
+      // Scan i-1 is published once the first sample of scan i is decoded: standard, when the
+      // node after it has arrived (0.5 ms later); express, when the capsule after the one
+      // holding it has arrived (8 ms later). Scan i's utime is when that first sample arrived.
+      const int64_t decode_lag_us = mode == ScanMode::kExpress ? 8000 : 500;
+      EXPECT_LE(scans[i].utime, published[i - 1]);
+      EXPECT_GE(scans[i].utime, published[i - 1] - decode_lag_us - 500) << ScanModeName(mode);
+      // and a revolution lasts 100 ms of device time, give or take the arrival granularity
+      // (a node, or a capsule of 32 samples = 8 ms).
+      EXPECT_NEAR(static_cast<double>(scans[i].utime - scans[i - 1].utime), 100000.0,
+                  static_cast<double>(decode_lag_us + 1000));
+      EXPECT_NEAR(static_cast<double>(scans[i].scan_duration_us), 100000.0, 10000.0);
+      EXPECT_GT(scans[i].utime, kUtimeBase);
+    }
+  }
+}
+
+TEST(RplidarDriverTest, HealthErrorIsRefusedWithItsCodeAfterOneReset) {
+  RplidarDeviceOptions device;
+  device.health = {HealthStatus::kError, 0x1234};
+  device.health_persists_after_reset = true;
+  Rig rig(device);
+  rig.options.reconnect_max_ms = 1000;
+  const int64_t end = rig.clock.now_us_ + 10 * 1000000LL;
+  rig.Run([&] { return rig.clock.now_us_ > end; });
+  const RplidarDeviceStats& stats = rig.model.stats();
+  EXPECT_EQ(stats.resets, 1) << "one reset per health problem, not one per retry";
+  EXPECT_EQ(stats.requests.count(kScan), 0u);
+  EXPECT_EQ(stats.requests.count(kExpressScan), 0u);
+  EXPECT_GE(stats.requests.at(kGetHealth), 5) << "health is checked again after each backoff";
+  EXPECT_FALSE(stats.motor_running) << "the motor never started";
+  EXPECT_EQ(rig.sink.scan_count(), 0u);
+  EXPECT_TRUE(rig.AnyStatus([](const auto& s) {
+    return s.state == "health_error" && int{s.health} == int{slammtt_msgs::lidar_status_t::HEALTH_ERROR} &&
+           s.health_error_code == 0x1234 &&
+           s.last_error.find("code 0x1234") != std::string::npos &&
+           s.last_error.find("refusing to scan") != std::string::npos;
+  }));
+}
+
+TEST(RplidarDriverTest, HealthErrorClearedByTheResetScans) {
+  RplidarDeviceOptions device;
+  device.health = {HealthStatus::kError, 0x0042};
+  Rig rig(device);
+  rig.Run([&] { return rig.sink.scan_count() >= 3; });
+  EXPECT_EQ(rig.model.stats().resets, 1);
+  EXPECT_EQ(int{rig.final_status.health}, int{slammtt_msgs::lidar_status_t::HEALTH_GOOD});
+  ExpectScansMatchTheRoom(rig, 398, 402);
+}
+
+TEST(RplidarDriverTest, HealthWarningResetsOnceAndScans) {
+  for (bool persists : {false, true}) {
+    RplidarDeviceOptions device;
+    device.health = {HealthStatus::kWarning, 0x0007};
+    device.health_persists_after_reset = persists;
+    Rig rig(device);
+    rig.Run([&] { return rig.sink.scan_count() >= 3; });
+    EXPECT_EQ(rig.model.stats().resets, 1) << "persists " << persists;
+    EXPECT_EQ(int{rig.final_status.health}, persists ? int{slammtt_msgs::lidar_status_t::HEALTH_WARNING}
+                                                : int{slammtt_msgs::lidar_status_t::HEALTH_GOOD});
+    EXPECT_GE(rig.sink.scan_count(), 3u);
+  }
+}
+
+// Injects a packet fault every `every` scans, `times` times, once scanning.
+void RunWithFault(Rig& rig, int times, const std::function<void(RplidarDeviceModel&)>& fault) {
+  int injected = 0;
+  size_t last_count = 0;
+  rig.Run([&] { return injected >= times && rig.sink.scan_count() >= last_count + 3; },
+          [&] {
+            const size_t count = rig.sink.scan_count();
+            if (injected < times && count >= 2 && count >= last_count + 2) {
+              fault(rig.model);
+              ++injected;
+              last_count = count;
+            }
+          });
+  EXPECT_EQ(injected, times);
+}
+
+TEST(RplidarDriverTest, GarbageBytesAreSkippedWithAResyncNeverTurnedIntoBeams) {
+  for (ScanMode mode : {ScanMode::kStandard, ScanMode::kExpress}) {
+    Rig rig(RplidarDeviceOptions(), mode);
+    RunWithFault(rig, 10, [](RplidarDeviceModel& model) { model.InjectGarbage(300); });
+    EXPECT_EQ(rig.model.stats().garbage_bytes, 3000);
+    EXPECT_GE(rig.final_status.resyncs, 10) << ScanModeName(mode);
+    EXPECT_EQ(rig.final_status.reconnects, 0);
+    ExpectScansMatchTheRoom(rig, mode == ScanMode::kExpress ? 300 : 150,
+                            mode == ScanMode::kExpress ? 402 : 201);
+  }
+}
+
+TEST(RplidarDriverTest, BadChecksumsAndLostSyncBitsAreSkippedAndCounted) {
+  for (ScanMode mode : {ScanMode::kStandard, ScanMode::kExpress}) {
+    Rig rig(RplidarDeviceOptions(), mode);
+    RunWithFault(rig, 10, [](RplidarDeviceModel& model) { model.CorruptPackets(1); });
+    EXPECT_EQ(rig.model.stats().corrupted_packets, 10);
+    if (mode == ScanMode::kExpress) {
+      EXPECT_GE(rig.final_status.checksum_errors, 10);
+    }
+    EXPECT_GE(rig.final_status.resyncs, 10) << ScanModeName(mode);
+    ExpectScansMatchTheRoom(rig, mode == ScanMode::kExpress ? 300 : 150,
+                            mode == ScanMode::kExpress ? 402 : 201);
+  }
+}
+
+TEST(RplidarDriverTest, DroppedBytesAreSkippedWithAResync) {
+  for (ScanMode mode : {ScanMode::kStandard, ScanMode::kExpress}) {
+    Rig rig(RplidarDeviceOptions(), mode);
+    RunWithFault(rig, 10, [](RplidarDeviceModel& model) { model.DropBytes(1); });
+    EXPECT_EQ(rig.model.stats().dropped_bytes, 10);
+    EXPECT_GE(rig.final_status.resyncs, 10) << ScanModeName(mode);
+    ExpectScansMatchTheRoom(rig, mode == ScanMode::kExpress ? 300 : 150,
+                            mode == ScanMode::kExpress ? 402 : 201);
+  }
+}
+
+TEST(RplidarDriverTest, SilentDeviceIsReportedAndReopened) {
+  Rig rig;
+  bool silenced = false;
+  int64_t silence_end = 0;
+  size_t scans_at_silence = 0;
+  rig.Run(
+      [&] { return silenced && rig.clock.now_us_ > silence_end && rig.sink.scan_count() >= scans_at_silence + 5; },
+      [&] {
+        if (!silenced && rig.sink.scan_count() >= 3) {
+          rig.model.Silence(3000000, rig.clock.now_us_);
+          silence_end = rig.clock.now_us_ + 3000000;
+          scans_at_silence = rig.sink.scan_count();
+          silenced = true;
+        }
+      });
+  EXPECT_GE(rig.final_status.reconnects, 1);
+  EXPECT_TRUE(rig.AnyStatus([](const auto& s) {
+    return s.state == "reconnecting" && s.last_error.find("no valid scan data for 1000 ms") !=
+                                            std::string::npos;
+  }));
+  ExpectScansMatchTheRoom(rig, 398, 402);
+}
+
+TEST(RplidarDriverTest, UnpluggedDeviceIsReopenedWithBackoff) {
+  Rig rig;
+  bool pulled = false;
+  bool replugged = false;
+  int64_t replug_at = 0;
+  size_t scans_at_replug = 0;
+  rig.Run([&] { return replugged && rig.sink.scan_count() >= scans_at_replug + 5; },
+          [&] {
+            if (!pulled && rig.sink.scan_count() >= 3) {
+              rig.unplugged = true;
+              rig.model.PowerCycle(rig.clock.now_us_);
+              replug_at = rig.clock.now_us_ + 2000000;
+              pulled = true;
+            }
+            if (pulled && !replugged && rig.clock.now_us_ >= replug_at) {
+              rig.unplugged = false;
+              replugged = true;
+              scans_at_replug = rig.sink.scan_count();
+            }
+          });
+  // First open, then reopen attempts 200, 400, 800 ms apart while unplugged (plus the time the
+  // failing attempt itself took, none here), then the one that works.
+  ASSERT_GE(rig.open_times_us.size(), 5u);
+  EXPECT_EQ(rig.open_times_us[2] - rig.open_times_us[1], 400000);
+  EXPECT_EQ(rig.open_times_us[3] - rig.open_times_us[2], 800000);
+  EXPECT_GE(rig.final_status.reconnects, 4);
+  EXPECT_TRUE(rig.AnyStatus([](const auto& s) {
+    return s.state == "reconnecting" && !s.connected &&
+           s.last_error.find("no such device") != std::string::npos;
+  }));
+  EXPECT_EQ(rig.model.stats().resets, 0);
+  ExpectScansMatchTheRoom(rig, 398, 402);
+}
+
+TEST(RplidarDriverTest, StopEndsTheScanAndStopsTheMotor) {
+  for (bool accessory_board : {false, true}) {
+    RplidarDeviceOptions device;
+    device.accessory_board = accessory_board;
+    Rig rig(device);
+    rig.Run([&] {
+      if (rig.sink.scan_count() >= 3) {
+        EXPECT_TRUE(rig.model.stats().motor_running);
+        EXPECT_TRUE(rig.model.stats().scanning);
+        return true;
+      }
+      return false;
+    });
+    const RplidarDeviceStats& stats = rig.model.stats();
+    EXPECT_FALSE(stats.scanning);
+    EXPECT_FALSE(stats.motor_running) << "accessory board " << accessory_board;
+    EXPECT_EQ(stats.requests.at(kStop), 2) << "one at start, one at the end";
+    if (accessory_board) {
+      EXPECT_EQ(stats.last_request, kSetMotorPwm);
+      EXPECT_EQ(stats.pwm, 0);
+      EXPECT_EQ(stats.requests.at(kSetMotorPwm), 2);  // 660 to start, 0 to stop
+    } else {
+      ASSERT_TRUE(stats.host_dtr.has_value());
+      EXPECT_TRUE(*stats.host_dtr);
+      EXPECT_EQ(stats.last_request, kStop);
+      EXPECT_TRUE(stats.last_request_while_scanning);
+    }
+    EXPECT_EQ(rig.final_status.state, "stopped");
+    EXPECT_FALSE(rig.final_status.connected);
+  }
+}
+
+}  // namespace
+}  // namespace rplidar
+}  // namespace slammtt
