@@ -26,7 +26,7 @@ const SegmenterOptions& Checked(const SegmenterOptions& options) {
 
 }  // namespace
 
-double WrapAngle(double angle_rad) {
+double Segmenter::WrapBearing(double angle_rad) {
   if (angle_rad > -M_PI && angle_rad <= M_PI) return angle_rad;
   double a = angle_rad;
   if (a > M_PI && a <= 3.0 * M_PI) {
@@ -105,7 +105,7 @@ void Segmenter::CollectBeams(const ScanView& scan) {
       ++stats_.beams_out_of_range;
       continue;
     }
-    beams_.push_back(Beam{WrapAngle(angle), range, static_cast<int32_t>(i)});
+    beams_.push_back(Beam{WrapBearing(angle), range, static_cast<int32_t>(i)});
   }
   if (n < scan.num_beams) stats_.beams_non_finite += static_cast<int64_t>(scan.num_beams - n);
 }
@@ -282,7 +282,7 @@ void Segmenter::MakeFeature(const Cluster& c) {
   const double lateral = f * radius / centre.range_m;
   Feature feature;
   feature.range_m = centre.range_m;
-  feature.bearing_rad = WrapAngle(reference_bearing + centre.bearing_rad);
+  feature.bearing_rad = WrapBearing(reference_bearing + centre.bearing_rad);
   feature.width_m = width;
   feature.num_points = static_cast<int>(count);
   feature.radius_m = centre.radius_m;

@@ -83,6 +83,9 @@ class Segmenter {
   const std::vector<Feature>& MakeFeatures();
 
   const SegmentationStats& stats() const { return stats_; }
+  // An angle wrapped to (-pi, pi] (a member, so that it cannot clash with the other modules'
+  // free WrapAngle functions in namespace slammtt).
+  static double WrapBearing(double angle_rad);
   const SegmenterOptions& options() const { return options_; }
 
  private:
@@ -115,8 +118,5 @@ class Segmenter {
 
 // One-shot convenience: a Segmenter for one scan (allocates; use a Segmenter in loops).
 std::vector<Feature> SegmentScan(const ScanView& scan, const SegmenterOptions& options);
-
-// An angle wrapped to (-pi, pi].
-double WrapAngle(double angle_rad);
 
 }  // namespace slammtt

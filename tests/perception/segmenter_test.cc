@@ -145,7 +145,7 @@ TEST(SegmenterTest, DroppedBeamInsideAnObjectDoesNotSplitIt) {
   ASSERT_GT(hits.size(), 15u);
   // The object straddles the 0/2 pi seam of this scan: pick beams inside it by angle.
   std::sort(hits.begin(), hits.end(), [&](size_t a, size_t b) {
-    return WrapAngle(angles[a]) < WrapAngle(angles[b]);
+    return Segmenter::WrapBearing(angles[a]) < Segmenter::WrapBearing(angles[b]);
   });
   const size_t middle = hits[hits.size() / 2];
   scan.valid[middle] = 0;
@@ -156,7 +156,7 @@ TEST(SegmenterTest, DroppedBeamInsideAnObjectDoesNotSplitIt) {
   scan.range_m[middle] = kNaN;
   EXPECT_EQ(segmenter.Segment(scan.View()).size(), 1u);
   EXPECT_EQ(segmenter.stats().beams_non_finite, 1);
-  // Six consecutive drops (5.4 deg > max_beam_gap 5 deg): two features.
+  // Six consecutive drops (a 6.3-degree gap > max_beam_gap 2 deg): two features.
   for (int k = -3; k <= 2; ++k) {
     scan.valid[hits[static_cast<size_t>(static_cast<int>(hits.size() / 2) + k)]] = 0;
   }
@@ -426,10 +426,10 @@ TEST(SegmenterTest, AnglesAreWrapped) {
       EXPECT_NEAR(f[i].bearing_rad, reference[i].bearing_rad, 2e-5) << turns;
     }
   }
-  EXPECT_DOUBLE_EQ(WrapAngle(M_PI), M_PI);
-  EXPECT_DOUBLE_EQ(WrapAngle(-M_PI), M_PI);
-  EXPECT_NEAR(WrapAngle(3.0 * M_PI + 0.1), -M_PI + 0.1, 1e-12);
-  EXPECT_NEAR(WrapAngle(1e6), std::remainder(1e6, 2.0 * M_PI), 1e-9);
+  EXPECT_DOUBLE_EQ(Segmenter::WrapBearing(M_PI), M_PI);
+  EXPECT_DOUBLE_EQ(Segmenter::WrapBearing(-M_PI), M_PI);
+  EXPECT_NEAR(Segmenter::WrapBearing(3.0 * M_PI + 0.1), -M_PI + 0.1, 1e-12);
+  EXPECT_NEAR(Segmenter::WrapBearing(1e6), std::remainder(1e6, 2.0 * M_PI), 1e-9);
 }
 
 // Random junk: random angles (some NaN), random ranges (some negative, zero, huge, inf),
