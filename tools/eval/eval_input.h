@@ -1,0 +1,71 @@
+// What slammtt-eval takes from a log, as plain data (no LCM): ground truth, odometry and the
+// estimator's outputs, each in its own frame, plus the count of messages it had to reject.
+// Filled by ReadEvalInput (eval_log.h); scored by Evaluate (evaluation.h).
+#pragma once
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tools/metrics/classification_score.h"
+#include "tools/metrics/pose2.h"
+
+namespace slammtt {
+
+struct TruthObjectSample {
+  int64_t id = 0;
+  Eigen::Vector2d position_m = Eigen::Vector2d::Zero();  // world frame
+  Eigen::Vector2d velocity_mps = Eigen::Vector2d::Zero();
+  double radius_m = 0.0;
+  bool moving = false;   // CLASS_MOVING (it may stand still for a while)
+  bool visible = false;  // a feature of it was emitted at this scan
+};
+
+// GROUND_TRUTH at one scan time.
+struct TruthScan {
+  int64_t utime = 0;
+  Pose2 robot;
+  std::vector<TruthObjectSample> objects;
+};
+
+// One object of TRACKS, in the estimator's map frame.
+struct TrackSample {
+  int64_t id = 0;
+  Eigen::Vector2d position_m = Eigen::Vector2d::Zero();
+  Eigen::Vector2d velocity_mps = Eigen::Vector2d::Zero();
+  Eigen::Matrix2d position_covariance = Eigen::Matrix2d::Zero();
+  ObjectLabel label = ObjectLabel::kUndecided;
+  bool confirmed = false;
+};
+
+struct TrackScan {
+  int64_t utime = 0;
+  std::vector<TrackSample> tracks;
+};
+
+// A landmark of MAP, in the estimator's map frame.
+struct LandmarkSample {
+  int64_t id = 0;
+  Eigen::Vector2d position_m = Eigen::Vector2d::Zero();
+  Eigen::Matrix2d covariance = Eigen::Matrix2d::Zero();
+};
+
+struct EvalInput {
+  std::string source;                 // the log's path, for reports
+  std::vector<TruthScan> truth;       // sorted by utime, unique utimes
+  std::vector<TimedPose> odometry;    // odometry frame, sorted, unique
+  std::vector<TimedPose> estimate;    // POSE, map frame, sorted, unique
+  std::vector<TrackScan> tracks;      // sorted, unique
+  std::optional<std::vector<LandmarkSample>> final_map;  // the last MAP message
+  int64_t final_map_utime = 0;
+  // Messages per channel key ("ground_truth", "odometry", "pose", "tracks", "map") that were
+  // undecodable, carried NaN/inf or an unknown class, or repeated an earlier utime.
+  std::map<std::string, int64_t> rejected;
+  std::map<std::string, int64_t> accepted;
+};
+
+}  // namespace slammtt

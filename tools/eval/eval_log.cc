@@ -1,0 +1,169 @@
+#include "tools/eval/eval_log.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "runtime/lcm_io.h"
+#include "slammtt_msgs/ground_truth_t.hpp"
+#include "slammtt_msgs/map_t.hpp"
+#include "slammtt_msgs/odometry_t.hpp"
+#include "slammtt_msgs/pose_t.hpp"
+#include "slammtt_msgs/tracks_t.hpp"
+
+namespace slammtt {
+namespace {
+
+bool Finite(std::initializer_list<double> values) {
+  for (double v : values) {
+    if (!std::isfinite(v)) return false;
+  }
+  return true;
+}
+
+template <class T>
+bool AllFinite(const T* values, int count) {
+  for (int k = 0; k < count; ++k) {
+    if (!std::isfinite(values[k])) return false;
+  }
+  return true;
+}
+
+// Sorts by utime (stable: a repeated utime keeps the first message) and drops repeats.
+template <class T>
+int64_t SortUnique(std::vector<T>* items) {
+  std::stable_sort(items->begin(), items->end(),
+                   [](const T& a, const T& b) { return a.utime < b.utime; });
+  const auto end = std::unique(items->begin(), items->end(),
+                               [](const T& a, const T& b) { return a.utime == b.utime; });
+  const int64_t dropped = static_cast<int64_t>(items->end() - end);
+  items->erase(end, items->end());
+  return dropped;
+}
+
+}  // namespace
+
+EvalInput ReadEvalInput(const std::string& path, const Channels& channels, LogReadResult* read) {
+  EvalInput input;
+  input.source = path;
+  const std::string truth_channel = channels.Get("ground_truth");
+  const std::string odometry_channel = channels.Get("odometry");
+  const std::string pose_channel = channels.Get("pose");
+  const std::string tracks_channel = channels.Get("tracks");
+  const std::string map_channel = channels.Get("map");
+  for (const char* key : {"ground_truth", "odometry", "pose", "tracks", "map"}) {
+    input.rejected[key] = 0;
+    input.accepted[key] = 0;
+  }
+
+  *read = ForEachLogEvent(path, [&](const LogEventView& e) {
+    if (e.channel == truth_channel) {
+      slammtt_msgs::ground_truth_t msg{};
+      if (!Decode(e.data, e.size, &msg)) {
+        ++input.rejected["ground_truth"];
+        return;
+      }
+      bool ok = Finite({msg.robot_x_m, msg.robot_y_m, msg.robot_heading_rad});
+      TruthScan scan;
+      scan.utime = msg.utime;
+      scan.robot = Pose2{msg.robot_x_m, msg.robot_y_m, WrapAngle(msg.robot_heading_rad)};
+      for (const auto& o : msg.objects) {
+        ok = ok && Finite({o.x_m, o.y_m, o.vx_mps, o.vy_mps, o.radius_m}) &&
+             (o.object_class == slammtt_msgs::object_truth_t::CLASS_STATIC ||
+              o.object_class == slammtt_msgs::object_truth_t::CLASS_MOVING);
+        scan.objects.push_back(TruthObjectSample{
+            o.id, Eigen::Vector2d(o.x_m, o.y_m), Eigen::Vector2d(o.vx_mps, o.vy_mps), o.radius_m,
+            o.object_class == slammtt_msgs::object_truth_t::CLASS_MOVING, o.visible != 0});
+      }
+      for (size_t a = 0; ok && a < scan.objects.size(); ++a) {
+        for (size_t b = a + 1; b < scan.objects.size(); ++b) {
+          ok = ok && scan.objects[a].id != scan.objects[b].id;
+        }
+      }
+      if (!ok) {
+        ++input.rejected["ground_truth"];
+        return;
+      }
+      input.truth.push_back(std::move(scan));
+    } else if (e.channel == odometry_channel) {
+      slammtt_msgs::odometry_t msg{};
+      if (!Decode(e.data, e.size, &msg) || !Finite({msg.x_m, msg.y_m, msg.heading_rad})) {
+        ++input.rejected["odometry"];
+        return;
+      }
+      input.odometry.push_back({msg.utime, Pose2{msg.x_m, msg.y_m, WrapAngle(msg.heading_rad)}});
+    } else if (e.channel == pose_channel) {
+      slammtt_msgs::pose_t msg{};
+      if (!Decode(e.data, e.size, &msg) || !Finite({msg.x_m, msg.y_m, msg.heading_rad})) {
+        ++input.rejected["pose"];
+        return;
+      }
+      input.estimate.push_back({msg.utime, Pose2{msg.x_m, msg.y_m, WrapAngle(msg.heading_rad)}});
+    } else if (e.channel == tracks_channel) {
+      slammtt_msgs::tracks_t msg{};
+      if (!Decode(e.data, e.size, &msg)) {
+        ++input.rejected["tracks"];
+        return;
+      }
+      bool ok = true;
+      TrackScan scan;
+      scan.utime = msg.utime;
+      for (const auto& t : msg.tracks) {
+        ok = ok && Finite({t.x_m, t.y_m, t.vx_mps, t.vy_mps}) && AllFinite(t.covariance, 16) &&
+             t.object_class >= 0 && t.object_class <= 2;
+        TrackSample sample;
+        sample.id = t.id;
+        sample.position_m = Eigen::Vector2d(t.x_m, t.y_m);
+        sample.velocity_mps = Eigen::Vector2d(t.vx_mps, t.vy_mps);
+        sample.position_covariance << t.covariance[0], t.covariance[1], t.covariance[4],
+            t.covariance[5];
+        sample.label = static_cast<ObjectLabel>(t.object_class);
+        sample.confirmed = t.confirmed != 0;
+        scan.tracks.push_back(sample);
+      }
+      for (size_t a = 0; ok && a < scan.tracks.size(); ++a) {
+        for (size_t b = a + 1; b < scan.tracks.size(); ++b) {
+          ok = ok && scan.tracks[a].id != scan.tracks[b].id;
+        }
+      }
+      if (!ok) {
+        ++input.rejected["tracks"];
+        return;
+      }
+      input.tracks.push_back(std::move(scan));
+    } else if (e.channel == map_channel) {
+      slammtt_msgs::map_t msg{};
+      if (!Decode(e.data, e.size, &msg)) {
+        ++input.rejected["map"];
+        return;
+      }
+      bool ok = true;
+      std::vector<LandmarkSample> landmarks;
+      for (const auto& l : msg.landmarks) {
+        ok = ok && Finite({l.x_m, l.y_m}) && AllFinite(l.covariance, 4);
+        LandmarkSample sample;
+        sample.id = l.id;
+        sample.position_m = Eigen::Vector2d(l.x_m, l.y_m);
+        sample.covariance << l.covariance[0], l.covariance[1], l.covariance[2], l.covariance[3];
+        landmarks.push_back(sample);
+      }
+      if (!ok || (input.final_map && msg.utime < input.final_map_utime)) {
+        ++input.rejected["map"];
+        return;
+      }
+      ++input.accepted["map"];
+      input.final_map = std::move(landmarks);
+      input.final_map_utime = msg.utime;
+    }
+  });
+  input.rejected["ground_truth"] += SortUnique(&input.truth);
+  input.rejected["odometry"] += SortUnique(&input.odometry);
+  input.rejected["pose"] += SortUnique(&input.estimate);
+  input.rejected["tracks"] += SortUnique(&input.tracks);
+  input.accepted["ground_truth"] = static_cast<int64_t>(input.truth.size());
+  input.accepted["odometry"] = static_cast<int64_t>(input.odometry.size());
+  input.accepted["pose"] = static_cast<int64_t>(input.estimate.size());
+  input.accepted["tracks"] = static_cast<int64_t>(input.tracks.size());
+  return input;
+}
+
+}  // namespace slammtt

@@ -1,0 +1,263 @@
+#include "tools/eval/evaluation.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+#include <stdexcept>
+
+#include "tools/metrics/set_distance.h"
+
+namespace slammtt {
+namespace {
+
+void CheckOptions(const EvalOptions& o) {
+  if (!(o.match_threshold_m > 0.0) || !(o.ospa_cutoff_m > 0.0) || !(o.ospa_order >= 1.0) ||
+      !(o.gospa_alpha > 0.0 && o.gospa_alpha <= 2.0)) {
+    throw std::invalid_argument(
+        "evaluation options: thresholds must be positive, order >= 1, 0 < alpha <= 2");
+  }
+}
+
+// Pairs truth scans with estimates at exactly the same utime, anchors at the first pair.
+std::optional<TrajectoryResult> ScoreExactTimes(const std::vector<TruthScan>& truth,
+                                                const std::vector<TimedPose>& estimate) {
+  std::map<int64_t, Pose2> by_time;
+  for (const TimedPose& p : estimate) by_time[p.utime] = p.pose;
+  std::vector<PosePair> pairs;
+  for (const TruthScan& scan : truth) {
+    const auto it = by_time.find(scan.utime);
+    if (it != by_time.end()) pairs.push_back({scan.utime, scan.robot, it->second});
+  }
+  if (pairs.empty()) return std::nullopt;
+  TrajectoryResult result;
+  result.anchor_utime = pairs.front().utime;
+  result.anchor = AnchorAtFirstPair(&pairs);
+  result.error = EvaluateTrajectory(pairs);
+  for (const PosePair& p : pairs) result.anchored.push_back({p.utime, p.estimate});
+  return result;
+}
+
+// Pairs truth scans with the odometry interpolated at their times.
+std::optional<TrajectoryResult> ScoreInterpolated(const std::vector<TruthScan>& truth,
+                                                  const std::vector<TimedPose>& odometry) {
+  std::vector<PosePair> pairs;
+  for (const TruthScan& scan : truth) {
+    if (const auto pose = InterpolatePose(odometry, scan.utime)) {
+      pairs.push_back({scan.utime, scan.robot, *pose});
+    }
+  }
+  if (pairs.empty()) return std::nullopt;
+  TrajectoryResult result;
+  result.anchor_utime = pairs.front().utime;
+  result.anchor = AnchorAtFirstPair(&pairs);
+  result.error = EvaluateTrajectory(pairs);
+  for (const PosePair& p : pairs) result.anchored.push_back({p.utime, p.estimate});
+  return result;
+}
+
+std::string Count(int64_t n, const std::string& what) {
+  return std::to_string(n) + " " + what;
+}
+
+}  // namespace
+
+EvaluationReport Evaluate(const EvalInput& input, const EvalOptions& options) {
+  CheckOptions(options);
+  EvaluationReport report;
+  report.options = options;
+  report.source = input.source;
+  report.truth_scans = static_cast<int64_t>(input.truth.size());
+  for (const auto& [key, n] : input.rejected) {
+    if (n > 0) {
+      report.notes.push_back("rejected " + Count(n, key) +
+                             " messages (undecodable, non-finite, unknown class or repeated "
+                             "utime)");
+    }
+  }
+  if (input.truth.empty()) {
+    report.notes.push_back("no GROUND_TRUTH in the log: nothing can be scored");
+    return report;
+  }
+  report.first_utime = input.truth.front().utime;
+  report.last_utime = input.truth.back().utime;
+
+  // Truth for the pictures and the map score.
+  std::map<int64_t, std::vector<Eigen::Vector2d>> mover_paths;
+  std::map<int64_t, Eigen::Vector2d> static_last_seen;
+  std::map<int64_t, Eigen::Vector2d> static_any;
+  for (const TruthScan& scan : input.truth) {
+    report.truth_trajectory.push_back({scan.utime, scan.robot});
+    for (const TruthObjectSample& o : scan.objects) {
+      if (o.moving) {
+        mover_paths[o.id].push_back(o.position_m);
+      } else {
+        static_any[o.id] = o.position_m;
+        if (o.visible) static_last_seen[o.id] = o.position_m;
+      }
+    }
+  }
+  for (const auto& [id, path] : mover_paths) report.mover_paths.push_back(path);
+  for (const auto& [id, p] : static_any) {
+    if (static_last_seen.count(id) != 0) {
+      report.static_objects.push_back({id, static_last_seen.at(id)});
+    } else {
+      report.unseen_static_objects.push_back({id, p});
+    }
+  }
+
+  // Robot.
+  if (input.odometry.empty()) {
+    report.notes.push_back("no ODOMETRY in the log: no dead-reckoning comparison");
+  } else {
+    report.odometry = ScoreInterpolated(input.truth, input.odometry);
+    if (!report.odometry) {
+      report.notes.push_back("ODOMETRY does not cover any GROUND_TRUTH time");
+    }
+  }
+  if (input.estimate.empty()) {
+    report.notes.push_back("no POSE in the log (no estimator output): robot, map, tracking and "
+                           "classification not scored");
+  } else {
+    report.robot = ScoreExactTimes(input.truth, input.estimate);
+    if (!report.robot) {
+      report.notes.push_back("no POSE has the utime of a GROUND_TRUTH scan: estimator not scored");
+    } else if (report.robot->error.count < report.truth_scans) {
+      report.notes.push_back(Count(report.truth_scans - report.robot->error.count,
+                                   "GROUND_TRUTH scans have no POSE of the same utime"));
+    }
+  }
+  if (!report.robot) return report;
+  const Pose2 anchor = report.robot->anchor;
+
+  // Map.
+  if (!input.final_map) {
+    report.notes.push_back("no MAP in the log: map not scored");
+  } else {
+    std::vector<IdentifiedPoint> landmarks;
+    for (const LandmarkSample& l : *input.final_map) {
+      landmarks.push_back({l.id, TransformPoint(anchor, l.position_m)});
+    }
+    report.map = ScoreMap(landmarks, report.static_objects, report.mover_paths,
+                          options.match_threshold_m);
+    std::set<int64_t> matched;
+    for (const auto& [landmark, truth] : report.map->matches) matched.insert(landmark);
+    const std::set<int64_t> movers(report.map->mover_landmarks.begin(),
+                                   report.map->mover_landmarks.end());
+    for (const LandmarkSample& l : *input.final_map) {
+      AnchoredLandmark a;
+      a.id = l.id;
+      a.position_m = TransformPoint(anchor, l.position_m);
+      a.covariance = RotateCovariance(anchor, l.covariance);
+      a.kind = matched.count(l.id) != 0  ? AnchoredLandmark::Kind::kStatic
+               : movers.count(l.id) != 0 ? AnchoredLandmark::Kind::kMover
+                                         : AnchoredLandmark::Kind::kUnexplained;
+      report.landmarks.push_back(a);
+    }
+  }
+
+  // Tracking and classification.
+  if (input.tracks.empty()) {
+    report.notes.push_back("no TRACKS in the log: tracking and classification not scored");
+    return report;
+  }
+  std::map<int64_t, const TrackScan*> tracks_at;
+  for (const TrackScan& t : input.tracks) tracks_at[t.utime] = &t;
+  const int64_t window_begin = input.tracks.front().utime;
+  const int64_t window_end = input.tracks.back().utime;
+  TrackingResult tracking;
+  ClearMotAccumulator clear_mot(options.match_threshold_m);
+  ClassificationAccumulator classification(options.match_threshold_m);
+  std::map<int64_t, TrackPath> paths;
+  double ospa_sum = 0.0;
+  double ospa_loc_sum = 0.0;
+  double ospa_card_sum = 0.0;
+  double gospa_sum = 0.0;
+  for (const TruthScan& scan : input.truth) {
+    if (scan.utime < window_begin || scan.utime > window_end) continue;
+    const auto found = tracks_at.find(scan.utime);
+    TrackingScan row;
+    row.utime = scan.utime;
+    row.had_tracks_message = found != tracks_at.end();
+    if (!row.had_tracks_message) ++tracking.scans_without_tracks;
+
+    std::vector<IdentifiedPoint> truth_movers;
+    std::vector<Eigen::Vector2d> dont_care;
+    std::vector<TruthObject> truth_objects;
+    for (const TruthObjectSample& o : scan.objects) {
+      if (o.moving && o.visible) truth_movers.push_back({o.id, o.position_m});
+      if (o.moving && !o.visible) dont_care.push_back(o.position_m);
+      truth_objects.push_back({o.id, o.position_m,
+                               o.moving ? ObjectLabel::kMoving : ObjectLabel::kStatic,
+                               o.visible});
+    }
+    std::vector<IdentifiedPoint> hypotheses;
+    std::vector<LabelledTrack> labelled;
+    if (row.had_tracks_message) {
+      for (const TrackSample& t : found->second->tracks) {
+        if (!t.confirmed) continue;
+        const Eigen::Vector2d p = TransformPoint(anchor, t.position_m);
+        labelled.push_back({t.id, p, t.label});
+        if (t.label != ObjectLabel::kMoving) continue;
+        hypotheses.push_back({t.id, p});
+        TrackPath& path = paths[t.id];
+        path.id = t.id;
+        path.points.push_back(p);
+      }
+    }
+    const ClearMotFrame frame = clear_mot.AddFrame(truth_movers, hypotheses, dont_care);
+    classification.AddScan(scan.utime, truth_objects, labelled);
+
+    const std::set<int64_t> excused(frame.dont_care_hypotheses.begin(),
+                                    frame.dont_care_hypotheses.end());
+    PointSet truth_points;
+    PointSet track_points;
+    for (const IdentifiedPoint& p : truth_movers) truth_points.push_back(p.position_m);
+    for (const IdentifiedPoint& h : hypotheses) {
+      if (excused.count(h.id) == 0) track_points.push_back(h.position_m);
+    }
+    const OspaResult ospa =
+        Ospa(truth_points, track_points, options.ospa_cutoff_m, options.ospa_order);
+    const GospaResult gospa = Gospa(truth_points, track_points, options.ospa_cutoff_m,
+                                    options.ospa_order, options.gospa_alpha);
+    row.num_truth = frame.num_truth;
+    row.num_tracks = frame.num_hypotheses;
+    row.num_matches = frame.num_matches;
+    row.num_dont_care = frame.num_dont_care;
+    row.ospa_m = ospa.distance_m;
+    row.gospa_m = gospa.distance_m;
+    ospa_sum += ospa.distance_m;
+    ospa_loc_sum += ospa.localisation_m;
+    ospa_card_sum += ospa.cardinality_m;
+    gospa_sum += gospa.distance_m;
+    tracking.ospa_max_m = std::max(tracking.ospa_max_m, ospa.distance_m);
+    tracking.gospa_max_m = std::max(tracking.gospa_max_m, gospa.distance_m);
+    tracking.gospa_missed += gospa.num_missed;
+    tracking.gospa_false += gospa.num_false;
+    tracking.scans.push_back(row);
+  }
+  if (tracking.scans.empty()) {
+    report.notes.push_back("no GROUND_TRUTH scan within the time span of TRACKS");
+    return report;
+  }
+  const double n = static_cast<double>(tracking.scans.size());
+  tracking.ospa_mean_m = ospa_sum / n;
+  tracking.ospa_localisation_mean_m = ospa_loc_sum / n;
+  tracking.ospa_cardinality_mean_m = ospa_card_sum / n;
+  tracking.gospa_mean_m = gospa_sum / n;
+  tracking.clear_mot = clear_mot.Summary();
+  if (tracking.scans_without_tracks > 0) {
+    report.notes.push_back(Count(tracking.scans_without_tracks,
+                                 "GROUND_TRUTH scans within the TRACKS span have no TRACKS of "
+                                 "the same utime (scored as an empty output)"));
+  }
+  if (!tracking.clear_mot.mota) {
+    report.notes.push_back("no visible moving object in any scored scan: MOTA undefined");
+  }
+  report.tracking = tracking;
+  report.classification = classification.Summary();
+  for (auto& [id, path] : paths) report.track_paths.push_back(std::move(path));
+  return report;
+}
+
+}  // namespace slammtt

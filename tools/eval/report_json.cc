@@ -1,0 +1,256 @@
+#include "tools/eval/report_json.h"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+namespace slammtt {
+namespace {
+
+using nlohmann::json;
+
+template <class T>
+json OrNull(const std::optional<T>& value) {
+  return value ? json(*value) : json(nullptr);
+}
+
+const char* LabelName(ObjectLabel label) {
+  switch (label) {
+    case ObjectLabel::kStatic:
+      return "static";
+    case ObjectLabel::kMoving:
+      return "moving";
+    case ObjectLabel::kUndecided:
+      return "undecided";
+  }
+  return "undecided";
+}
+
+json TrajectoryJson(const TrajectoryResult& t) {
+  json per_scan = {{"utime", t.error.utime},
+                   {"position_error_m", t.error.position_error_m},
+                   {"heading_error_rad", t.error.heading_error_rad}};
+  return {{"anchor", {{"utime", t.anchor_utime},
+                      {"x_m", t.anchor.x_m},
+                      {"y_m", t.anchor.y_m},
+                      {"heading_rad", t.anchor.heading_rad}}},
+          {"scans", t.error.count},
+          {"ate_rmse_m", t.error.rmse_m},
+          {"ate_mean_m", t.error.mean_m},
+          {"ate_max_m", t.error.max_m},
+          {"ate_max_utime", t.error.max_utime},
+          {"final_position_error_m", t.error.final_position_error_m},
+          {"final_heading_error_rad", t.error.final_heading_error_rad},
+          {"heading_rmse_rad", t.error.heading_rmse_rad},
+          {"per_scan", per_scan}};
+}
+
+std::string Fixed(double value, int decimals) {
+  char text[64];
+  std::snprintf(text, sizeof(text), "%.*f", decimals, value);
+  return text;
+}
+
+template <class T>
+std::string FixedOr(const std::optional<T>& value, int decimals) {
+  return value ? Fixed(static_cast<double>(*value), decimals) : std::string("n/a");
+}
+
+}  // namespace
+
+const std::vector<std::string>& TopLevelMetricKeys() {
+  static const std::vector<std::string> keys = {
+      "ate_rmse_m",      "odometry_ate_rmse_m",  "ospa_mean_m",     "gospa_mean_m",
+      "mota",            "motp_m",               "id_switches",     "fragmentations",
+      "movers_in_static_map", "landmark_rmse_m", "static_recall",   "classification_accuracy"};
+  return keys;
+}
+
+json ReportToJson(const EvalInput& input, const EvaluationReport& report) {
+  json j;
+  j["ate_rmse_m"] = report.robot ? json(report.robot->error.rmse_m) : json(nullptr);
+  j["odometry_ate_rmse_m"] = report.odometry ? json(report.odometry->error.rmse_m) : json(nullptr);
+  j["ospa_mean_m"] = report.tracking ? json(report.tracking->ospa_mean_m) : json(nullptr);
+  j["gospa_mean_m"] = report.tracking ? json(report.tracking->gospa_mean_m) : json(nullptr);
+  j["mota"] = report.tracking ? OrNull(report.tracking->clear_mot.mota) : json(nullptr);
+  j["motp_m"] = report.tracking ? OrNull(report.tracking->clear_mot.motp_m) : json(nullptr);
+  j["id_switches"] =
+      report.tracking ? json(report.tracking->clear_mot.num_id_switches) : json(nullptr);
+  j["fragmentations"] =
+      report.tracking ? json(report.tracking->clear_mot.num_fragmentations) : json(nullptr);
+  j["movers_in_static_map"] =
+      report.map ? json(report.map->num_movers_in_static_map) : json(nullptr);
+  j["landmark_rmse_m"] = report.map ? OrNull(report.map->landmark_rmse_m) : json(nullptr);
+  j["static_recall"] = report.map ? OrNull(report.map->static_recall) : json(nullptr);
+  j["classification_accuracy"] =
+      report.classification ? OrNull(report.classification->accuracy) : json(nullptr);
+
+  json detail;
+  json channels;
+  for (const auto& [key, n] : input.accepted) channels[key]["accepted"] = n;
+  for (const auto& [key, n] : input.rejected) channels[key]["rejected"] = n;
+  detail["input"] = {{"log", report.source},
+                     {"ground_truth_scans", report.truth_scans},
+                     {"first_utime", report.first_utime},
+                     {"last_utime", report.last_utime},
+                     {"messages", channels}};
+  detail["options"] = {{"match_threshold_m", report.options.match_threshold_m},
+                       {"ospa_cutoff_m", report.options.ospa_cutoff_m},
+                       {"ospa_order", report.options.ospa_order},
+                       {"gospa_alpha", report.options.gospa_alpha}};
+  detail["robot"] = report.robot ? TrajectoryJson(*report.robot) : json(nullptr);
+  detail["odometry"] = report.odometry ? TrajectoryJson(*report.odometry) : json(nullptr);
+  if (report.map) {
+    const MapScore& m = *report.map;
+    json matches = json::array();
+    for (const auto& [landmark, truth] : m.matches) {
+      matches.push_back({{"landmark_id", landmark}, {"truth_id", truth}});
+    }
+    detail["map"] = {{"final_map_utime", input.final_map_utime},
+                     {"landmarks", m.num_landmarks},
+                     {"static_objects_ever_visible", m.num_static_truth},
+                     {"static_objects_never_visible",
+                      static_cast<int64_t>(report.unseen_static_objects.size())},
+                     {"matched", m.num_matched},
+                     {"static_recall", OrNull(m.static_recall)},
+                     {"landmark_rmse_m", OrNull(m.landmark_rmse_m)},
+                     {"landmark_max_error_m", m.landmark_max_error_m},
+                     {"movers_in_static_map", m.num_movers_in_static_map},
+                     {"mover_landmark_ids", m.mover_landmarks},
+                     {"unexplained_landmark_ids", m.unexplained_landmarks},
+                     {"matches", matches}};
+  } else {
+    detail["map"] = nullptr;
+  }
+  if (report.tracking) {
+    const TrackingResult& t = *report.tracking;
+    const ClearMotSummary& c = t.clear_mot;
+    json per_scan = {{"utime", json::array()},       {"ospa_m", json::array()},
+                     {"gospa_m", json::array()},     {"truth", json::array()},
+                     {"tracks", json::array()},      {"matches", json::array()},
+                     {"dont_care", json::array()}};
+    for (const TrackingScan& s : t.scans) {
+      per_scan["utime"].push_back(s.utime);
+      per_scan["ospa_m"].push_back(s.ospa_m);
+      per_scan["gospa_m"].push_back(s.gospa_m);
+      per_scan["truth"].push_back(s.num_truth);
+      per_scan["tracks"].push_back(s.num_tracks);
+      per_scan["matches"].push_back(s.num_matches);
+      per_scan["dont_care"].push_back(s.num_dont_care);
+    }
+    detail["tracking"] = {
+        {"scans", static_cast<int64_t>(t.scans.size())},
+        {"scans_without_tracks", t.scans_without_tracks},
+        {"ospa", {{"mean_m", t.ospa_mean_m},
+                  {"max_m", t.ospa_max_m},
+                  {"localisation_mean_m", t.ospa_localisation_mean_m},
+                  {"cardinality_mean_m", t.ospa_cardinality_mean_m}}},
+        {"gospa", {{"mean_m", t.gospa_mean_m},
+                   {"max_m", t.gospa_max_m},
+                   {"missed", t.gospa_missed},
+                   {"false", t.gospa_false}}},
+        {"clear_mot", {{"truth", c.num_truth},
+                       {"matches", c.num_matches},
+                       {"misses", c.num_misses},
+                       {"false_positives", c.num_false_positives},
+                       {"id_switches", c.num_id_switches},
+                       {"fragmentations", c.num_fragmentations},
+                       {"dont_care", c.num_dont_care},
+                       {"mota", OrNull(c.mota)},
+                       {"motp_m", OrNull(c.motp_m)}}},
+        {"per_scan", per_scan}};
+  } else {
+    detail["tracking"] = nullptr;
+  }
+  if (report.classification) {
+    const ClassificationSummary& s = *report.classification;
+    json objects = json::array();
+    for (const ObjectClassification& o : s.objects) {
+      objects.push_back({{"id", o.id},
+                         {"true_class", LabelName(o.true_class)},
+                         {"first_visible_utime", o.first_visible_utime},
+                         {"matched_scans", o.num_matched_scans},
+                         {"final_label", o.final_label ? json(LabelName(*o.final_label))
+                                                       : json("untracked")},
+                         {"delay_s", OrNull(o.delay_s)},
+                         {"correct", o.correct}});
+    }
+    json confusion;
+    const char* rows[kNumTrueClasses] = {"static", "moving"};
+    const char* cols[kNumFinalLabels] = {"static", "moving", "undecided", "untracked"};
+    for (int r = 0; r < kNumTrueClasses; ++r) {
+      for (int c = 0; c < kNumFinalLabels; ++c) confusion[rows[r]][cols[c]] = s.confusion[r][c];
+    }
+    detail["classification"] = {{"objects", objects},
+                                {"confusion_true_by_final", confusion},
+                                {"accuracy", OrNull(s.accuracy)},
+                                {"accuracy_of_tracked", OrNull(s.accuracy_of_tracked)},
+                                {"mean_delay_s", OrNull(s.mean_delay_s)},
+                                {"max_delay_s", OrNull(s.max_delay_s)}};
+  } else {
+    detail["classification"] = nullptr;
+  }
+  detail["notes"] = report.notes;
+  j["detail"] = detail;
+  return j;
+}
+
+std::string ReportSummaryText(const EvaluationReport& report) {
+  std::ostringstream out;
+  const double span_s = static_cast<double>(report.last_utime - report.first_utime) * 1e-6;
+  out << "evaluation of " << report.source << ": " << report.truth_scans
+      << " ground-truth scans, " << Fixed(span_s, 1) << " s\n";
+  out << "  robot:          ";
+  if (report.robot) {
+    const TrajectoryError& e = report.robot->error;
+    out << "ATE RMSE " << Fixed(e.rmse_m, 3) << " m, max " << Fixed(e.max_m, 3)
+        << " m, final heading error " << Fixed(e.final_heading_error_rad * 180.0 / M_PI, 2)
+        << " deg";
+  } else {
+    out << "n/a";
+  }
+  out << "\n  odometry:       ";
+  if (report.odometry) {
+    const TrajectoryError& e = report.odometry->error;
+    out << "ATE RMSE " << Fixed(e.rmse_m, 3) << " m, max " << Fixed(e.max_m, 3)
+        << " m, final heading error " << Fixed(e.final_heading_error_rad * 180.0 / M_PI, 2)
+        << " deg";
+  } else {
+    out << "n/a";
+  }
+  out << "\n  map:            ";
+  if (report.map) {
+    const MapScore& m = *report.map;
+    out << m.num_matched << " of " << m.num_static_truth << " static objects found (recall "
+        << FixedOr(m.static_recall, 3) << "), landmark RMSE " << FixedOr(m.landmark_rmse_m, 3)
+        << " m, " << m.num_movers_in_static_map << " movers in the static map, "
+        << m.num_unexplained << " other landmarks";
+  } else {
+    out << "n/a";
+  }
+  out << "\n  tracking:       ";
+  if (report.tracking) {
+    const TrackingResult& t = *report.tracking;
+    out << "OSPA mean " << Fixed(t.ospa_mean_m, 3) << " m, GOSPA mean " << Fixed(t.gospa_mean_m, 3)
+        << " m, MOTA " << FixedOr(t.clear_mot.mota, 3) << ", MOTP "
+        << FixedOr(t.clear_mot.motp_m, 3) << " m, " << t.clear_mot.num_id_switches
+        << " identity switches, " << t.clear_mot.num_fragmentations << " fragmentations";
+  } else {
+    out << "n/a";
+  }
+  out << "\n  classification: ";
+  if (report.classification) {
+    const ClassificationSummary& c = *report.classification;
+    int64_t correct = 0;
+    for (const ObjectClassification& o : c.objects) correct += o.correct ? 1 : 0;
+    out << correct << " of " << c.objects.size() << " objects labelled right (accuracy "
+        << FixedOr(c.accuracy, 3) << "), mean delay " << FixedOr(c.mean_delay_s, 2) << " s";
+  } else {
+    out << "n/a";
+  }
+  out << "\n";
+  for (const std::string& note : report.notes) out << "  note: " << note << "\n";
+  return out.str();
+}
+
+}  // namespace slammtt

@@ -1,0 +1,239 @@
+#include "tools/plots/eval_plots.h"
+
+#include <filesystem>
+#include <stdexcept>
+
+#include "tools/plots/svg_plot.h"
+
+namespace slammtt {
+namespace {
+
+constexpr int kMapWidthPx = 820;
+constexpr int kMapHeightPx = 700;
+
+const LineStyle kTruthStyle{"#111111", 2.0, "", 1.0};
+const LineStyle kOdometryStyle{"#ff7f0e", 1.6, "7 4", 1.0};
+const LineStyle kEstimateStyle{"#1f77b4", 1.6, "", 1.0};
+const LineStyle kMoverPathStyle{"#9a9a9a", 5.0, "", 0.45};
+
+std::vector<Eigen::Vector2d> Positions(const std::vector<TimedPose>& poses) {
+  std::vector<Eigen::Vector2d> out;
+  out.reserve(poses.size());
+  for (const TimedPose& p : poses) out.emplace_back(p.pose.x_m, p.pose.y_m);
+  return out;
+}
+
+std::vector<Eigen::Vector2d> Points(const std::vector<IdentifiedPoint>& objects) {
+  std::vector<Eigen::Vector2d> out;
+  for (const IdentifiedPoint& o : objects) out.push_back(o.position_m);
+  return out;
+}
+
+std::string Subtitle(const EvaluationReport& report) {
+  return report.source;
+}
+
+}  // namespace
+
+std::string TrajectorySvg(const EvaluationReport& report) {
+  SvgDocument doc(kMapWidthPx, kMapHeightPx);
+  PlotPanel panel(&doc, 0, 0, kMapWidthPx, kMapHeightPx - 16);
+  const auto truth = Positions(report.truth_trajectory);
+  const auto odometry = report.odometry ? Positions(report.odometry->anchored)
+                                        : std::vector<Eigen::Vector2d>{};
+  const auto estimate =
+      report.robot ? Positions(report.robot->anchored) : std::vector<Eigen::Vector2d>{};
+  panel.FitRange({truth, odometry, estimate}, true);
+  panel.DrawAxes("Robot trajectory", "x [m]", "y [m]");
+  panel.Polyline(truth, kTruthStyle);
+  panel.Polyline(odometry, kOdometryStyle);
+  panel.Polyline(estimate, kEstimateStyle);
+  if (!truth.empty()) panel.Dots({truth.front()}, 5, LineStyle{"#2ca02c"});
+  std::vector<LegendEntry> legend = {{"truth", kTruthStyle, false}};
+  if (report.odometry) {
+    legend.push_back({"odometry (ATE RMSE " + FormatNumber(report.odometry->error.rmse_m, 3) +
+                          " m)",
+                      kOdometryStyle, false});
+  }
+  if (report.robot) {
+    legend.push_back({"estimate (ATE RMSE " + FormatNumber(report.robot->error.rmse_m, 3) + " m)",
+                      kEstimateStyle, false});
+  }
+  legend.push_back({"start", LineStyle{"#2ca02c"}, true});
+  panel.Legend(legend);
+  if (truth.empty()) panel.Message("no ground truth in the log");
+  doc.Text(kMapWidthPx / 2.0, kMapHeightPx - 6, Subtitle(report), 10, "middle", "fill=\"#777777\"");
+  return doc.ToString();
+}
+
+std::string MapSvg(const EvaluationReport& report) {
+  SvgDocument doc(kMapWidthPx, kMapHeightPx);
+  PlotPanel panel(&doc, 0, 0, kMapWidthPx, kMapHeightPx - 16);
+  const auto truth = Positions(report.truth_trajectory);
+  std::vector<Eigen::Vector2d> landmark_points;
+  for (const AnchoredLandmark& l : report.landmarks) landmark_points.push_back(l.position_m);
+  panel.FitRange({truth, Points(report.static_objects), Points(report.unseen_static_objects),
+                  landmark_points},
+                 true);
+  panel.DrawAxes("Static map (2-sigma ellipses)", "x [m]", "y [m]");
+  for (const auto& path : report.mover_paths) panel.Polyline(path, kMoverPathStyle, 400);
+  panel.Polyline(truth, LineStyle{"#111111", 1.0, "3 3", 0.6});
+  const LineStyle static_truth{"#111111", 1.6};
+  const LineStyle unseen_truth{"#aaaaaa", 1.2};
+  panel.Crosses(Points(report.static_objects), 5, static_truth);
+  panel.Crosses(Points(report.unseen_static_objects), 4, unseen_truth);
+  const LineStyle good{"#1f77b4", 1.3};
+  const LineStyle mover{"#d62728", 1.6};
+  const LineStyle other{"#ff7f0e", 1.3};
+  for (const AnchoredLandmark& l : report.landmarks) {
+    const LineStyle& style = l.kind == AnchoredLandmark::Kind::kStatic  ? good
+                             : l.kind == AnchoredLandmark::Kind::kMover ? mover
+                                                                        : other;
+    panel.CovarianceEllipse(l.position_m, l.covariance, 2.0, style);
+    panel.Dots({l.position_m}, 2.2, style);
+  }
+  std::vector<LegendEntry> legend = {
+      {"true static object", static_truth, false},
+      {"landmark on a static object", good, true},
+      {"landmark on a mover's path", mover, true},
+      {"other landmark", other, true},
+      {"true mover paths", kMoverPathStyle, false}};
+  if (!report.unseen_static_objects.empty()) {
+    legend.insert(legend.begin() + 1, {"static object never seen", unseen_truth, false});
+  }
+  panel.Legend(legend);
+  if (!report.map) panel.Message("no MAP in the log");
+  std::string caption = Subtitle(report);
+  if (report.map) {
+    caption += ": " + std::to_string(report.map->num_matched) + "/" +
+               std::to_string(report.map->num_static_truth) + " static objects found, " +
+               std::to_string(report.map->num_movers_in_static_map) + " movers in the map";
+  }
+  doc.Text(kMapWidthPx / 2.0, kMapHeightPx - 6, caption, 10, "middle", "fill=\"#777777\"");
+  return doc.ToString();
+}
+
+std::string TracksSvg(const EvaluationReport& report) {
+  SvgDocument doc(kMapWidthPx, kMapHeightPx);
+  PlotPanel panel(&doc, 0, 0, kMapWidthPx, kMapHeightPx - 16);
+  const auto truth = Positions(report.truth_trajectory);
+  std::vector<std::vector<Eigen::Vector2d>> sets = report.mover_paths;
+  sets.push_back(truth);
+  for (const TrackPath& t : report.track_paths) sets.push_back(t.points);
+  panel.FitRange(sets, true);
+  panel.DrawAxes("Moving objects: tracks per identity over the true paths", "x [m]", "y [m]");
+  for (const auto& path : report.mover_paths) panel.Polyline(path, kMoverPathStyle, 600);
+  panel.Polyline(truth, LineStyle{"#111111", 1.2, "", 0.8});
+  for (const TrackPath& t : report.track_paths) {
+    const LineStyle style{IdentityColour(t.id), 1.4};
+    if (t.points.size() == 1) {
+      panel.Dots(t.points, 2.0, style);
+    } else {
+      panel.Polyline(t.points, style, 600);
+      panel.Dots({t.points.back()}, 2.5, style);
+    }
+  }
+  panel.Legend({{"true mover paths", kMoverPathStyle, false},
+                {"robot (truth)", LineStyle{"#111111", 1.2}, false},
+                {"confirmed moving tracks, one colour per identity", LineStyle{"#1f77b4", 1.4},
+                 false}});
+  if (!report.tracking) panel.Message("no TRACKS in the log");
+  std::string caption = Subtitle(report);
+  if (report.tracking) {
+    caption += ": " + std::to_string(report.track_paths.size()) + " track identities, " +
+               std::to_string(report.tracking->clear_mot.num_id_switches) + " identity switches";
+  }
+  doc.Text(kMapWidthPx / 2.0, kMapHeightPx - 6, caption, 10, "middle", "fill=\"#777777\"");
+  return doc.ToString();
+}
+
+std::string ErrorsSvg(const EvaluationReport& report) {
+  const int width = 900;
+  const int height = 640;
+  SvgDocument doc(width, height);
+  const double t0 = static_cast<double>(report.first_utime);
+  auto seconds = [&](int64_t utime) { return (static_cast<double>(utime) - t0) * 1e-6; };
+  const double t_end = std::max(seconds(report.last_utime), 1e-3);
+
+  PlotPanel top(&doc, 0, 0, width, height / 2.0);
+  std::vector<Eigen::Vector2d> estimate;
+  std::vector<Eigen::Vector2d> odometry;
+  if (report.robot) {
+    const TrajectoryError& e = report.robot->error;
+    for (size_t k = 0; k < e.utime.size(); ++k) {
+      estimate.emplace_back(seconds(e.utime[k]), e.position_error_m[k]);
+    }
+  }
+  if (report.odometry) {
+    const TrajectoryError& e = report.odometry->error;
+    for (size_t k = 0; k < e.utime.size(); ++k) {
+      odometry.emplace_back(seconds(e.utime[k]), e.position_error_m[k]);
+    }
+  }
+  double top_max = 0.1;
+  for (const auto* series : {&estimate, &odometry}) {
+    for (const Eigen::Vector2d& p : *series) top_max = std::max(top_max, p.y());
+  }
+  top.SetRange(0.0, t_end, 0.0, 1.08 * top_max, false);
+  top.DrawAxes("Robot position error", "time [s]", "error [m]");
+  top.Polyline(odometry, kOdometryStyle, 2000);
+  top.Polyline(estimate, kEstimateStyle, 2000);
+  std::vector<LegendEntry> top_legend;
+  if (report.odometry) top_legend.push_back({"odometry", kOdometryStyle, false});
+  if (report.robot) top_legend.push_back({"estimate", kEstimateStyle, false});
+  top.Legend(top_legend);
+  if (!report.robot && !report.odometry) top.Message("no estimate and no odometry in the log");
+
+  PlotPanel bottom(&doc, 0, height / 2.0, width, height / 2.0);
+  std::vector<Eigen::Vector2d> ospa;
+  std::vector<Eigen::Vector2d> gospa;
+  double bottom_max = report.options.ospa_cutoff_m;
+  if (report.tracking) {
+    for (const TrackingScan& s : report.tracking->scans) {
+      ospa.emplace_back(seconds(s.utime), s.ospa_m);
+      gospa.emplace_back(seconds(s.utime), s.gospa_m);
+      bottom_max = std::max(bottom_max, s.gospa_m);
+    }
+  }
+  bottom.SetRange(0.0, t_end, 0.0, 1.08 * bottom_max, false);
+  bottom.DrawAxes("Tracking error per scan (c = " + FormatNumber(report.options.ospa_cutoff_m, 1) +
+                      " m, p = " + FormatNumber(report.options.ospa_order, 0) + ")",
+                  "time [s]", "distance [m]");
+  const LineStyle ospa_style{"#2ca02c", 1.3};
+  const LineStyle gospa_style{"#9467bd", 1.1, "", 0.8};
+  bottom.Polyline(gospa, gospa_style, 2000);
+  bottom.Polyline(ospa, ospa_style, 2000);
+  if (report.tracking) {
+    bottom.Legend({{"OSPA (mean " + FormatNumber(report.tracking->ospa_mean_m, 3) + " m)",
+                    ospa_style, false},
+                   {"GOSPA (mean " + FormatNumber(report.tracking->gospa_mean_m, 3) + " m)",
+                    gospa_style, false}});
+  } else {
+    bottom.Message("no TRACKS in the log");
+  }
+  return doc.ToString();
+}
+
+std::vector<std::string> WriteEvaluationPlots(const EvaluationReport& report,
+                                              const std::string& directory) {
+  std::error_code error;
+  std::filesystem::create_directories(directory, error);
+  if (error) throw std::runtime_error(directory + ": cannot create directory: " + error.message());
+  std::vector<std::string> written;
+  const std::vector<std::pair<std::string, std::string>> files = {
+      {"trajectory.svg", TrajectorySvg(report)},
+      {"map.svg", MapSvg(report)},
+      {"tracks.svg", TracksSvg(report)},
+      {"errors.svg", ErrorsSvg(report)}};
+  for (const auto& [name, text] : files) {
+    const std::string path = directory + "/" + name;
+    std::FILE* f = std::fopen(path.c_str(), "wb");
+    if (f == nullptr) throw std::runtime_error(path + ": cannot create");
+    const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+    if (std::fclose(f) != 0 || !ok) throw std::runtime_error(path + ": write failed");
+    written.push_back(path);
+  }
+  return written;
+}
+
+}  // namespace slammtt

@@ -1,0 +1,332 @@
+#include "tools/plots/svg_plot.h"
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+namespace slammtt {
+namespace {
+
+constexpr double kAxisLeftPx = 58.0;
+constexpr double kAxisBottomPx = 42.0;
+constexpr double kTitlePx = 26.0;
+constexpr double kRightPx = 14.0;
+
+std::string StrokeAttributes(const LineStyle& style) {
+  std::string s = "stroke=\"" + style.colour + "\" stroke-width=\"" +
+                  FormatNumber(style.width_px, 2) + "\"";
+  if (!style.dash.empty()) s += " stroke-dasharray=\"" + style.dash + "\"";
+  if (style.opacity < 1.0) s += " stroke-opacity=\"" + FormatNumber(style.opacity, 2) + "\"";
+  return s;
+}
+
+}  // namespace
+
+std::string FormatNumber(double value, int decimals) {
+  char text[64];
+  std::snprintf(text, sizeof(text), "%.*f", decimals, value);
+  std::string s = text;
+  if (s == "-0" || s.find_first_not_of("-0.") == std::string::npos) {
+    // "-0.00" and "0.00" alike print as 0 with the same decimals
+    std::snprintf(text, sizeof(text), "%.*f", decimals, 0.0);
+    s = text;
+  }
+  return s;
+}
+
+std::vector<double> NiceTicks(double min, double max, int target_count) {
+  std::vector<double> ticks;
+  if (!(max > min) || !std::isfinite(min) || !std::isfinite(max) || target_count < 1) return ticks;
+  const double raw = (max - min) / target_count;
+  const double power = std::pow(10.0, std::floor(std::log10(raw)));
+  double step = power;
+  for (double m : {1.0, 2.0, 5.0, 10.0}) {
+    step = m * power;
+    if (step >= raw) break;
+  }
+  const double first = std::ceil(min / step - 1e-9) * step;
+  for (double t = first; t <= max + 1e-9 * step; t += step) {
+    ticks.push_back(std::abs(t) < 1e-12 * step ? 0.0 : t);
+    if (ticks.size() > 100) break;
+  }
+  return ticks;
+}
+
+std::string IdentityColour(int64_t id) {
+  static const char* palette[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd",
+                                  "#ff7f0e", "#17becf", "#8c564b", "#e377c2",
+                                  "#bcbd22", "#393b79", "#637939", "#843c39"};
+  const int64_t n = static_cast<int64_t>(sizeof(palette) / sizeof(palette[0]));
+  return palette[((id % n) + n) % n];
+}
+
+std::string EscapeXml(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+SvgDocument::SvgDocument(int width_px, int height_px)
+    : width_px_(width_px), height_px_(height_px) {}
+
+void SvgDocument::Add(const std::string& element) { elements_.push_back(element); }
+
+void SvgDocument::Text(double x_px, double y_px, const std::string& text, int size_px,
+                       const std::string& anchor, const std::string& extra) {
+  Add("<text x=\"" + FormatNumber(x_px, 1) + "\" y=\"" + FormatNumber(y_px, 1) +
+      "\" font-size=\"" + std::to_string(size_px) + "\" text-anchor=\"" + anchor + "\"" +
+      (extra.empty() ? "" : " " + extra) + ">" + EscapeXml(text) + "</text>");
+}
+
+std::string SvgDocument::ToString() const {
+  std::ostringstream out;
+  out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+      << "<svg xmlns=\"http://www.w3.org/2000/svg\" version=\"1.1\" width=\"" << width_px_
+      << "\" height=\"" << height_px_ << "\" viewBox=\"0 0 " << width_px_ << " " << height_px_
+      << "\" font-family=\"DejaVu Sans, Helvetica, Arial, sans-serif\">\n"
+      << "<rect x=\"0\" y=\"0\" width=\"" << width_px_ << "\" height=\"" << height_px_
+      << "\" fill=\"#ffffff\"/>\n";
+  for (const std::string& e : elements_) out << e << "\n";
+  out << "</svg>\n";
+  return out.str();
+}
+
+void SvgDocument::WriteFile(const std::string& path) const {
+  const std::string text = ToString();
+  std::FILE* f = std::fopen(path.c_str(), "wb");
+  if (f == nullptr) throw std::runtime_error(path + ": cannot create");
+  const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+  if (std::fclose(f) != 0 || !ok) throw std::runtime_error(path + ": write failed");
+}
+
+PlotPanel::PlotPanel(SvgDocument* document, double left_px, double top_px, double width_px,
+                     double height_px)
+    : document_(document),
+      left_px_(left_px),
+      top_px_(top_px),
+      width_px_(width_px),
+      height_px_(height_px),
+      inner_left_px_(left_px + kAxisLeftPx),
+      inner_top_px_(top_px + kTitlePx),
+      inner_width_px_(width_px - kAxisLeftPx - kRightPx),
+      inner_height_px_(height_px - kAxisBottomPx - kTitlePx) {
+  const std::string id = document_->NextId();
+  document_->Add("<clipPath id=\"" + id + "\"><rect x=\"" + FormatNumber(inner_left_px_, 1) +
+                 "\" y=\"" + FormatNumber(inner_top_px_, 1) + "\" width=\"" +
+                 FormatNumber(inner_width_px_, 1) + "\" height=\"" +
+                 FormatNumber(inner_height_px_, 1) + "\"/></clipPath>");
+  clip_attribute_ = "clip-path=\"url(#" + id + ")\"";
+}
+
+void PlotPanel::SetRange(double x_min, double x_max, double y_min, double y_max,
+                         bool equal_aspect) {
+  auto widen = [](double* lo, double* hi) {
+    if (!std::isfinite(*lo) || !std::isfinite(*hi)) {
+      *lo = 0.0;
+      *hi = 1.0;
+    }
+    if (*hi - *lo < 1e-9) {
+      *lo -= 0.5;
+      *hi += 0.5;
+    }
+  };
+  widen(&x_min, &x_max);
+  widen(&y_min, &y_max);
+  if (equal_aspect) {
+    const double scale = std::max((x_max - x_min) / inner_width_px_,
+                                  (y_max - y_min) / inner_height_px_);
+    const double cx = 0.5 * (x_min + x_max);
+    const double cy = 0.5 * (y_min + y_max);
+    x_min = cx - 0.5 * scale * inner_width_px_;
+    x_max = cx + 0.5 * scale * inner_width_px_;
+    y_min = cy - 0.5 * scale * inner_height_px_;
+    y_max = cy + 0.5 * scale * inner_height_px_;
+  }
+  x_min_ = x_min;
+  x_max_ = x_max;
+  y_min_ = y_min;
+  y_max_ = y_max;
+}
+
+void PlotPanel::FitRange(const std::vector<std::vector<Eigen::Vector2d>>& point_sets,
+                         bool equal_aspect) {
+  double x_min = std::numeric_limits<double>::infinity();
+  double y_min = x_min;
+  double x_max = -x_min;
+  double y_max = -x_min;
+  for (const auto& set : point_sets) {
+    for (const Eigen::Vector2d& p : set) {
+      if (!p.allFinite()) continue;
+      x_min = std::min(x_min, p.x());
+      x_max = std::max(x_max, p.x());
+      y_min = std::min(y_min, p.y());
+      y_max = std::max(y_max, p.y());
+    }
+  }
+  if (x_min > x_max) {
+    SetRange(0, 1, 0, 1, equal_aspect);
+    return;
+  }
+  const double mx = 0.05 * std::max(x_max - x_min, 1e-6);
+  const double my = 0.05 * std::max(y_max - y_min, 1e-6);
+  SetRange(x_min - mx, x_max + mx, y_min - my, y_max + my, equal_aspect);
+}
+
+Eigen::Vector2d PlotPanel::ToPixel(const Eigen::Vector2d& data) const {
+  return Eigen::Vector2d(
+      inner_left_px_ + (data.x() - x_min_) / (x_max_ - x_min_) * inner_width_px_,
+      inner_top_px_ + (y_max_ - data.y()) / (y_max_ - y_min_) * inner_height_px_);
+}
+
+void PlotPanel::DrawAxes(const std::string& title, const std::string& x_label,
+                         const std::string& y_label) {
+  SvgDocument& d = *document_;
+  const double right = inner_left_px_ + inner_width_px_;
+  const double bottom = inner_top_px_ + inner_height_px_;
+  for (double t : NiceTicks(x_min_, x_max_, 8)) {
+    const double x = ToPixel(Eigen::Vector2d(t, y_min_)).x();
+    d.Add("<line x1=\"" + FormatNumber(x, 1) + "\" y1=\"" + FormatNumber(inner_top_px_, 1) +
+          "\" x2=\"" + FormatNumber(x, 1) + "\" y2=\"" + FormatNumber(bottom, 1) +
+          "\" stroke=\"#e4e4e4\" stroke-width=\"1\"/>");
+    d.Text(x, bottom + 15, FormatNumber(t, std::abs(t - std::round(t)) < 1e-9 ? 0 : 1), 11,
+           "middle");
+  }
+  for (double t : NiceTicks(y_min_, y_max_, 6)) {
+    const double y = ToPixel(Eigen::Vector2d(x_min_, t)).y();
+    d.Add("<line x1=\"" + FormatNumber(inner_left_px_, 1) + "\" y1=\"" + FormatNumber(y, 1) +
+          "\" x2=\"" + FormatNumber(right, 1) + "\" y2=\"" + FormatNumber(y, 1) +
+          "\" stroke=\"#e4e4e4\" stroke-width=\"1\"/>");
+    d.Text(inner_left_px_ - 6, y + 4,
+           FormatNumber(t, std::abs(t - std::round(t)) < 1e-9 ? 0 : 2), 11, "end");
+  }
+  d.Add("<rect x=\"" + FormatNumber(inner_left_px_, 1) + "\" y=\"" +
+        FormatNumber(inner_top_px_, 1) + "\" width=\"" + FormatNumber(inner_width_px_, 1) +
+        "\" height=\"" + FormatNumber(inner_height_px_, 1) +
+        "\" fill=\"none\" stroke=\"#444444\" stroke-width=\"1\"/>");
+  d.Text(left_px_ + 0.5 * width_px_, top_px_ + 17, title, 14, "middle", "font-weight=\"bold\"");
+  d.Text(inner_left_px_ + 0.5 * inner_width_px_, bottom + 33, x_label, 12, "middle");
+  const double ly = inner_top_px_ + 0.5 * inner_height_px_;
+  const double lx = left_px_ + 14;
+  d.Text(lx, ly, y_label, 12, "middle",
+         "transform=\"rotate(-90 " + FormatNumber(lx, 1) + " " + FormatNumber(ly, 1) + ")\"");
+}
+
+void PlotPanel::Polyline(const std::vector<Eigen::Vector2d>& points, const LineStyle& style,
+                         size_t max_points) {
+  if (points.size() < 2) return;
+  const size_t step = std::max<size_t>(1, (points.size() + max_points - 1) / max_points);
+  std::string path;
+  bool pen_down = false;
+  for (size_t k = 0; k < points.size(); k += step) {
+    const size_t index = (k + step >= points.size()) ? points.size() - 1 : k;
+    if (!points[index].allFinite()) {
+      pen_down = false;
+      continue;
+    }
+    const Eigen::Vector2d p = ToPixel(points[index]);
+    path += (pen_down ? "L" : "M") + FormatNumber(p.x(), 1) + " " + FormatNumber(p.y(), 1);
+    pen_down = true;
+    if (index == points.size() - 1) break;
+  }
+  document_->Add("<path d=\"" + path + "\" fill=\"none\" " + StrokeAttributes(style) +
+                 " stroke-linejoin=\"round\" " + clip_attribute_ + "/>");
+}
+
+void PlotPanel::Dots(const std::vector<Eigen::Vector2d>& points, double radius_px,
+                     const LineStyle& style, bool filled) {
+  for (const Eigen::Vector2d& point : points) {
+    if (!point.allFinite()) continue;
+    const Eigen::Vector2d p = ToPixel(point);
+    document_->Add("<circle cx=\"" + FormatNumber(p.x(), 1) + "\" cy=\"" +
+                   FormatNumber(p.y(), 1) + "\" r=\"" + FormatNumber(radius_px, 1) + "\" " +
+                   (filled ? "fill=\"" + style.colour + "\" stroke=\"none\""
+                           : "fill=\"none\" " + StrokeAttributes(style)) +
+                   (style.opacity < 1.0 && filled
+                        ? " fill-opacity=\"" + FormatNumber(style.opacity, 2) + "\""
+                        : "") +
+                   " " + clip_attribute_ + "/>");
+  }
+}
+
+void PlotPanel::Crosses(const std::vector<Eigen::Vector2d>& points, double half_size_px,
+                        const LineStyle& style) {
+  for (const Eigen::Vector2d& point : points) {
+    if (!point.allFinite()) continue;
+    const Eigen::Vector2d p = ToPixel(point);
+    const std::string x0 = FormatNumber(p.x() - half_size_px, 1);
+    const std::string x1 = FormatNumber(p.x() + half_size_px, 1);
+    const std::string y0 = FormatNumber(p.y() - half_size_px, 1);
+    const std::string y1 = FormatNumber(p.y() + half_size_px, 1);
+    document_->Add("<path d=\"M" + x0 + " " + FormatNumber(p.y(), 1) + "H" + x1 + "M" +
+                   FormatNumber(p.x(), 1) + " " + y0 + "V" + y1 + "\" " +
+                   StrokeAttributes(style) + " " + clip_attribute_ + "/>");
+  }
+}
+
+void PlotPanel::CovarianceEllipse(const Eigen::Vector2d& centre, const Eigen::Matrix2d& covariance,
+                                  double sigma, const LineStyle& style) {
+  if (!centre.allFinite() || !covariance.allFinite()) return;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> solver(
+      0.5 * (covariance + covariance.transpose()));
+  const Eigen::Vector2d values = solver.eigenvalues().cwiseMax(0.0);
+  const Eigen::Vector2d major = solver.eigenvectors().col(1);
+  const double scale_x = inner_width_px_ / (x_max_ - x_min_);
+  const double scale_y = inner_height_px_ / (y_max_ - y_min_);
+  // In pixels the y axis points down: the angle changes sign. (Equal-aspect panels only, so
+  // one scale serves both radii.)
+  const double rx = std::max(0.5, sigma * std::sqrt(values(1)) * scale_x);
+  const double ry = std::max(0.5, sigma * std::sqrt(values(0)) * scale_y);
+  const double angle_deg = -std::atan2(major.y(), major.x()) * 180.0 / M_PI;
+  const Eigen::Vector2d c = ToPixel(centre);
+  document_->Add("<ellipse cx=\"" + FormatNumber(c.x(), 1) + "\" cy=\"" + FormatNumber(c.y(), 1) +
+                 "\" rx=\"" + FormatNumber(rx, 1) + "\" ry=\"" + FormatNumber(ry, 1) +
+                 "\" transform=\"rotate(" + FormatNumber(angle_deg, 1) + " " +
+                 FormatNumber(c.x(), 1) + " " + FormatNumber(c.y(), 1) + ")\" fill=\"none\" " +
+                 StrokeAttributes(style) + " " + clip_attribute_ + "/>");
+}
+
+void PlotPanel::Legend(const std::vector<LegendEntry>& entries) {
+  if (entries.empty()) return;
+  const double x = inner_left_px_ + 10;
+  double y = inner_top_px_ + 10;
+  size_t longest = 0;
+  for (const LegendEntry& e : entries) longest = std::max(longest, e.label.size());
+  const double box_width = 40.0 + 6.6 * static_cast<double>(longest);
+  document_->Add("<rect x=\"" + FormatNumber(x - 4, 1) + "\" y=\"" + FormatNumber(y - 4, 1) +
+                 "\" width=\"" + FormatNumber(box_width, 1) + "\" height=\"" +
+                 FormatNumber(16.0 * static_cast<double>(entries.size()) + 6, 1) +
+                 "\" fill=\"#ffffff\" fill-opacity=\"0.85\" stroke=\"#bbbbbb\"/>");
+  for (const LegendEntry& e : entries) {
+    const double cy = y + 7;
+    if (e.marker) {
+      document_->Add("<circle cx=\"" + FormatNumber(x + 11, 1) + "\" cy=\"" +
+                     FormatNumber(cy, 1) + "\" r=\"3.5\" fill=\"" + e.style.colour + "\"/>");
+    } else {
+      document_->Add("<line x1=\"" + FormatNumber(x, 1) + "\" y1=\"" + FormatNumber(cy, 1) +
+                     "\" x2=\"" + FormatNumber(x + 22, 1) + "\" y2=\"" + FormatNumber(cy, 1) +
+                     "\" " + StrokeAttributes(e.style) + "/>");
+    }
+    document_->Text(x + 28, cy + 4, e.label, 11);
+    y += 16;
+  }
+}
+
+void PlotPanel::Message(const std::string& text) {
+  document_->Text(inner_left_px_ + 0.5 * inner_width_px_, inner_top_px_ + 0.5 * inner_height_px_,
+                  text, 13, "middle", "fill=\"#888888\"");
+}
+
+}  // namespace slammtt

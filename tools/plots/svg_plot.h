@@ -1,0 +1,113 @@
+// A small SVG writer for the evaluation's pictures: a document of fixed pixel size holding plot
+// panels, each mapping data coordinates (metres, seconds) to pixels with axes, ticks, a grid and
+// a legend. Numbers are written with a fixed number of decimals, so the same data gives the same
+// bytes, and long polylines are decimated to keep files small. Only the SVG 1.1 basics every
+// browser and image viewer renders (path, circle, ellipse, line, rect, text).
+#pragma once
+
+#include <Eigen/Core>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace slammtt {
+
+struct LineStyle {
+  LineStyle(std::string colour_ = "#000000", double width_px_ = 1.5, std::string dash_ = "",
+            double opacity_ = 1.0)
+      : colour(std::move(colour_)), width_px(width_px_), dash(std::move(dash_)),
+        opacity(opacity_) {}
+  std::string colour;
+  double width_px;
+  std::string dash;  // SVG stroke-dasharray, e.g. "6 3"; empty for solid
+  double opacity;
+};
+
+struct LegendEntry {
+  std::string label;
+  LineStyle style;
+  bool marker = false;  // a dot instead of a line
+};
+
+class SvgDocument {
+ public:
+  SvgDocument(int width_px, int height_px);
+  // Raw elements in pixel coordinates; `attributes` is added verbatim.
+  void Add(const std::string& element);
+  void Text(double x_px, double y_px, const std::string& text, int size_px = 12,
+            const std::string& anchor = "start", const std::string& extra = "");
+  std::string ToString() const;
+  // Writes the document; throws std::runtime_error naming the path on failure.
+  void WriteFile(const std::string& path) const;
+
+  int width_px() const { return width_px_; }
+  int height_px() const { return height_px_; }
+  // A fresh element id ("c1", "c2", ...), for clip paths.
+  std::string NextId() { return "c" + std::to_string(++ids_); }
+
+ private:
+  int width_px_;
+  int height_px_;
+  int ids_ = 0;
+  std::vector<std::string> elements_;
+};
+
+// One plot area of a document. Data drawn into it is clipped to its inner box.
+class PlotPanel {
+ public:
+  // The panel covers the pixel box (left, top, width, height) of `document`, axes included.
+  PlotPanel(SvgDocument* document, double left_px, double top_px, double width_px,
+            double height_px);
+
+  // Data ranges. With `equal_aspect` one metre is the same length on both axes (maps); the
+  // ranges are widened to fill the panel. Call before drawing; empty or degenerate ranges are
+  // widened to a unit around their value.
+  void SetRange(double x_min, double x_max, double y_min, double y_max, bool equal_aspect);
+  // Fits the range to every point given (plus a margin of 5 %).
+  void FitRange(const std::vector<std::vector<Eigen::Vector2d>>& point_sets, bool equal_aspect);
+
+  void DrawAxes(const std::string& title, const std::string& x_label, const std::string& y_label);
+  void Polyline(const std::vector<Eigen::Vector2d>& points, const LineStyle& style,
+                size_t max_points = 1500);
+  void Dots(const std::vector<Eigen::Vector2d>& points, double radius_px, const LineStyle& style,
+            bool filled = true);
+  void Crosses(const std::vector<Eigen::Vector2d>& points, double half_size_px,
+               const LineStyle& style);
+  // The ellipse {x : (x - centre)^T C^-1 (x - centre) = sigma^2} of a 2x2 covariance.
+  void CovarianceEllipse(const Eigen::Vector2d& centre, const Eigen::Matrix2d& covariance,
+                         double sigma, const LineStyle& style);
+  void Legend(const std::vector<LegendEntry>& entries);
+  // A centred message inside the panel ("no estimator output").
+  void Message(const std::string& text);
+
+  Eigen::Vector2d ToPixel(const Eigen::Vector2d& data) const;
+
+ private:
+  SvgDocument* document_;
+  double left_px_;
+  double top_px_;
+  double width_px_;
+  double height_px_;
+  // Inner plotting box (inside the axes).
+  double inner_left_px_;
+  double inner_top_px_;
+  double inner_width_px_;
+  double inner_height_px_;
+  double x_min_ = 0.0;
+  double x_max_ = 1.0;
+  double y_min_ = 0.0;
+  double y_max_ = 1.0;
+  std::string clip_attribute_;  // clip-path="url(#...)" of the inner box
+};
+
+// "%.Nf" formatting used for every coordinate.
+std::string FormatNumber(double value, int decimals);
+// Ticks at 1, 2 or 5 times a power of ten, about `target_count` of them, within [min, max].
+std::vector<double> NiceTicks(double min, double max, int target_count);
+// A colour for an identity (a fixed palette of 12 distinguishable colours).
+std::string IdentityColour(int64_t id);
+// Escapes &, <, >, " for SVG text.
+std::string EscapeXml(const std::string& text);
+
+}  // namespace slammtt
