@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <thread>
@@ -199,6 +200,65 @@ TEST_F(WorldLcmTest, LogplayerPlaysAFastModeLog) {
     EXPECT_EQ(recorded[i].channel, expected[i].channel);
     EXPECT_TRUE(recorded[i].data == expected[i].data) << i;  // played as written
   }
+}
+
+struct TruthLog {
+  std::vector<slammtt_msgs::ground_truth_t> messages;
+};
+
+void OnTruth(const lcm::ReceiveBuffer* rbuf, const std::string&, TruthLog* log) {
+  slammtt_msgs::ground_truth_t m{};
+  if (Decode(rbuf->data, static_cast<int>(rbuf->data_size), &m)) log->messages.push_back(m);
+}
+
+TEST_F(WorldLcmTest, FollowCommandsDrivesTheRobotAndStopsWhenCommandsStop) {
+  TruthLog truth;
+  lcm_->subscribeFunction("GROUND_TRUTH", &OnTruth, &truth);
+  // Real time, 4 s: commands at 20 Hz during the first wall second only (after the world is
+  // up); the robot must move forward and then stop (0.5 s command timeout).
+  const pid_t world = StartProcess({kWorld, "--scenario", "rplidar-a2", "--duration", "4",
+                                    "--follow-commands", "--lcm-url", kUrl},
+                                   Path("world.out"), Path("world.err"));
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (truth.messages.empty() && std::chrono::steady_clock::now() < deadline) lcm_->handleTimeout(50);
+  ASSERT_FALSE(truth.messages.empty()) << ReadWholeFile(Path("world.err"));
+  slammtt_msgs::velocity_command_t command{};
+  command.linear_mps = 0.5;
+  command.angular_radps = 0.0;
+  const auto commands_end = std::chrono::steady_clock::now() + std::chrono::seconds(1);
+  while (std::chrono::steady_clock::now() < commands_end) {
+    lcm_->publish("VELOCITY_COMMAND", &command);
+    lcm_->handleTimeout(50);
+  }
+  bool exited = false;
+  while (!exited && std::chrono::steady_clock::now() < deadline) {
+    lcm_->handleTimeout(50);
+    int status = 0;
+    if (waitpid(world, &status, WNOHANG) == world) {
+      exited = true;
+      EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << ReadWholeFile(Path("world.err"));
+    }
+  }
+  if (!exited) {
+    kill(world, SIGKILL);
+    WaitProcess(world);
+    FAIL() << "slammtt-world did not end: " << ReadWholeFile(Path("world.err"));
+  }
+  for (int i = 0; i < 5; ++i) lcm_->handleTimeout(20);
+  ASSERT_GE(truth.messages.size(), 20u);
+  const slammtt_msgs::ground_truth_t& first = truth.messages.front();
+  const slammtt_msgs::ground_truth_t& last = truth.messages.back();
+  EXPECT_EQ(first.robot_linear_mps, 0.0);  // stands until commanded
+  bool drove = false;
+  for (const auto& m : truth.messages) drove = drove || m.robot_linear_mps == 0.5;
+  EXPECT_TRUE(drove);
+  EXPECT_EQ(last.robot_linear_mps, 0.0);  // stopped after the commands stopped
+  // About 1 s of commands plus up to the 0.5 s timeout at 0.5 m/s; the scenario's own waypoint
+  // motion (0.25 m/s) would not reach this.
+  const double travelled = std::hypot(last.robot_x_m - first.robot_x_m, last.robot_y_m - first.robot_y_m);
+  EXPECT_GT(travelled, 0.3);
+  EXPECT_LT(travelled, 1.0);
+  EXPECT_NEAR(last.robot_heading_rad, 0.0, 1e-9);
 }
 
 }  // namespace
