@@ -1,0 +1,82 @@
+// What slammtt-launch starts: the `robot:` section of the robot's stack configuration, read into
+// a plan. Pure (no processes, no files): the supervisor (supervisor.h) carries it out.
+//
+//   robot:
+//     log_directory: /var/log/slammtt   # {log_file} = <dir>/slammtt-YYYYmmdd-HHMMSS.lcm
+//     stop_grace_s: 5.0                  # SIGTERM, then SIGKILL after this long
+//     max_restarts: 5                    # restarts in a row before giving up on a process
+//     restart_initial_s: 1.0             # backoff: 1, 2, 4, ... s, at most restart_max_s
+//     restart_max_s: 30.0
+//     restart_reset_after_s: 60.0        # a run this long forgets the earlier failures
+//     on_give_up: stop_all               # or keep_running
+//     processes:
+//       - name: logger
+//         program: lcm-logger
+//         args: ["--quiet", "--lcm-url={lcm_url}", "{log_file}"]
+//         pass_config: false
+//         stop_last: true
+//       - name: p3dx
+//         program: slammtt-p3dx            # gets --config <this file> before its args
+//
+// Arguments may use {config} (the configuration file, absolute), {lcm_url} (the bus of the
+// `lcm:` section or the default), {log_directory} and {log_file} (a new timestamped name at
+// every start of the process). Unknown keys and unknown {names} are configuration errors.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "runtime/config.h"
+
+namespace slammtt {
+
+enum class RestartMode {
+  kOnFailure,  // restart after a non-zero exit or a signal (default)
+  kAlways,     // restart after any exit
+  kNever,
+};
+
+struct ProcessSpec {
+  std::string name;                // [A-Za-z0-9_-]+, unique; the prefix of its output lines
+  std::string program;             // as configured: a path, or a name looked up (see supervisor.h)
+  std::vector<std::string> args;   // unexpanded
+  bool pass_config = true;         // "--config FILE" before args
+  bool stop_last = false;          // stopped after every other process (the logger)
+  RestartMode restart = RestartMode::kOnFailure;
+};
+
+enum class GiveUpAction {
+  kStopAll,      // stop the whole stack and exit 1 (default: a robot without a driver is blind)
+  kKeepRunning,  // leave the others running; exit 1 at the end
+};
+
+struct LaunchPlan {
+  std::vector<ProcessSpec> processes;  // in start order
+  std::string log_directory = "logs";
+  double stop_grace_s = 5.0;
+  int max_restarts = 5;
+  double restart_initial_s = 1.0;
+  double restart_max_s = 30.0;
+  double restart_reset_after_s = 60.0;
+  GiveUpAction on_give_up = GiveUpAction::kStopAll;
+};
+
+// Reads and checks the `robot:` section (ConfigError naming file, line and key). Runs
+// CheckUnused() on it.
+LaunchPlan ReadLaunchPlan(const Config& robot_section);
+
+// Replaces {config}, {lcm_url}, {log_directory}, {log_file} in `text`; std::invalid_argument
+// naming the first unknown or unterminated {...}. "{{" and "}}" stand for literal braces.
+std::string ExpandLaunchArgument(const std::string& text,
+                                 const std::map<std::string, std::string>& variables);
+
+// The full argument vector (without the program) of one start of `spec`.
+std::vector<std::string> LaunchArguments(const ProcessSpec& spec, const std::string& config_path,
+                                         const std::map<std::string, std::string>& variables);
+
+// "slammtt-20250131-142501.lcm" for a broken-down local time (year, month 1-12, day, hour,
+// minute, second).
+std::string LogFileName(int year, int month, int day, int hour, int minute, int second);
+
+}  // namespace slammtt
