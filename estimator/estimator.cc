@@ -276,10 +276,10 @@ void Estimator::Predict(int64_t utime, bool first_scan, StepCounts* counts) {
     const double velocity_sigma = options_.gap_mover_velocity_sigma_mps;
     InflateMoverVelocities(velocity_sigma * velocity_sigma * Eigen::Matrix2d::Identity(), &state_);
   }
-  if (!first_scan) {
-    ApplyRobotPrediction(motion.pose(), motion.jacobian(), motion.noise(), &state_);
-    PredictMovers(dt, options_.mover_acceleration_sigma_mps2, &state_);
-  }
+  // The map frame is the robot's pose at the first message, so the motion between the first
+  // odometry reading and the first scan counts too.
+  ApplyRobotPrediction(motion.pose(), motion.jacobian(), motion.noise(), &state_);
+  if (dt > 0.0) PredictMovers(dt, options_.mover_acceleration_sigma_mps2, &state_);
 }
 
 std::vector<PointMeasurement> Estimator::ValidateFeatures(

@@ -1,0 +1,39 @@
+// slammtt-estimator: ODOMETRY and FEATURES in; POSE, MAP, TRACKS, ESTIMATOR_STATUS and
+// STAGE_TIMING out (paper Algorithm 2). Thin: the work is in EstimatorStage
+// (estimator/estimator_stage.h), which slammtt-replay runs too.
+#include "estimator/estimator_stage.h"
+#include "runtime/command_line.h"
+#include "runtime/lcm_io.h"
+#include "runtime/log.h"
+#include "runtime/process.h"
+#include "runtime/stage.h"
+
+int main(int argc, char** argv) {
+  return slammtt::ProcessMain(argc, argv, "slammtt-estimator", [](int c, char** v) {
+    slammtt::CommandLine command_line(
+        "slammtt-estimator", "[options]",
+        "EKF SLAM with moving-object tracking and ML-RANSAC data association (paper Algorithm "
+        "2). Subscribes odometry and features; publishes pose, map, tracks, estimator_status "
+        "and stage_timing; options in the `estimator:` section of --config "
+        "(docs/estimator.md).");
+    slammtt::AddStandardOptions(&command_line);
+    if (!command_line.Parse(c, v)) return 0;
+    const slammtt::ProcessSettings settings = slammtt::LoadProcessSettings(command_line);
+    slammtt::EstimatorStage stage(settings);
+    const std::unique_ptr<lcm::LCM> lcm = slammtt::OpenLcm(settings.lcm_url);
+    slammtt::LiveStageRunner runner(lcm.get());
+    runner.Add(&stage);
+    slammtt::LogInfo() << "estimating from " << settings.channels.Get("odometry") << " and "
+                       << settings.channels.Get("features") << " on " << settings.lcm_url
+                       << " (mode "
+                       << slammtt::AssociationModeName(stage.estimator().options().mode) << ")";
+    runner.Run();
+    const slammtt::EstimatorCounters& n = stage.estimator().counters();
+    slammtt::LogInfo() << "stopped: " << n.scans_processed << " scans, " << n.odometry_processed
+                       << " odometry messages, " << n.features_rejected << " features rejected, "
+                       << n.messages_out_of_order << " messages out of order, "
+                       << stage.counters().messages_undecodable << " undecodable, "
+                       << runner.handler_errors() << " handler errors";
+    return 0;
+  });
+}

@@ -1,0 +1,86 @@
+// The estimator as a processing stage (runtime/stage.h): ODOMETRY and FEATURES in; POSE, MAP,
+// TRACKS, ESTIMATOR_STATUS and STAGE_TIMING out. The live process (slammtt-estimator) and
+// slammtt-replay run this same object; it depends on nothing live (no clock except
+// StageTimer's durations, no LCM handle), and its RANSAC generator is seeded from the
+// configuration, so a replay gives the same bytes every time.
+//
+// Per odometry_t: buffered for the next scan (Estimator::AddOdometry). Nothing is published,
+// except an estimator_status_t (with the odometry's utime) when the message is dropped.
+// Per features_t: one step of Algorithm 2 (Estimator::ProcessScan), then, all with the FEATURES
+// message's utime and in this order:
+//  - pose_t (`pose`): robot pose in the map frame (the start pose) and its covariance;
+//  - map_t (`map`): every confirmed STATIC object;
+//  - tracks_t (`tracks`): every object, with its class (STATIC / MOVING / UNDECIDED) and
+//    whether it is confirmed;
+//  - estimator_status_t (`estimator_status`): cumulative counters and the last unusual event;
+//  - stage_timing_t (`stage_timing`): stage "estimator", substages "predict", "gating",
+//    "level1", "ransac", "level2_3", "track_management"; counters "features" (received),
+//    "objects" (after the scan), "hypotheses" (RANSAC hypotheses of this scan).
+// A scan older than the last processed one is dropped: only estimator_status_t is published.
+// A message that cannot be decoded is counted (counters().messages_undecodable), logged (the
+// 1st, 10th, 100th, ... time) and nothing is published: it has no trustworthy utime.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "estimator/estimator.h"
+#include "runtime/config.h"
+#include "runtime/process.h"
+#include "runtime/stage.h"
+
+namespace slammtt {
+
+struct EstimatorStageOptions {
+  EstimatorOptions estimator;
+  uint64_t seed = 1;  // estimator.seed: seeds the RANSAC generator
+};
+
+// Reads the `estimator:` section of the stack configuration (keys and defaults in
+// docs/estimator.md); absent keys keep the defaults of EstimatorOptions. Throws ConfigError
+// naming file, line and key for a wrong type, a bad value or an unknown key (CheckUnused()).
+EstimatorStageOptions ReadEstimatorOptions(const Config& section);
+
+struct EstimatorStageCounters {
+  int64_t scans_published = 0;
+  int64_t messages_undecodable = 0;
+};
+
+class EstimatorStage : public Stage {
+ public:
+  EstimatorStage(const EstimatorStageOptions& options, const Channels& channels);
+  // Options from settings.config's `estimator:` section, channels from settings.channels.
+  explicit EstimatorStage(const ProcessSettings& settings);
+
+  std::string Name() const override { return "estimator"; }
+  std::vector<std::string> InputChannels() const override;
+  void Handle(const std::string& channel, const void* data, int size, MessageSink& out) override;
+
+  const Estimator& estimator() const { return estimator_; }
+  const EstimatorStageCounters& counters() const { return counters_; }
+
+ private:
+  void HandleOdometry(const void* data, int size, MessageSink& out);
+  void HandleFeatures(const void* data, int size, MessageSink& out);
+  void PublishStatus(int64_t utime, MessageSink& out);
+  void Undecodable(const std::string& what);
+
+  Estimator estimator_;
+  std::mt19937_64 rng_;
+  std::string odometry_channel_;
+  std::string features_channel_;
+  std::string pose_channel_;
+  std::string map_channel_;
+  std::string tracks_channel_;
+  std::string status_channel_;
+  std::string timing_channel_;
+  EstimatorStageCounters counters_;
+};
+
+// The factory slammtt-replay and slammtt-estimator use.
+std::unique_ptr<Stage> CreateEstimatorStage(const ProcessSettings& settings);
+
+}  // namespace slammtt

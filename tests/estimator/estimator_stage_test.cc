@@ -1,0 +1,246 @@
+// The stage adapter: configuration, messages in and out, timing, bad messages, determinism.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "estimator/estimator_stage.h"
+#include "slammtt_msgs/estimator_status_t.hpp"
+#include "slammtt_msgs/features_t.hpp"
+#include "slammtt_msgs/map_t.hpp"
+#include "slammtt_msgs/odometry_t.hpp"
+#include "slammtt_msgs/pose_t.hpp"
+#include "slammtt_msgs/stage_timing_t.hpp"
+#include "slammtt_msgs/tracks_t.hpp"
+
+namespace slammtt {
+namespace {
+
+struct Published {
+  std::string channel;
+  std::vector<uint8_t> bytes;
+};
+
+class RecordingSink : public MessageSink {
+ public:
+  void Publish(const std::string& channel, const void* data, int size) override {
+    const auto* bytes = static_cast<const uint8_t*>(data);
+    messages.push_back({channel, std::vector<uint8_t>(bytes, bytes + size)});
+  }
+  template <class Msg>
+  Msg Get(size_t k) const {
+    Msg message;
+    EXPECT_TRUE(Decode(messages.at(k).bytes.data(), static_cast<int>(messages.at(k).bytes.size()),
+                       &message));
+    return message;
+  }
+  std::vector<Published> messages;
+};
+
+std::vector<uint8_t> OdometryBytes(int64_t utime, double x_m, double linear_mps) {
+  slammtt_msgs::odometry_t m{};
+  m.utime = utime;
+  m.x_m = x_m;
+  m.linear_velocity_mps = linear_mps;
+  return Encode(m);
+}
+
+std::vector<uint8_t> FeaturesBytes(int64_t utime, const std::vector<std::pair<double, double>>& rb) {
+  slammtt_msgs::features_t m{};
+  m.utime = utime;
+  for (const auto& [range, bearing] : rb) {
+    slammtt_msgs::feature_t f{};
+    f.range_m = range;
+    f.bearing_rad = bearing;
+    f.range_var_m2 = 0.04;
+    f.bearing_var_rad2 = 0.0012;
+    m.features.push_back(f);
+  }
+  m.num_features = static_cast<int32_t>(m.features.size());
+  return Encode(m);
+}
+
+void Feed(EstimatorStage* stage, const std::string& channel, const std::vector<uint8_t>& bytes,
+          MessageSink& out) {
+  stage->Handle(channel, bytes.data(), static_cast<int>(bytes.size()), out);
+}
+
+TEST(EstimatorOptionsTest, DefaultsAndKeys) {
+  const EstimatorStageOptions defaults = ReadEstimatorOptions(Config());
+  EXPECT_EQ(defaults.seed, 1u);
+  EXPECT_EQ(defaults.estimator.mode, AssociationMode::kMlRansac);
+  EXPECT_DOUBLE_EQ(defaults.estimator.tracks.prune_unseen_s, 3.5);
+  EXPECT_DOUBLE_EQ(defaults.estimator.ransac.success_probability, 0.99);
+  const Config config = Config::FromString(
+      "estimator:\n"
+      "  mode: static_nn\n"
+      "  seed: 42\n"
+      "  sensor_forward_m: 0.1\n"
+      "  field_of_view_deg: 180\n"
+      "  bearing_sigma_deg: 1\n"
+      "  initial_pose: [1, 2, 90]\n"
+      "  level3: false\n"
+      "  max_hypotheses: 50\n",
+      "test.yaml");
+  const EstimatorStageOptions o = ReadEstimatorOptions(config.Child("estimator"));
+  EXPECT_EQ(o.seed, 42u);
+  EXPECT_EQ(o.estimator.mode, AssociationMode::kStaticNearestNeighbour);
+  EXPECT_DOUBLE_EQ(o.estimator.sensor.forward_m, 0.1);
+  EXPECT_NEAR(o.estimator.field_of_view_rad, M_PI, 1e-12);
+  EXPECT_NEAR(o.estimator.default_bearing_sigma_rad, M_PI / 180.0, 1e-12);
+  EXPECT_NEAR(o.estimator.initial_pose(2), M_PI / 2.0, 1e-12);
+  EXPECT_FALSE(o.estimator.level3);
+  EXPECT_EQ(o.estimator.ransac.max_hypotheses, 50);
+}
+
+TEST(EstimatorOptionsTest, MistakesNameTheKey) {
+  auto error = [](const std::string& yaml) -> std::string {
+    try {
+      ReadEstimatorOptions(Config::FromString(yaml, "stack.yaml").Child("estimator"));
+    } catch (const ConfigError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_NE(error("estimator:\n  gate_d11: 3\n").find("gate_d11"), std::string::npos);
+  EXPECT_NE(error("estimator:\n  mode: magic\n").find("mode"), std::string::npos);
+  EXPECT_NE(error("estimator:\n  max_hypotheses: 0\n").find("max_hypotheses"), std::string::npos);
+  EXPECT_NE(error("estimator:\n  gate_d1: 20\n  gate_d2: 10\n").find("gate_d2"), std::string::npos);
+  EXPECT_NE(error("estimator:\n  initial_pose: [1, 2]\n").find("initial_pose"), std::string::npos);
+  EXPECT_NE(error("estimator:\n  range_sigma_m: -1\n"), "");
+}
+
+TEST(EstimatorStageTest, PublishesEveryOutputWithTheFeaturesUtime) {
+  EstimatorStage stage(EstimatorStageOptions{}, Channels());
+  EXPECT_EQ(stage.Name(), "estimator");
+  EXPECT_EQ(stage.InputChannels(), (std::vector<std::string>{"ODOMETRY", "FEATURES"}));
+  RecordingSink out;
+  Feed(&stage, "ODOMETRY", OdometryBytes(0, 0.0, 0.5), out);
+  Feed(&stage, "ODOMETRY", OdometryBytes(100000, 0.05, 0.5), out);
+  EXPECT_TRUE(out.messages.empty());
+  Feed(&stage, "FEATURES", FeaturesBytes(100000, {{5.0, 0.2}, {7.0, -0.4}}), out);
+  ASSERT_EQ(out.messages.size(), 5u);
+  EXPECT_EQ(out.messages[0].channel, "POSE");
+  EXPECT_EQ(out.messages[1].channel, "MAP");
+  EXPECT_EQ(out.messages[2].channel, "TRACKS");
+  EXPECT_EQ(out.messages[3].channel, "ESTIMATOR_STATUS");
+  EXPECT_EQ(out.messages[4].channel, "STAGE_TIMING");
+  const auto pose = out.Get<slammtt_msgs::pose_t>(0);
+  EXPECT_EQ(pose.utime, 100000);
+  EXPECT_NEAR(pose.x_m, 0.05, 1e-9);
+  EXPECT_EQ(out.Get<slammtt_msgs::map_t>(1).utime, 100000);
+  EXPECT_EQ(out.Get<slammtt_msgs::map_t>(1).num_landmarks, 0);  // nothing static yet
+  const auto tracks = out.Get<slammtt_msgs::tracks_t>(2);
+  EXPECT_EQ(tracks.utime, 100000);
+  ASSERT_EQ(tracks.num_tracks, 2);
+  EXPECT_EQ(tracks.tracks[0].object_class, static_cast<int8_t>(slammtt_msgs::track_t::CLASS_UNDECIDED));
+  EXPECT_FALSE(tracks.tracks[0].confirmed);
+  EXPECT_EQ(tracks.tracks[0].first_seen_utime, 100000);
+  const auto status = out.Get<slammtt_msgs::estimator_status_t>(3);
+  EXPECT_EQ(status.utime, 100000);
+  EXPECT_EQ(status.scans_processed, 1);
+  EXPECT_EQ(status.odometry_processed, 2);
+  EXPECT_EQ(status.num_tentative, 2);
+  const auto timing = out.Get<slammtt_msgs::stage_timing_t>(4);
+  EXPECT_EQ(timing.utime, 100000);
+  EXPECT_EQ(timing.stage, "estimator");
+  EXPECT_EQ(timing.substage, (std::vector<std::string>{"predict", "gating", "level1", "ransac",
+                                                        "level2_3", "track_management"}));
+  EXPECT_EQ(timing.counter_name,
+            (std::vector<std::string>{"features", "objects", "hypotheses"}));
+  EXPECT_EQ(timing.counter_value[0], 2);
+  EXPECT_EQ(timing.counter_value[1], 2);
+}
+
+TEST(EstimatorStageTest, StaticObjectsReachTheMap) {
+  EstimatorStage stage(EstimatorStageOptions{}, Channels());
+  RecordingSink out;
+  for (int k = 0; k <= 60; ++k) {
+    const int64_t t = 100000 * k;
+    Feed(&stage, "ODOMETRY", OdometryBytes(t, 0.0, 0.0), out);
+    Feed(&stage, "FEATURES", FeaturesBytes(t, {{5.0, 0.2}, {7.0, -0.4}}), out);
+  }
+  const auto map = out.Get<slammtt_msgs::map_t>(out.messages.size() - 4);
+  ASSERT_EQ(map.num_landmarks, 2);
+  EXPECT_NEAR(map.landmarks[0].x_m, 5.0 * std::cos(0.2), 0.05);
+  EXPECT_NEAR(map.landmarks[0].y_m, 5.0 * std::sin(0.2), 0.05);
+  const auto tracks = out.Get<slammtt_msgs::tracks_t>(out.messages.size() - 3);
+  EXPECT_EQ(tracks.tracks[1].object_class, static_cast<int8_t>(slammtt_msgs::track_t::CLASS_STATIC));
+  EXPECT_TRUE(tracks.tracks[1].confirmed);
+  EXPECT_EQ(tracks.tracks[1].vx_mps, 0.0);
+  EXPECT_EQ(tracks.tracks[1].covariance[10], 0.0);  // no velocity states
+}
+
+TEST(EstimatorStageTest, BadMessagesAreCountedAndDroppedOnesReported) {
+  EstimatorStage stage(EstimatorStageOptions{}, Channels());
+  RecordingSink out;
+  const std::vector<uint8_t> garbage = {1, 2, 3, 4, 5};
+  Feed(&stage, "FEATURES", garbage, out);
+  Feed(&stage, "ODOMETRY", garbage, out);
+  std::vector<uint8_t> truncated = FeaturesBytes(5, {{5.0, 0.1}});
+  truncated.resize(truncated.size() - 3);
+  Feed(&stage, "FEATURES", truncated, out);
+  EXPECT_TRUE(out.messages.empty());
+  EXPECT_EQ(stage.counters().messages_undecodable, 3);
+  // Out-of-order scan: only a status message, with the dropped message's utime.
+  Feed(&stage, "FEATURES", FeaturesBytes(200000, {}), out);
+  out.messages.clear();
+  Feed(&stage, "FEATURES", FeaturesBytes(100000, {}), out);
+  ASSERT_EQ(out.messages.size(), 1u);
+  EXPECT_EQ(out.messages[0].channel, "ESTIMATOR_STATUS");
+  const auto status = out.Get<slammtt_msgs::estimator_status_t>(0);
+  EXPECT_EQ(status.utime, 100000);
+  EXPECT_EQ(status.messages_out_of_order, 1);
+  EXPECT_NE(status.last_event.find("dropped"), std::string::npos);
+  // A NaN odometry: a status message says so.
+  out.messages.clear();
+  Feed(&stage, "ODOMETRY", OdometryBytes(300000, std::nan(""), 0.0), out);
+  ASSERT_EQ(out.messages.size(), 1u);
+  EXPECT_NE(out.Get<slammtt_msgs::estimator_status_t>(0).last_event.find("not finite"),
+            std::string::npos);
+  // Messages on other channels are ignored.
+  out.messages.clear();
+  Feed(&stage, "LASER_SCAN", garbage, out);
+  EXPECT_TRUE(out.messages.empty());
+}
+
+TEST(EstimatorStageTest, SameMessagesSameBytes) {
+  auto run = [] {
+    EstimatorStageOptions options;
+    options.seed = 3;
+    EstimatorStage stage(options, Channels());
+    RecordingSink out;
+    for (int k = 0; k < 40; ++k) {
+      const int64_t t = 125000 * k;
+      const double walker = 0.1 * k;
+      Feed(&stage, "ODOMETRY", OdometryBytes(t, 0.02 * k, 0.16), out);
+      Feed(&stage, "FEATURES",
+           FeaturesBytes(t, {{5.0, 0.3}, {6.0, -0.2}, {4.0 + walker, 0.5 - 0.05 * walker},
+                             {4.3 + walker, 0.55 - 0.05 * walker}}),
+           out);
+    }
+    std::vector<Published> deterministic;
+    for (const Published& p : out.messages) {
+      if (p.channel != "STAGE_TIMING") deterministic.push_back(p);
+    }
+    return deterministic;
+  };
+  const std::vector<Published> a = run();
+  const std::vector<Published> b = run();
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t k = 0; k < a.size(); ++k) {
+    EXPECT_EQ(a[k].channel, b[k].channel);
+    EXPECT_EQ(a[k].bytes, b[k].bytes) << "message " << k;
+  }
+}
+
+TEST(EstimatorStageTest, FactoryReadsTheStackConfiguration) {
+  ProcessSettings settings;
+  settings.config = Config::FromString("estimator:\n  mode: ransac_all_pairs\n", "stack.yaml");
+  const std::unique_ptr<Stage> stage = CreateEstimatorStage(settings);
+  EXPECT_EQ(stage->Name(), "estimator");
+  EXPECT_EQ(static_cast<EstimatorStage*>(stage.get())->estimator().options().mode,
+            AssociationMode::kRansacAllPairs);
+}
+
+}  // namespace
+}  // namespace slammtt
