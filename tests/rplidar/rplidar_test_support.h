@@ -104,6 +104,12 @@ class RecordingSink : public MessageSink {
     std::lock_guard<std::mutex> lock(mutex_);
     return statuses_;
   }
+  void Clear() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    scans_.clear();
+    statuses_.clear();
+    publish_utimes_.clear();
+  }
   std::vector<int64_t> publish_utimes() const {
     std::lock_guard<std::mutex> lock(mutex_);
     return publish_utimes_;

@@ -1,0 +1,231 @@
+// slammtt-rplidar as a process against the emulator, through the code path of the robot:
+// libserialport on a pseudo-terminal (this program runs under tests/support/pty/pty-run) and a
+// TCP bridge; LCM inside a network namespace of its own. Scans, DTR and PWM motor control as
+// the emulator sees them, unplug and replug, faults on a real link, and the clean stop on
+// SIGTERM and SIGINT.
+#include <gtest/gtest.h>
+#include <stdlib.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <string>
+#include <thread>
+
+#include "child_process.h"
+#include "drivers/rplidar/rplidar_emulator_server.h"
+#include "rplidar_test_support.h"
+#include "runtime/lcm_io.h"
+
+namespace slammtt {
+namespace rplidar {
+namespace {
+
+using slammtt::testing_support::ChildProcess;
+using testing_support::CountBeamsDisagreeingWithRoom;
+using testing_support::RecordingSink;
+
+// Guards against a hang; never a measure of speed.
+constexpr int kGuardMs = 30000;
+
+class RplidarProcessTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    ASSERT_NE(getenv("SLAMMTT_IN_PTY_NS"), nullptr) << "run under pty-run (ctest does)";
+    lcm_ = OpenLcm(kDefaultLcmUrl);
+    lcm_->subscribeFunction(
+        "LASER_SCAN",
+        +[](const lcm::ReceiveBuffer* buffer, const std::string& channel, RecordingSink* sink) {
+          sink->Publish(channel, buffer->data, static_cast<int>(buffer->data_size));
+        },
+        &sink_);
+    lcm_->subscribeFunction(
+        "LIDAR_STATUS",
+        +[](const lcm::ReceiveBuffer* buffer, const std::string& channel, RecordingSink* sink) {
+          sink->Publish(channel, buffer->data, static_cast<int>(buffer->data_size));
+        },
+        &sink_);
+    char directory[] = "/tmp/slammtt-rplidar-test-XXXXXX";
+    ASSERT_NE(mkdtemp(directory), nullptr);
+    directory_ = directory;
+  }
+  void TearDown() override {
+    unlink((directory_ + "/lidar").c_str());
+    rmdir(directory_.c_str());
+  }
+
+  std::unique_ptr<ChildProcess> StartDriver(const std::string& port, const std::string& mode) {
+    return std::make_unique<ChildProcess>(std::vector<std::string>{
+        std::string(SLAMMTT_BIN_DIR) + "/slammtt-rplidar", "--port", port, "--mode", mode,
+        "--lcm-url", kDefaultLcmUrl});
+  }
+
+  // Handles LCM until `done()` or the guard expires; false on expiry.
+  bool HandleUntil(const std::function<bool()>& done) {
+    const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(kGuardMs);
+    while (!done()) {
+      if (std::chrono::steady_clock::now() > end) return false;
+      lcm_->handleTimeout(20);
+    }
+    return true;
+  }
+
+  bool WaitFor(const std::function<bool()>& done) {
+    const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(kGuardMs);
+    while (!done()) {
+      if (std::chrono::steady_clock::now() > end) return false;
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return true;
+  }
+
+  void ExpectBeamsAgreeWithRoom() {
+    const EmulatedRoom room = EmulatedRoom::Default();
+    for (const auto& scan : sink_.scans()) {
+      EXPECT_EQ(CountBeamsDisagreeingWithRoom(scan, room), 0) << "scan " << scan.sequence;
+    }
+  }
+
+  std::unique_ptr<lcm::LCM> lcm_;
+  RecordingSink sink_;
+  std::string directory_;
+};
+
+TEST_F(RplidarProcessTest, ExpressOverLibserialportPtyThenCleanStopOnSigterm) {
+  EmulatorTransportOptions transport;
+  transport.link_path = directory_ + "/lidar";
+  RplidarEmulatorServer emulator(RplidarDeviceOptions(), transport);
+  emulator.Start();
+  auto driver = StartDriver(transport.link_path, "express");
+  ASSERT_TRUE(HandleUntil([&] { return sink_.scan_count() >= 10; }));
+  // The motor turns because the driver cleared DTR through libserialport (the shim carries
+  // the line to the emulator).
+  EXPECT_TRUE(emulator.stats().device.motor_running);
+  EXPECT_EQ(emulator.stats().device.host_dtr, std::optional<bool>(false));
+  const auto status = sink_.last_status();
+  ASSERT_TRUE(status);
+  EXPECT_EQ(status->endpoint.rfind("serial:" + transport.link_path + "=/dev/pts/", 0), 0u)
+      << status->endpoint;
+  EXPECT_EQ(status->scan_mode, "express");
+
+  driver->Signal(SIGTERM);
+  const std::optional<int> exit_status = driver->Wait(kGuardMs);
+  ASSERT_TRUE(exit_status);
+  EXPECT_TRUE(WIFEXITED(*exit_status));
+  EXPECT_EQ(WEXITSTATUS(*exit_status), 0);
+  // The emulator saw the scan stopped and DTR asserted again: motor off.
+  ASSERT_TRUE(WaitFor([&] { return !emulator.stats().device.motor_running; }));
+  const auto device = emulator.stats().device;
+  EXPECT_FALSE(device.scanning);
+  EXPECT_EQ(device.requests.at(kStop), 2);
+  EXPECT_EQ(device.requests.at(kExpressScan), 1);
+  EXPECT_EQ(device.host_dtr, std::optional<bool>(true));
+  HandleUntil([&] { return sink_.last_status() && sink_.last_status()->state == "stopped"; });
+  EXPECT_EQ(sink_.last_status()->state, "stopped");
+  ExpectBeamsAgreeWithRoom();
+}
+
+TEST_F(RplidarProcessTest, StandardOverTcpWithAccessoryBoardStopsOnSigint) {
+  EmulatorTransportOptions transport;
+  transport.kind = EmulatorTransportOptions::Kind::kTcp;
+  RplidarDeviceOptions device_options;
+  device_options.accessory_board = true;
+  RplidarEmulatorServer emulator(device_options, transport);
+  emulator.Start();
+  auto driver = StartDriver(emulator.endpoint(), "standard");
+  ASSERT_TRUE(HandleUntil([&] { return sink_.scan_count() >= 10; }));
+  EXPECT_EQ(emulator.stats().device.pwm, 660);
+  EXPECT_TRUE(emulator.stats().device.motor_running);
+  driver->Signal(SIGINT);
+  const std::optional<int> exit_status = driver->Wait(kGuardMs);
+  ASSERT_TRUE(exit_status);
+  EXPECT_TRUE(WIFEXITED(*exit_status));
+  EXPECT_EQ(WEXITSTATUS(*exit_status), 0);
+  ASSERT_TRUE(WaitFor([&] { return !emulator.stats().device.motor_running; }));
+  const auto device = emulator.stats().device;
+  EXPECT_FALSE(device.scanning);
+  EXPECT_EQ(device.pwm, 0);
+  EXPECT_EQ(device.requests.at(kScan), 1);
+  ExpectBeamsAgreeWithRoom();
+}
+
+TEST_F(RplidarProcessTest, UnpluggedPtyIsReopenedAtTheSameName) {
+  EmulatorTransportOptions transport;
+  transport.link_path = directory_ + "/lidar";
+  RplidarEmulatorServer emulator(RplidarDeviceOptions(), transport);
+  emulator.Start();
+  auto driver = StartDriver(transport.link_path, "express");
+  ASSERT_TRUE(HandleUntil([&] { return sink_.scan_count() >= 3; }));
+  emulator.Disconnect(1000);
+  ASSERT_TRUE(HandleUntil([&] {
+    const auto status = sink_.last_status();
+    return status && status->reconnects >= 1 && status->state == "scanning";
+  }));
+  const size_t after_replug = sink_.scan_count();
+  ASSERT_TRUE(HandleUntil([&] { return sink_.scan_count() >= after_replug + 5; }));
+  bool reported = false;
+  for (const auto& status : sink_.statuses()) {
+    reported = reported || (status.state == "reconnecting" && !status.connected &&
+                            status.last_error.find(transport.link_path) != std::string::npos);
+  }
+  EXPECT_TRUE(reported);
+  EXPECT_EQ(emulator.stats().disconnects, 1);
+  driver->Signal(SIGTERM);
+  ASSERT_TRUE(driver->Wait(kGuardMs));
+  ExpectBeamsAgreeWithRoom();
+}
+
+TEST_F(RplidarProcessTest, TcpBridgeDropIsReconnected) {
+  EmulatorTransportOptions transport;
+  transport.kind = EmulatorTransportOptions::Kind::kTcp;
+  RplidarEmulatorServer emulator(RplidarDeviceOptions(), transport);
+  emulator.Start();
+  auto driver = StartDriver(emulator.endpoint(), "express");
+  ASSERT_TRUE(HandleUntil([&] { return sink_.scan_count() >= 3; }));
+  emulator.Disconnect(1000);
+  ASSERT_TRUE(HandleUntil([&] {
+    const auto status = sink_.last_status();
+    return status && status->reconnects >= 1 && status->state == "scanning";
+  }));
+  const size_t after = sink_.scan_count();
+  ASSERT_TRUE(HandleUntil([&] { return sink_.scan_count() >= after + 5; }));
+  EXPECT_GE(emulator.stats().host_connections, 2);
+  driver->Signal(SIGTERM);
+  ASSERT_TRUE(driver->Wait(kGuardMs));
+  ExpectBeamsAgreeWithRoom();
+}
+
+TEST_F(RplidarProcessTest, FaultsOnARealLinkNeverBecomeBeams) {
+  for (const char* mode : {"standard", "express"}) {
+    EmulatorTransportOptions transport;
+    transport.link_path = directory_ + "/lidar";
+    RplidarEmulatorServer emulator(RplidarDeviceOptions(), transport);
+    emulator.Start();
+    auto driver = StartDriver(transport.link_path, mode);
+    ASSERT_TRUE(HandleUntil([&] { return sink_.scan_count() >= 2; })) << mode;
+    for (int round = 0; round < 5; ++round) {
+      emulator.InjectGarbage(200);
+      emulator.CorruptPackets(2);
+      emulator.DropBytes(2);
+      const size_t count = sink_.scan_count();
+      ASSERT_TRUE(HandleUntil([&] { return sink_.scan_count() >= count + 2; })) << mode;
+    }
+    // LIDAR_STATUS comes once a second: wait for one that counts the faults.
+    const bool express = std::string(mode) == "express";
+    EXPECT_TRUE(HandleUntil([&] {
+      const auto status = sink_.last_status();
+      return status && status->resyncs >= 5 && (!express || status->checksum_errors >= 5);
+    })) << mode;
+    EXPECT_EQ(sink_.last_status()->reconnects, 0) << mode;
+    driver->Signal(SIGTERM);
+    ASSERT_TRUE(driver->Wait(kGuardMs));
+    ExpectBeamsAgreeWithRoom();
+    HandleUntil([&] { return sink_.last_status() && sink_.last_status()->state == "stopped"; });
+    sink_.Clear();
+  }
+}
+
+}  // namespace
+}  // namespace rplidar
+}  // namespace slammtt
