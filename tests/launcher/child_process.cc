@@ -14,7 +14,8 @@
 
 namespace slammtt {
 
-ChildProcess::ChildProcess(const std::vector<std::string>& argv, const std::string& output_path) {
+ChildProcess::ChildProcess(const std::vector<std::string>& argv, const std::string& output_path,
+                           const std::string& error_path, const std::string& working_directory) {
   std::vector<char*> args;
   for (const std::string& arg : argv) args.push_back(const_cast<char*>(arg.c_str()));
   args.push_back(nullptr);
@@ -29,6 +30,14 @@ ChildProcess::ChildProcess(const std::vector<std::string>& argv, const std::stri
         close(fd);
       }
     }
+    if (!error_path.empty()) {
+      const int fd = open(error_path.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+      if (fd >= 0) {
+        dup2(fd, 2);
+        close(fd);
+      }
+    }
+    if (!working_directory.empty() && chdir(working_directory.c_str()) != 0) _exit(126);
     execv(args[0], args.data());
     _exit(127);
   }

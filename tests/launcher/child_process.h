@@ -11,10 +11,13 @@ namespace slammtt {
 
 class ChildProcess {
  public:
-  // Starts argv[0] (a path) with the given arguments; stdout and stderr go to `output_path`
-  // (appended) or, when empty, to the test's own. Throws std::runtime_error if fork fails; an
-  // exec failure shows as exit status 127.
-  explicit ChildProcess(const std::vector<std::string>& argv, const std::string& output_path = "");
+  // Starts argv[0] (a path) with the given arguments; stdout goes to `output_path` (appended)
+  // or, when empty, to the test's own; stderr to `error_path`, or with stdout when empty. Runs
+  // in `working_directory` when given. Throws std::runtime_error if fork fails; an exec failure
+  // shows as exit status 127.
+  explicit ChildProcess(const std::vector<std::string>& argv, const std::string& output_path = "",
+                        const std::string& error_path = "",
+                        const std::string& working_directory = "");
   // Kills a child that is still running (SIGKILL) and reaps it.
   ~ChildProcess();
   ChildProcess(const ChildProcess&) = delete;

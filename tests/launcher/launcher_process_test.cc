@@ -1,0 +1,269 @@
+// slammtt-launch as a process, supervising small shell programs: output prefixes, restarts with
+// backoff and a limit, giving up, the ordered stop on SIGTERM/SIGINT, SIGKILL after the grace
+// period, configuration errors.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <chrono>
+#include <fstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "child_process.h"
+
+namespace slammtt {
+namespace {
+
+size_t Count(const std::string& text, const std::string& what) {
+  size_t n = 0;
+  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+class LauncherProcessTest : public ::testing::Test {
+ protected:
+  void SetUp() override { directory_ = MakeTempDirectory("launcher-test"); }
+  void TearDown() override {
+    if (HasFailure()) {
+      std::cerr << "stdout:\n" << ReadWholeFile(out_) << "stderr:\n" << ReadWholeFile(err_);
+    }
+  }
+
+  // Writes robot.yaml with the given robot: section body (indented by the caller).
+  std::string WriteConfig(const std::string& robot_body) {
+    const std::string path = directory_ + "/robot.yaml";
+    std::ofstream(path) << "robot:\n  log_directory: " << directory_ << "/logs\n" << robot_body;
+    return path;
+  }
+
+  // A shell snippet that records `name` in the marker file when it gets SIGTERM, then exits 0.
+  std::string TermMarker(const std::string& name) const {
+    return "trap 'echo " + name + " >> " + directory_ + "/stopped; exit 0' TERM; ";
+  }
+
+  void Launch(const std::string& config, const std::vector<std::string>& extra = {}) {
+    std::vector<std::string> argv = {std::string(SLAMMTT_BIN_DIR) + "/slammtt-launch", "--config",
+                                     config};
+    argv.insert(argv.end(), extra.begin(), extra.end());
+    out_ = directory_ + "/out.log";
+    err_ = directory_ + "/err.log";
+    launcher_ = std::make_unique<ChildProcess>(argv, out_, err_);
+  }
+
+  // Waits until `text` shows in the launcher's stdout+stderr, at most `seconds`.
+  bool WaitFor(const std::string& text, double seconds = 10.0, size_t times = 1) {
+    const auto end = std::chrono::steady_clock::now() +
+                     std::chrono::milliseconds(static_cast<int>(seconds * 1000));
+    while (std::chrono::steady_clock::now() < end) {
+      if (Count(ReadWholeFile(out_) + ReadWholeFile(err_), text) >= times) return true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    return false;
+  }
+
+  std::string Stopped() const { return ReadWholeFile(directory_ + "/stopped"); }
+
+  std::string directory_;
+  std::string out_;
+  std::string err_;
+  std::unique_ptr<ChildProcess> launcher_;
+};
+
+TEST_F(LauncherProcessTest, PrefixesEachLineOfStdoutAndStderrWithTheName) {
+  Launch(WriteConfig(R"(  processes:
+    - name: alpha
+      program: sh
+      pass_config: false
+      args: ["-c", "echo one; echo two >&2; printf 'no newline'; exec sleep 30"]
+    - name: b
+      program: sh
+      pass_config: false
+      args: ["-c", "echo three; exec sleep 30"]
+)"));
+  ASSERT_TRUE(WaitFor("b     | three"));
+  ASSERT_TRUE(WaitFor("alpha | two"));
+  launcher_->Signal(SIGTERM);
+  ASSERT_EQ(launcher_->Wait(10000), 0);
+  const std::string out = ReadWholeFile(out_);
+  const std::string err = ReadWholeFile(err_);
+  EXPECT_NE(out.find("alpha | one\n"), std::string::npos);
+  EXPECT_NE(out.find("alpha | no newline\n"), std::string::npos);  // flushed at the end
+  EXPECT_NE(err.find("alpha | two\n"), std::string::npos);
+  EXPECT_EQ(out.find("alpha | two"), std::string::npos);            // stderr stays stderr
+  EXPECT_NE(err.find("slammtt-launch: info: started alpha"), std::string::npos);
+}
+
+TEST_F(LauncherProcessTest, RestartsWithBackoffThenGivesUpAndStopsTheStack) {
+  Launch(WriteConfig(R"(  max_restarts: 2
+  restart_initial_s: 0.2
+  processes:
+    - name: steady
+      program: sh
+      pass_config: false
+      args: ["-c", ")" + TermMarker("steady") + R"(while :; do sleep 0.05; done"]
+    - name: crasher
+      program: sh
+      pass_config: false
+      args: ["-c", "echo dying; exit 3"]
+)"));
+  const auto status = launcher_->Wait(20000);
+  ASSERT_TRUE(status.has_value());
+  EXPECT_EQ(*status, 1);
+  const std::string out = ReadWholeFile(out_);
+  const std::string err = ReadWholeFile(err_);
+  EXPECT_EQ(Count(out, "crasher | dying"), 3u);  // the first run and 2 restarts
+  EXPECT_NE(err.find("restarting in 0.2 s"), std::string::npos);
+  EXPECT_NE(err.find("restarting in 0.4 s"), std::string::npos);
+  EXPECT_NE(err.find("giving up on it after 2 restarts in a row: stopping the stack"),
+            std::string::npos);
+  EXPECT_EQ(Stopped(), "steady\n");
+}
+
+TEST_F(LauncherProcessTest, KeepRunningLeavesTheOthersUpAndStillExitsNonZero) {
+  Launch(WriteConfig(R"(  max_restarts: 0
+  on_give_up: keep_running
+  processes:
+    - name: steady
+      program: sh
+      pass_config: false
+      args: ["-c", ")" + TermMarker("steady") + R"(while :; do sleep 0.05; done"]
+    - name: crasher
+      program: sh
+      pass_config: false
+      args: ["-c", "exit 7"]
+)"));
+  ASSERT_TRUE(WaitFor("giving up"));
+  EXPECT_FALSE(launcher_->Wait(500).has_value());  // still supervising steady
+  EXPECT_EQ(Stopped(), "");
+  launcher_->Signal(SIGTERM);
+  EXPECT_EQ(launcher_->Wait(10000), 1);
+  EXPECT_EQ(Stopped(), "steady\n");
+}
+
+TEST_F(LauncherProcessTest, SigtermStopsEveryProcessStopLastOnesAfterTheOthers) {
+  Launch(WriteConfig(R"(  processes:
+    - name: logger
+      program: sh
+      pass_config: false
+      stop_last: true
+      args: ["-c", ")" + TermMarker("logger") + R"(while :; do sleep 0.05; done"]
+    - name: a
+      program: sh
+      pass_config: false
+      args: ["-c", ")" + TermMarker("a") + R"(while :; do sleep 0.05; done"]
+    - name: b
+      program: sh
+      pass_config: false
+      args: ["-c", "trap 'sleep 0.3; echo b >> )" + directory_ + R"(/stopped; exit 0' TERM; while :; do sleep 0.05; done"]
+)"));
+  ASSERT_TRUE(WaitFor("started b"));
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  launcher_->Signal(SIGTERM);
+  ASSERT_EQ(launcher_->Wait(10000), 0);
+  const std::string stopped = Stopped();
+  // a and b in any order (b takes 0.3 s), the logger strictly after both.
+  EXPECT_EQ(stopped.size(), std::string("a\nb\nlogger\n").size()) << stopped;
+  EXPECT_EQ(stopped.substr(stopped.size() - 7), "logger\n") << stopped;
+  EXPECT_NE(ReadWholeFile(err_).find("stopping (signal 15)"), std::string::npos);
+}
+
+TEST_F(LauncherProcessTest, SigintStopsLikeSigterm) {
+  Launch(WriteConfig(R"(  processes:
+    - name: a
+      program: sh
+      pass_config: false
+      args: ["-c", ")" + TermMarker("a") + R"(while :; do sleep 0.05; done"]
+)"));
+  ASSERT_TRUE(WaitFor("started a"));
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  launcher_->Signal(SIGINT);
+  ASSERT_EQ(launcher_->Wait(10000), 0);
+  EXPECT_EQ(Stopped(), "a\n");
+}
+
+TEST_F(LauncherProcessTest, AProcessThatIgnoresSigtermIsKilledAfterTheGracePeriod) {
+  Launch(WriteConfig(R"(  stop_grace_s: 0.5
+  processes:
+    - name: stubborn
+      program: sh
+      pass_config: false
+      args: ["-c", "trap '' TERM; echo ready; while :; do sleep 0.05; done"]
+)"));
+  ASSERT_TRUE(WaitFor("stubborn | ready"));
+  const auto start = std::chrono::steady_clock::now();
+  launcher_->Signal(SIGTERM);
+  ASSERT_EQ(launcher_->Wait(10000), 0);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_GE(seconds, 0.45);
+  EXPECT_NE(ReadWholeFile(err_).find("stubborn did not stop within 0.5 s of SIGTERM: SIGKILL"),
+            std::string::npos);
+}
+
+TEST_F(LauncherProcessTest, ProcessesGetTheConfigAndExpandedArguments) {
+  const std::string script = directory_ + "/show-args";
+  std::ofstream(script) << "#!/bin/sh\necho \"args: $*\"\nexec sleep 30\n";
+  chmod(script.c_str(), 0755);
+  const std::string config = WriteConfig(R"(  processes:
+    - name: shown
+      program: )" + script + R"(
+      args: ["--url={lcm_url}", "--log", "{log_file}", "{{x}}"]
+)");
+  Launch(config);
+  ASSERT_TRUE(WaitFor("shown | args:"));
+  launcher_->Signal(SIGTERM);
+  ASSERT_EQ(launcher_->Wait(10000), 0);
+  const std::string out = ReadWholeFile(out_);
+  const std::string expected_start = "shown | args: --config " + config +
+                                     " --url=udpm://239.255.76.67:7667?ttl=0 --log " + directory_ +
+                                     "/logs/slammtt-";
+  EXPECT_NE(out.find(expected_start), std::string::npos) << out;
+  EXPECT_NE(out.find(".lcm {x}\n"), std::string::npos) << out;
+  struct stat info = {};
+  EXPECT_EQ(stat((directory_ + "/logs").c_str(), &info), 0);  // created by the launcher
+}
+
+TEST_F(LauncherProcessTest, EndsWhenEveryProcessFinishedCleanly) {
+  Launch(WriteConfig(R"(  processes:
+    - {name: one, program: sh, pass_config: false, args: ["-c", "exit 0"]}
+    - {name: two, program: sh, pass_config: false, args: ["-c", "sleep 0.2"]}
+)"));
+  EXPECT_EQ(launcher_->Wait(10000), 0);
+  EXPECT_NE(ReadWholeFile(err_).find("every process has ended"), std::string::npos);
+}
+
+TEST_F(LauncherProcessTest, ConfigurationMistakesStopBeforeAnythingStarts) {
+  Launch(WriteConfig("  processes:\n    - {name: a, program: sh, colour: red}\n"));
+  EXPECT_EQ(launcher_->Wait(10000), 1);
+  std::string err = ReadWholeFile(err_);
+  EXPECT_NE(err.find("robot.processes[0].colour"), std::string::npos) << err;
+  EXPECT_EQ(Count(err, "\n"), 1u) << err;
+
+  Launch(WriteConfig("  processes:\n    - {name: a, program: no-such-program-here}\n"));
+  EXPECT_EQ(launcher_->Wait(10000), 1);
+  err = ReadWholeFile(err_);
+  EXPECT_NE(err.find("no-such-program-here: not found"), std::string::npos) << err;
+  EXPECT_EQ(err.find("started"), std::string::npos);
+
+  Launch(directory_ + "/missing.yaml");
+  EXPECT_EQ(launcher_->Wait(10000), 1);
+
+  const std::string bin = std::string(SLAMMTT_BIN_DIR) + "/slammtt-launch";
+  ChildProcess no_config({bin}, directory_ + "/none.log");
+  EXPECT_EQ(no_config.Wait(10000), 2);
+}
+
+TEST_F(LauncherProcessTest, DryRunPrintsTheCommandLines) {
+  Launch(WriteConfig(R"(  processes:
+    - {name: a, program: sh, args: ["-x"]}
+)"), {"--dry-run"});
+  ASSERT_EQ(launcher_->Wait(10000), 0);
+  const std::string out = ReadWholeFile(out_);
+  EXPECT_NE(out.find("/sh --config " + directory_ + "/robot.yaml -x\n"), std::string::npos) << out;
+}
+
+}  // namespace
+}  // namespace slammtt
