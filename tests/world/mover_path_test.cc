@@ -197,6 +197,20 @@ TEST(MoverPathTest, RandomWalkWithCertainReversalWalksBackAndForth) {
   }
 }
 
+TEST(MoverPathTest, RandomWalkInATinyAreaStandsInsteadOfLoopingForever) {
+  MoverSpec spec = RandomWalker();
+  spec.start_x_m = 1.0;
+  spec.start_y_m = 1.0;
+  spec.random_walk.area_min_x_m = 1.0;
+  spec.random_walk.area_min_y_m = 1.0;
+  spec.random_walk.area_max_x_m = 1.0 + 1e-9;
+  spec.random_walk.area_max_y_m = 1.0 + 1e-9;
+  const MoverPath path = Build(spec, 30.0, 3);
+  EXPECT_GT(path.knots().size(), 2u);
+  EXPECT_GE(path.knots().back().t_s, 30.0);
+  EXPECT_NEAR(path.StateAt(20.0).x_m, 1.0, 1e-6);
+}
+
 TEST(RecordedCrowdTest, WindowShiftTransformAndCap) {
   std::vector<RecordedTrack> tracks(3);
   tracks[0].id = 5;

@@ -174,6 +174,12 @@ TEST_F(ScenarioLoaderTest, OtherValueChecksNameTheirKeys) {
   EXPECT_EQ(ErrorOf("movers:\n  - {type: random_walk, start: [9, 9], area: [0, 0, 5, 5]}\n"),
             BadPath() + ":2: movers[0].start: must lie inside the area");
   EXPECT_EQ(ErrorOf("duration_s: -1\n"), BadPath() + ":1: duration_s: must be positive, got -1");
+  // Magnitudes that would overflow are refused, not simulated.
+  EXPECT_EQ(ErrorOf("duration_s: 1e300\n"), BadPath() + ":1: duration_s: must not exceed 1e6 s");
+  EXPECT_EQ(ErrorOf("statics:\n  - {x_m: 1e200, y_m: 0}\n"),
+            BadPath() + ":2: statics[0].x_m: must be within +-1e+06 m, got 1e+200");
+  EXPECT_EQ(ErrorOf("movers:\n  - {type: constant_velocity, start: [0, 0], velocity_mps: [1e9, 0]}\n"),
+            BadPath() + ":2: movers[0].velocity_mps: speed must not exceed 50 m/s");
 }
 
 TEST_F(ScenarioLoaderTest, MissingScenarioFileIsAnError) {

@@ -144,9 +144,14 @@ MoverPath RandomWalkPath(const MoverSpec& spec, double horizon_s, std::mt19937_6
       end_x = UniformBetween(rng, w.area_min_x_m, w.area_max_x_m);
       end_y = UniformBetween(rng, w.area_min_y_m, w.area_max_y_m);
       const double distance = std::hypot(end_x - x, end_y - y);
-      if (distance < 1e-6) continue;  // already there: draw another leg
-      heading = std::atan2(end_y - y, end_x - x);
-      duration = distance / spec.speed_mps;
+      if (distance < 1e-6) {
+        // Already there (a tiny area): stand for the leg, so that time always advances.
+        end_x = x;
+        end_y = y;
+      } else {
+        heading = std::atan2(end_y - y, end_x - x);
+        duration = distance / spec.speed_mps;
+      }
     }
     t += duration;
     x = end_x;

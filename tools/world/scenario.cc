@@ -1,5 +1,6 @@
 #include "tools/world/scenario.h"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <sstream>
@@ -60,8 +61,19 @@ class Problems {
     out << value;
     return out.str();
   }
+  // Positions stay within a square of 2000 km: far beyond any robot's world, and small
+  // enough that nothing overflows.
+  void Coordinate(const std::string& path, double value) {
+    if (!(std::abs(value) <= kMaxCoordinateM)) {
+      Add(path, "must be within +-" + Text(kMaxCoordinateM) + " m, got " + Text(value));
+    }
+  }
   std::vector<std::string> lines_;
 };
+
+constexpr double kMaxDurationS = 1e6;  // 11.6 days
+constexpr double kMaxMoverSpeedMps = 50.0;
+constexpr double kMaxRadiusM = 1000.0;
 
 std::string Indexed(const std::string& list, size_t i) {
   return list + "[" + std::to_string(i) + "]";
@@ -72,6 +84,7 @@ std::string Indexed(const std::string& list, size_t i) {
 std::vector<std::string> FindScenarioProblems(const Scenario& s) {
   Problems p;
   p.Positive("duration_s", s.duration_s);
+  if (s.duration_s > kMaxDurationS) p.Add("duration_s", "must not exceed 1e6 s");
   if (s.start_utime < 0) p.Add("start_utime", "must not be negative");
 
   const LaserSpec& l = s.laser;
@@ -88,8 +101,8 @@ std::vector<std::string> FindScenarioProblems(const Scenario& s) {
   p.Positive("laser.rate_hz", l.rate_hz);
   if (l.rate_hz > 1000.0) p.Add("laser.rate_hz", "must not exceed 1000 Hz");
   p.NonNegative("laser.range_noise_m", l.range_noise_m);
-  p.Finite("laser.mount_a_m", l.mount_a_m);
-  p.Finite("laser.mount_b_m", l.mount_b_m);
+  p.Coordinate("laser.mount_a_m", l.mount_a_m);
+  p.Coordinate("laser.mount_b_m", l.mount_b_m);
 
   p.NonNegative("features.range_noise_m", s.features.range_noise_m);
   p.NonNegative("features.bearing_noise_deg", s.features.bearing_noise_deg);
@@ -106,14 +119,17 @@ std::vector<std::string> FindScenarioProblems(const Scenario& s) {
   p.Between("odometry.right_slip_bias", o.right_slip_bias, -0.5, 0.5);
 
   const RobotMotionSpec& r = s.robot;
-  p.Finite("robot.start.x_m", r.start.x_m);
-  p.Finite("robot.start.y_m", r.start.y_m);
+  p.Coordinate("robot.start.x_m", r.start.x_m);
+  p.Coordinate("robot.start.y_m", r.start.y_m);
   p.Finite("robot.start.heading_deg", r.start.heading_rad);
   for (size_t i = 0; i < r.profile.size(); ++i) {
     const std::string path = Indexed("robot.profile", i);
     p.Positive(path + ".duration_s", r.profile[i].duration_s);
+    if (r.profile[i].duration_s > kMaxDurationS) p.Add(path + ".duration_s", "must not exceed 1e6 s");
     p.Between(path + ".linear_mps", r.profile[i].linear_mps, -kMaxRobotSpeedMps, kMaxRobotSpeedMps);
-    p.Finite(path + ".angular_degps", r.profile[i].angular_radps);
+    if (!(std::abs(r.profile[i].angular_radps) <= 100.0)) {
+      p.Add(path + ".angular_degps", "must be within +-5729 deg/s (100 rad/s)");
+    }
   }
   if (!r.waypoints.empty()) {
     if (!r.profile.empty()) p.Add("robot", "give either profile or waypoints, not both");
@@ -125,7 +141,7 @@ std::vector<std::string> FindScenarioProblems(const Scenario& s) {
     p.Positive("robot.turn_gain_per_s", r.turn_gain_per_s);
     p.Positive("robot.waypoint_tolerance_m", r.waypoint_tolerance_m);
     for (size_t i = 0; i < r.waypoints.size(); ++i) {
-      p.Finite(Indexed("robot.waypoints", i), r.waypoints[i].x_m + r.waypoints[i].y_m);
+      p.Coordinate(Indexed("robot.waypoints", i), std::max(std::abs(r.waypoints[i].x_m), std::abs(r.waypoints[i].y_m)));
     }
   }
 
@@ -137,29 +153,36 @@ std::vector<std::string> FindScenarioProblems(const Scenario& s) {
     const std::string path = Indexed("statics", i);
     const StaticObjectSpec& o2 = s.statics[i];
     check_id(path, o2.id);
-    p.Finite(path + ".x_m", o2.x_m);
-    p.Finite(path + ".y_m", o2.y_m);
+    p.Coordinate(path + ".x_m", o2.x_m);
+    p.Coordinate(path + ".y_m", o2.y_m);
     p.Positive(path + ".radius_m", o2.radius_m);
+    if (o2.radius_m > kMaxRadiusM) p.Add(path + ".radius_m", "must not exceed 1000 m");
   }
   for (size_t i = 0; i < s.movers.size(); ++i) {
     const std::string path = Indexed("movers", i);
     const MoverSpec& m = s.movers[i];
     check_id(path, m.id);
     p.Positive(path + ".radius_m", m.radius_m);
+    if (m.radius_m > kMaxRadiusM) p.Add(path + ".radius_m", "must not exceed 1000 m");
     p.NonNegative(path + ".appear_s", m.appear_s);
+    if (m.appear_s > kMaxDurationS) p.Add(path + ".appear_s", "must not exceed 1e6 s");
     if (!(m.disappear_s > m.appear_s)) p.Add(path + ".disappear_s", "must be after appear_s");
     switch (m.kind) {
       case MoverKind::kConstantVelocity:
-        p.Finite(path + ".start", m.start_x_m + m.start_y_m);
-        p.Finite(path + ".velocity_mps", m.vx_mps + m.vy_mps);
+        p.Coordinate(path + ".start", std::max(std::abs(m.start_x_m), std::abs(m.start_y_m)));
+        if (!(std::hypot(m.vx_mps, m.vy_mps) <= kMaxMoverSpeedMps)) {
+          p.Add(path + ".velocity_mps", "speed must not exceed 50 m/s");
+        }
         break;
       case MoverKind::kWaypoints:
         p.Positive(path + ".speed_mps", m.speed_mps);
+        if (m.speed_mps > kMaxMoverSpeedMps) p.Add(path + ".speed_mps", "must not exceed 50 m/s");
         if (m.waypoints.empty()) p.Add(path + ".waypoints", "needs at least one waypoint");
         for (size_t k = 0; k < m.waypoints.size(); ++k) {
           const std::string wp = Indexed(path + ".waypoints", k);
-          p.Finite(wp, m.waypoints[k].x_m + m.waypoints[k].y_m);
+          p.Coordinate(wp, std::max(std::abs(m.waypoints[k].x_m), std::abs(m.waypoints[k].y_m)));
           p.NonNegative(wp + ".wait_s", m.waypoints[k].wait_s);
+          if (m.waypoints[k].wait_s > kMaxDurationS) p.Add(wp + ".wait_s", "must not exceed 1e6 s");
         }
         if (m.at_end == PathEnd::kLoop && m.waypoints.size() < 2) {
           p.Add(path + ".at_end", "loop needs at least two waypoints");
@@ -169,7 +192,8 @@ std::vector<std::string> FindScenarioProblems(const Scenario& s) {
         if (m.trajectory.empty()) p.Add(path + ".trajectory", "needs at least one point");
         for (size_t k = 0; k < m.trajectory.size(); ++k) {
           const std::string tp = Indexed(path + ".trajectory", k);
-          p.Finite(tp, m.trajectory[k].t_s + m.trajectory[k].x_m + m.trajectory[k].y_m);
+          p.Coordinate(tp, std::max(std::abs(m.trajectory[k].x_m), std::abs(m.trajectory[k].y_m)));
+          if (!(std::abs(m.trajectory[k].t_s) <= 1e9)) p.Add(tp + ".t_s", "must be within +-1e9 s");
           if (k > 0 && !(m.trajectory[k].t_s > m.trajectory[k - 1].t_s)) {
             p.Add(tp + ".t_s", "times must increase strictly, got " +
                                    Problems::Text(m.trajectory[k].t_s) + " after " +
@@ -180,12 +204,17 @@ std::vector<std::string> FindScenarioProblems(const Scenario& s) {
       case MoverKind::kRandomWalk: {
         const RandomWalkSpec& w = m.random_walk;
         p.Positive(path + ".speed_mps", m.speed_mps);
+        if (m.speed_mps > kMaxMoverSpeedMps) p.Add(path + ".speed_mps", "must not exceed 50 m/s");
         p.Finite(path + ".heading_deg", w.heading_rad);
         p.Positive(path + ".mean_leg_s", w.mean_leg_s);
         p.Between(path + ".max_turn_deg", w.max_turn_rad * 180.0 / M_PI, 0.0, 180.0 + 1e-9);
         p.Between(path + ".reverse_probability", w.reverse_probability, 0.0, 1.0);
         if (!(w.area_max_x_m > w.area_min_x_m && w.area_max_y_m > w.area_min_y_m)) {
           p.Add(path + ".area", "needs min_x < max_x and min_y < max_y");
+        } else if (std::max({std::abs(w.area_min_x_m), std::abs(w.area_min_y_m),
+                             std::abs(w.area_max_x_m), std::abs(w.area_max_y_m)}) > kMaxCoordinateM) {
+          p.Coordinate(path + ".area", std::max({std::abs(w.area_min_x_m), std::abs(w.area_min_y_m),
+                                                 std::abs(w.area_max_x_m), std::abs(w.area_max_y_m)}));
         } else if (!(m.start_x_m >= w.area_min_x_m && m.start_x_m <= w.area_max_x_m &&
                      m.start_y_m >= w.area_min_y_m && m.start_y_m <= w.area_max_y_m)) {
           p.Add(path + ".start", "must lie inside the area");

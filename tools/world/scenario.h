@@ -19,6 +19,8 @@ namespace slammtt {
 
 // The robot may not be faster than the paper's simulated robot ("up to 2 m/s", section 5.1).
 inline constexpr double kMaxRobotSpeedMps = 2.0;
+// Every coordinate of a scenario lies within +-kMaxCoordinateM (values beyond are rejected).
+inline constexpr double kMaxCoordinateM = 1e6;
 
 // Which sensor messages the world produces.
 enum class SensorOutput {
@@ -189,7 +191,9 @@ struct Scenario {
 };
 
 // Every problem of a scenario built in code, one line each ("movers[2].radius_m: must be
-// positive, got -1"); empty when the scenario can be simulated. The YAML loader reports the same
+// positive, got -1"); empty when the scenario can be simulated. Besides signs and orders it
+// bounds magnitudes so that nothing overflows: durations and times up to 1e6 s, coordinates
+// within +-kMaxCoordinateM, mover speeds up to 50 m/s, radii up to 1000 m. The YAML loader reports the same
 // problems with file and line; WorldSimulator refuses a scenario with any.
 std::vector<std::string> FindScenarioProblems(const Scenario& scenario);
 
