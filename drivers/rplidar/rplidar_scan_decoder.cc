@@ -1,5 +1,6 @@
 #include "drivers/rplidar/rplidar_scan_decoder.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace slammtt {
@@ -41,7 +42,8 @@ StandardNodeDecoder::StandardNodeDecoder(const StandardDecoderOptions& options)
     : options_(options),
       max_step_q6_(static_cast<int32_t>(std::lround(options.max_step_deg * 64.0))),
       max_back_step_q6_(static_cast<int32_t>(std::lround(options.max_back_step_deg * 64.0))) {
-  if (options_.confirm_run < 2) options_.confirm_run = 2;
+  options_.lookahead = std::max(1, options_.lookahead);
+  options_.confirm_run = std::max(options_.confirm_run, options_.lookahead + 1);
 }
 
 void StandardNodeDecoder::Reset() {
@@ -50,6 +52,8 @@ void StandardNodeDecoder::Reset() {
   run_.clear();
   trusted_ = false;
   in_sync_ = true;
+  after_glitch_ = false;
+  seam_ = false;
 }
 
 bool StandardNodeDecoder::Continues(const ScanSample& previous, const ScanSample& next) const {
@@ -63,10 +67,11 @@ bool StandardNodeDecoder::Continues(const ScanSample& previous, const ScanSample
 void StandardNodeDecoder::LoseSync() {
   if (in_sync_) ++counters_.resyncs;
   in_sync_ = false;
+  after_glitch_ = true;
 }
 
 void StandardNodeDecoder::BreakRun() {
-  // Nodes of the run that were never confirmed are not trusted: dropped and counted.
+  // Nodes of the run that never got their successors are not trusted: dropped and counted.
   counters_.rejected_nodes += static_cast<int64_t>(run_.size());
   if (!run_.empty()) LoseSync();
   run_.clear();
@@ -89,15 +94,27 @@ void StandardNodeDecoder::Feed(const uint8_t* data, size_t size, int64_t arrival
     node->arrival_us = arrival_us;
     node->source_offset = buffer_offset_ + pos;
     if (!run_.empty() && !Continues(run_.back(), *node)) BreakRun();
+    if (run_.empty()) {
+      // The first node after a glitch may straddle it: its tail is real, its head is not.
+      seam_ = after_glitch_;
+      after_glitch_ = false;
+    }
     run_.push_back(*node);
     pos += kStandardNodeSize;
-    const size_t needed = trusted_ ? 2 : static_cast<size_t>(options_.confirm_run);
-    if (run_.size() >= needed) {
-      for (size_t i = 0; i + 1 < run_.size(); ++i) out->push_back(run_[i]);
-      counters_.samples += static_cast<int64_t>(run_.size() - 1);
-      run_.erase(run_.begin(), run_.end() - 1);
+    if (!trusted_ && run_.size() >= static_cast<size_t>(options_.confirm_run)) {
       trusted_ = true;
       in_sync_ = true;
+    }
+    if (!trusted_) continue;
+    while (run_.size() > static_cast<size_t>(options_.lookahead)) {
+      if (seam_) {
+        seam_ = false;
+        ++counters_.rejected_nodes;
+      } else {
+        out->push_back(run_.front());
+        ++counters_.samples;
+      }
+      run_.pop_front();
     }
   }
   buffer_.erase(buffer_.begin(), buffer_.begin() + static_cast<std::ptrdiff_t>(pos));

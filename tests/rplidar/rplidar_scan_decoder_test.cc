@@ -73,12 +73,12 @@ Bytes NodeStream(int n, uint16_t first_q6, std::vector<uint16_t>* angles) {
   return stream;
 }
 
-TEST(StandardNodeDecoderTest, CleanStreamInAnyChunkingLagsOneNode) {
+TEST(StandardNodeDecoderTest, CleanStreamInAnyChunkingLagsTwoNodes) {
   std::vector<uint16_t> angles;
   const Bytes stream = NodeStream(300, 22000, &angles);
   StandardNodeDecoder decoder;
   const std::vector<ScanSample> out = FeedBytewise(decoder, stream);
-  ASSERT_EQ(out.size(), 299u);  // the last node waits for its successor
+  ASSERT_EQ(out.size(), 298u);  // the last two nodes wait for their successors
   int starts = 0;
   for (size_t i = 0; i < out.size(); ++i) {
     EXPECT_EQ(out[i].angle_q6, angles[i]);
@@ -98,22 +98,23 @@ TEST(StandardNodeDecoderTest, CleanStreamInAnyChunkingLagsOneNode) {
   for (size_t i = 0; i < out.size(); ++i) EXPECT_EQ(at_once[i].angle_q6, out[i].angle_q6);
 }
 
-TEST(StandardNodeDecoderTest, GarbageIsSkippedWithOneResyncAndCostsTheNodeBeforeIt) {
+TEST(StandardNodeDecoderTest, GarbageIsSkippedWithOneResyncAndCostsThreeNodes) {
   std::vector<uint16_t> angles;
   Bytes stream = NodeStream(40, 0, &angles);
   const Bytes garbage = {0x00, 0x00, 0xFF, 0xFF, 0x00, 0x04, 0x08, 0xFC, 0x00, 0x00, 0x00};
   stream.insert(stream.begin() + 20 * 5, garbage.begin(), garbage.end());
   StandardNodeDecoder decoder;
   const std::vector<ScanSample> out = FeedBytewise(decoder, stream);
-  // Nodes 0..18, then 20..38: node 19 waited for a successor and met garbage; 39 waits.
-  ASSERT_EQ(out.size(), 38u);
+  // Nodes 0..17, then 21..37: 18 and 19 waited for successors and met garbage, 20 is the
+  // seam after it, 38 and 39 wait.
+  ASSERT_EQ(out.size(), 35u);
   for (size_t i = 0; i < out.size(); ++i) {
-    const size_t node = i < 19 ? i : i + 1;
+    const size_t node = i < 18 ? i : i + 3;
     EXPECT_EQ(out[i].angle_q6, angles[node]) << i;
   }
   EXPECT_EQ(decoder.counters().resyncs, 1);
   EXPECT_EQ(decoder.counters().skipped_bytes, static_cast<int64_t>(garbage.size()));
-  EXPECT_EQ(decoder.counters().rejected_nodes, 1);
+  EXPECT_EQ(decoder.counters().rejected_nodes, 3);
 }
 
 TEST(StandardNodeDecoderTest, DroppedByteNeverYieldsANodeThatWasNotSent) {
@@ -146,11 +147,12 @@ TEST(StandardNodeDecoderTest, AngleJumpStartsANewRunThatMustBeConfirmed) {
   }
   StandardNodeDecoder decoder;
   const std::vector<ScanSample> out = FeedBytewise(decoder, stream);
-  // Node 9 (before the 75-degree jump) is never confirmed; node 19 waits.
-  ASSERT_EQ(out.size(), 18u);
-  EXPECT_EQ(out[8].angle_q6, angles[8]);
-  EXPECT_EQ(out[9].angle_q6, angles[10]);
-  EXPECT_EQ(decoder.counters().rejected_nodes, 1);
+  // Nodes 8 and 9 (before the 75-degree jump) never got their successors, 10 is the seam of
+  // the new run, 18 and 19 wait.
+  ASSERT_EQ(out.size(), 15u);
+  EXPECT_EQ(out[7].angle_q6, angles[7]);
+  EXPECT_EQ(out[8].angle_q6, angles[11]);
+  EXPECT_EQ(decoder.counters().rejected_nodes, 3);
 }
 
 // The capsules computed by hand in the test's comments (see rplidar.md, "Test vectors").
