@@ -2,13 +2,15 @@
 // 20 round objects (people 0.2-0.3 m, posts 0.05-0.15 m) seen from inside, 1 cm range noise,
 // 400 / 800 / 1600 / 8000 beams. items_per_second is beams per second on one core.
 //   build/bin/bench_segmentation --benchmark_repetitions=5 --benchmark_report_aggregates_only
-// Variants: the three centre rules, and an RPLIDAR-like revolution (angles jittered by up to
-// +-0.2 of a spacing, starting at an arbitrary angle, 1 % dropped beams).
+// Variants: the three centre rules; an RPLIDAR-like revolution (angles jittered by up to +-0.2
+// of a spacing, starting at an arbitrary angle, 1 % dropped beams); the beams shuffled (the
+// sorting path, a worst case: real scans come in circular order).
 #include <benchmark/benchmark.h>
 
 #include <cmath>
 #include <cstdint>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "perception/segmenter.h"
@@ -71,9 +73,18 @@ RoomScan MakeRoomScan(int beams, bool rplidar_like, uint64_t seed) {
   return scan;
 }
 
-void Run(benchmark::State& state, CentreRule rule, bool rplidar_like) {
+void Run(benchmark::State& state, CentreRule rule, bool rplidar_like, bool shuffled = false) {
   const int beams = static_cast<int>(state.range(0));
-  const RoomScan scan = MakeRoomScan(beams, rplidar_like, 7);
+  RoomScan scan = MakeRoomScan(beams, rplidar_like, 7);
+  if (shuffled) {  // beams in random order: the segmenter has to sort them
+    std::mt19937_64 rng(11);
+    for (size_t i = scan.angle_rad.size(); i > 1; --i) {
+      const size_t j = static_cast<size_t>(rng() % i);
+      std::swap(scan.angle_rad[i - 1], scan.angle_rad[j]);
+      std::swap(scan.range_m[i - 1], scan.range_m[j]);
+      std::swap(scan.valid[i - 1], scan.valid[j]);
+    }
+  }
   ScanView view = MakeScanView(scan.angle_rad, scan.range_m, scan.valid);
   view.range_min_m = 0.15;
   view.range_max_m = 12.0;
@@ -102,10 +113,15 @@ void BM_Segment_CircleFit_RplidarLike(benchmark::State& state) {
   Run(state, CentreRule::kCircleFit, true);
 }
 
+void BM_Segment_CircleFit_Shuffled(benchmark::State& state) {
+  Run(state, CentreRule::kCircleFit, false, true);
+}
+
 BENCHMARK(BM_Segment_CircleFit)->Arg(400)->Arg(800)->Arg(1600)->Arg(8000);
 BENCHMARK(BM_Segment_RadiusCorrected)->Arg(400)->Arg(800)->Arg(1600)->Arg(8000);
 BENCHMARK(BM_Segment_MiddlePoint)->Arg(400)->Arg(800)->Arg(1600)->Arg(8000);
 BENCHMARK(BM_Segment_CircleFit_RplidarLike)->Arg(400)->Arg(800)->Arg(1600)->Arg(8000);
+BENCHMARK(BM_Segment_CircleFit_Shuffled)->Arg(400)->Arg(800)->Arg(1600)->Arg(8000);
 
 }  // namespace
 }  // namespace slammtt
