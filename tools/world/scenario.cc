@@ -85,7 +85,9 @@ std::vector<std::string> FindScenarioProblems(const Scenario& s) {
   Problems p;
   p.Positive("duration_s", s.duration_s);
   if (s.duration_s > kMaxDurationS) p.Add("duration_s", "must not exceed 1e6 s");
-  if (s.start_utime < 0) p.Add("start_utime", "must not be negative");
+  if (s.start_utime < 0 || s.start_utime > 4000000000000000000) {
+    p.Add("start_utime", "must be within [0, 4e18] us");
+  }
 
   const LaserSpec& l = s.laser;
   if (!(l.fov_deg > 0.0 && l.fov_deg <= 360.0)) {
@@ -98,8 +100,7 @@ std::vector<std::string> FindScenarioProblems(const Scenario& s) {
   p.NonNegative("laser.min_range_m", l.min_range_m);
   p.Positive("laser.max_range_m", l.max_range_m);
   if (l.max_range_m <= l.min_range_m) p.Add("laser.max_range_m", "must exceed laser.min_range_m");
-  p.Positive("laser.rate_hz", l.rate_hz);
-  if (l.rate_hz > 1000.0) p.Add("laser.rate_hz", "must not exceed 1000 Hz");
+  p.Between("laser.rate_hz", l.rate_hz, 0.01, 1000.0);
   p.NonNegative("laser.range_noise_m", l.range_noise_m);
   p.Coordinate("laser.mount_a_m", l.mount_a_m);
   p.Coordinate("laser.mount_b_m", l.mount_b_m);
@@ -109,8 +110,7 @@ std::vector<std::string> FindScenarioProblems(const Scenario& s) {
   p.Between("features.detection_probability", s.features.detection_probability, 0.0, 1.0);
 
   const OdometrySpec& o = s.odometry;
-  p.Positive("odometry.rate_hz", o.rate_hz);
-  if (o.rate_hz > 1000.0) p.Add("odometry.rate_hz", "must not exceed 1000 Hz");
+  p.Between("odometry.rate_hz", o.rate_hz, 0.01, 1000.0);
   p.Positive("odometry.wheel_radius_m", o.wheel_radius_m);
   p.Positive("odometry.axle_length_m", o.axle_length_m);
   p.NonNegative("odometry.encoder_noise_rad", o.encoder_noise_rad);

@@ -357,16 +357,33 @@ bool ParseWhole(const std::string& text, int64_t* value) {
 
 }  // namespace
 
+namespace {
+
+// Config reports its own errors as ConfigError; anything else escaping from the YAML library
+// (e.g. a mapping used as a key, which runtime/config.cc converts to text unguarded) still has to
+// name the file.
+Scenario ReadGuarded(const Config& root, const std::string& base_dir) {
+  try {
+    return ScenarioReader(root, base_dir).Read();
+  } catch (const ConfigError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw ConfigError(root.Source() + ": not a valid scenario: " + e.what());
+  }
+}
+
+}  // namespace
+
 Scenario LoadScenarioFromString(const std::string& yaml_text, const std::string& source,
                                 const std::string& base_dir) {
-  return ScenarioReader(Config::FromString(yaml_text, source), base_dir).Read();
+  return ReadGuarded(Config::FromString(yaml_text, source), base_dir);
 }
 
 Scenario LoadScenario(const std::string& path) {
   const Config root = Config::LoadFile(path);
   std::string base_dir = std::filesystem::path(path).parent_path().string();
   if (base_dir.empty()) base_dir = ".";
-  Scenario scenario = ScenarioReader(root, base_dir).Read();
+  Scenario scenario = ReadGuarded(root, base_dir);
   if (scenario.name.empty()) scenario.name = std::filesystem::path(path).stem().string();
   return scenario;
 }
