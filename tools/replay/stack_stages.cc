@@ -1,26 +1,15 @@
 #include "tools/replay/stack_stages.h"
 
 #include <algorithm>
-#include <stdexcept>
 
-#if SLAMMTT_HAVE_SEGMENTER_STAGE
-#include "perception/segmenter_stage.h"
-#endif
-#if SLAMMTT_HAVE_ESTIMATOR_STAGE
 #include "estimator/estimator_stage.h"
-#endif
+#include "perception/segmenter_stage.h"
 
 namespace slammtt {
 
 const std::vector<std::string>& StackStageNames() {
   static const std::vector<std::string> names = {"segmenter", "estimator"};
   return names;
-}
-
-bool IsStackStageBuilt(const std::string& name) {
-  if (name == "segmenter") return SLAMMTT_HAVE_SEGMENTER_STAGE != 0;
-  if (name == "estimator") return SLAMMTT_HAVE_ESTIMATOR_STAGE != 0;
-  return false;
 }
 
 std::vector<ReplayStage> CreateStackStages(const ProcessSettings& settings,
@@ -37,23 +26,16 @@ std::vector<ReplayStage> CreateStackStages(const ProcessSettings& settings,
   };
   const Channels& channels = settings.channels;
   std::vector<ReplayStage> stages;
+  // What each stage publishes besides STAGE_TIMING (see its header): these channels of the input
+  // are replaced by the recomputed ones.
   if (wanted("segmenter")) {
-#if SLAMMTT_HAVE_SEGMENTER_STAGE
     stages.push_back(ReplayStage{CreateSegmenterStage(settings), {channels.Get("features")}});
-#else
-    throw std::runtime_error("the segmenter stage is not built into this program");
-#endif
   }
   if (wanted("estimator")) {
-#if SLAMMTT_HAVE_ESTIMATOR_STAGE
     stages.push_back(ReplayStage{CreateEstimatorStage(settings),
                                  {channels.Get("pose"), channels.Get("map"),
                                   channels.Get("tracks"), channels.Get("estimator_status")}});
-#else
-    throw std::runtime_error("the estimator stage is not built into this program");
-#endif
   }
-  (void)channels;
   return stages;
 }
 

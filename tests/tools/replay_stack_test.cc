@@ -1,0 +1,147 @@
+// slammtt-replay with the stack's real stages on logs of the synthetic world: byte-identical
+// runs, a stage skipped when its input is absent, replaying a replay changes nothing, and
+// slammtt-timing and slammtt-eval run on what it writes.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <string>
+
+#include "tests/tools/log_test_util.h"
+
+namespace slammtt {
+namespace {
+
+std::string Bin(const std::string& program) { return std::string(SLAMMTT_BIN_DIR) + "/" + program; }
+
+// Runs a shell command; returns its exit status and fills `output` with stdout and stderr.
+int Shell(const std::string& command, std::string* output = nullptr) {
+  std::FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  std::string out;
+  char buffer[4096];
+  size_t n = 0;
+  while ((n = std::fread(buffer, 1, sizeof(buffer), pipe)) > 0) out.append(buffer, n);
+  const int status = pclose(pipe);
+  if (output != nullptr) *output = out;
+  return status;
+}
+
+class ReplayStackTest : public ::testing::Test {
+ protected:
+  void WriteWorldLog(const std::string& name, const std::string& output_kind) {
+    std::string out;
+    ASSERT_EQ(Shell(Bin("slammtt-world") + " --scenario s1-crossing --seed 3 --duration 25 " +
+                      "--output " + output_kind + " --log " + dir_.File(name),
+                  &out),
+              0)
+        << out;
+  }
+  testing::TempDir dir_;
+};
+
+TEST_F(ReplayStackTest, TwoRunsAreByteIdenticalAndToolsReadTheOutput) {
+  WriteWorldLog("world.lcm", "both");
+  std::string out;
+  ASSERT_EQ(Shell(Bin("slammtt-replay") + " " + dir_.File("world.lcm") + " -o " +
+                    dir_.File("a.lcm"),
+                &out),
+            0)
+      << out;
+  EXPECT_NE(out.find("segmenter: handled 201 messages, published 201"), std::string::npos)
+      << out;
+  ASSERT_EQ(Shell(Bin("slammtt-replay") + " " + dir_.File("world.lcm") + " -o " +
+                    dir_.File("b.lcm") + " --timing-log " + dir_.File("b-timing.lcm"),
+                &out),
+            0)
+      << out;
+  const std::string a = testing::FileBytes(dir_.File("a.lcm"));
+  EXPECT_GT(a.size(), 100000u);
+  EXPECT_EQ(a, testing::FileBytes(dir_.File("b.lcm")));
+  // The timing differs (it measures the machine) and lives apart.
+  EXPECT_TRUE(testing::FileExists(dir_.File("a.lcm.timing.lcm")));
+
+  std::map<std::string, int> channels;
+  for (const LogEvent& e : testing::ReadLog(dir_.File("a.lcm"))) ++channels[e.channel];
+  EXPECT_EQ(channels["LASER_SCAN"], 201);
+  EXPECT_EQ(channels["FEATURES"], 201);  // recomputed, the world's replaced
+  EXPECT_EQ(channels["POSE"], 201);
+  EXPECT_EQ(channels["TRACKS"], 201);
+  EXPECT_EQ(channels.count("STAGE_TIMING"), 0u);
+
+  ASSERT_EQ(Shell(Bin("slammtt-timing") + " " + dir_.File("a.lcm.timing.lcm"), &out), 0) << out;
+  for (const char* name : {"segmenter", "estimator", "predict", "gating", "level1", "ransac",
+                           "level2_3", "track_management"}) {
+    EXPECT_NE(out.find(name), std::string::npos) << name << "\n" << out;
+  }
+  ASSERT_EQ(Shell(Bin("slammtt-eval") + " " + dir_.File("a.lcm") + " --json " +
+                    dir_.File("report.json") + " --plots " + dir_.File("plots"),
+                &out),
+            0)
+      << out;
+  const nlohmann::json j = nlohmann::json::parse(testing::FileBytes(dir_.File("report.json")));
+  EXPECT_TRUE(j["ate_rmse_m"].is_number()) << out;
+  EXPECT_TRUE(j["ospa_mean_m"].is_number()) << out;
+  EXPECT_TRUE(testing::FileExists(dir_.File("plots/trajectory.svg")));
+}
+
+TEST_F(ReplayStackTest, ReplayingAReplayChangesNothing) {
+  WriteWorldLog("world.lcm", "scans");
+  ASSERT_EQ(Shell(Bin("slammtt-replay") + " --no-timing " + dir_.File("world.lcm") + " -o " +
+                dir_.File("once.lcm")),
+            0);
+  ASSERT_EQ(Shell(Bin("slammtt-replay") + " --no-timing " + dir_.File("once.lcm") + " -o " +
+                dir_.File("twice.lcm")),
+            0);
+  EXPECT_EQ(testing::FileBytes(dir_.File("once.lcm")), testing::FileBytes(dir_.File("twice.lcm")));
+  EXPECT_FALSE(testing::FileExists(dir_.File("once.lcm.timing.lcm")));
+}
+
+TEST_F(ReplayStackTest, SkipsTheSegmenterOnAFeaturesOnlyLog) {
+  WriteWorldLog("world.lcm", "features");
+  std::string out;
+  ASSERT_EQ(Shell(Bin("slammtt-replay") + " " + dir_.File("world.lcm") + " -o " +
+                    dir_.File("out.lcm"),
+                &out),
+            0)
+      << out;
+  EXPECT_NE(out.find("segmenter: skipped"), std::string::npos) << out;
+  // The world's own FEATURES are kept, byte for byte, and the estimator ran on them.
+  std::vector<std::string> in_features;
+  std::vector<std::string> out_features;
+  int poses = 0;
+  for (const LogEvent& e : testing::ReadLog(dir_.File("world.lcm"))) {
+    if (e.channel == "FEATURES") in_features.emplace_back(e.data.begin(), e.data.end());
+  }
+  for (const LogEvent& e : testing::ReadLog(dir_.File("out.lcm"))) {
+    if (e.channel == "FEATURES") out_features.emplace_back(e.data.begin(), e.data.end());
+    poses += e.channel == "POSE" ? 1 : 0;
+  }
+  EXPECT_EQ(in_features, out_features);
+  EXPECT_EQ(poses, 201);
+}
+
+TEST_F(ReplayStackTest, ConfigurationChoosesStagesAndRejectsUnknownKeys) {
+  WriteWorldLog("world.lcm", "both");
+  testing::WriteFileBytes(dir_.File("estimator-only.yaml"), "replay:\n  stages: [estimator]\n");
+  std::string out;
+  ASSERT_EQ(Shell(Bin("slammtt-replay") + " --config " + dir_.File("estimator-only.yaml") + " " +
+                    dir_.File("world.lcm") + " -o " + dir_.File("out.lcm"),
+                &out),
+            0)
+      << out;
+  EXPECT_EQ(out.find("segmenter: handled"), std::string::npos) << out;
+  EXPECT_NE(out.find("estimator: handled"), std::string::npos) << out;
+
+  testing::WriteFileBytes(dir_.File("typo.yaml"), "replay:\n  stagse: [estimator]\n");
+  EXPECT_NE(Shell(Bin("slammtt-replay") + " --config " + dir_.File("typo.yaml") + " " +
+                    dir_.File("world.lcm") + " -o " + dir_.File("out2.lcm"),
+                &out),
+            0);
+  EXPECT_NE(out.find("stagse"), std::string::npos) << out;
+  EXPECT_FALSE(testing::FileExists(dir_.File("out2.lcm")));
+  EXPECT_NE(Shell(Bin("slammtt-replay") + " " + dir_.File("world.lcm"), &out), 0);
+  EXPECT_NE(out.find("-o OUT.lcm is required"), std::string::npos) << out;
+}
+
+}  // namespace
+}  // namespace slammtt
