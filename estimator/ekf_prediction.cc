@@ -14,6 +14,8 @@ void ApplyRobotPrediction(const Eigen::Vector3d& new_pose, const Eigen::Matrix3d
   cov.leftCols(3) = cols;
   const Eigen::Matrix3d robot = cov.topLeftCorner<3, 3>() + noise;
   cov.topLeftCorner<3, 3>() = 0.5 * (robot + robot.transpose());
+  // Rows and columns were computed in different summation orders: make them bit-identical.
+  for (int i = 0; i < 3; ++i) state->MirrorRowToColumn(i);
   state->mean().head<3>() = new_pose;
 }
 
@@ -36,6 +38,8 @@ void PredictMovers(double dt_s, double sigma_q_mps2, SlamState* state) {
     cov.block<2, 2>(p, v) += q.topRightCorner<2, 2>();
     cov.block<2, 2>(v, p) += q.bottomLeftCorner<2, 2>();
     cov.block<2, 2>(v, v) += q.bottomRightCorner<2, 2>();
+    state->MirrorRowToColumn(p);
+    state->MirrorRowToColumn(p + 1);
   }
 }
 

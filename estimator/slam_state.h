@@ -105,6 +105,8 @@ class SlamState {
 
   // Copies the lower triangle onto the upper one.
   void MirrorLowerTriangle();
+  // Copies row i onto column i (after a transform computed the row: keeps P exactly symmetric).
+  void MirrorRowToColumn(int i) { cov_.col(i).head(dim_) = cov_.row(i).head(dim_).transpose(); }
 
  private:
   void Reserve(int dim);
