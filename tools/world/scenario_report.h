@@ -62,7 +62,8 @@ struct ScenarioReport {
 
 class ScenarioReporter {
  public:
-  // `robot_radius_m`: footprint used for robot gaps (P3-DX: about 0.26 m).
+  // `robot_radius_m`: the robot's body as a disc, for robot gaps (about the P3-DX's swing
+  // radius; its body is 0.455 x 0.381 m).
   ScenarioReporter(const LaserSpec& laser, double robot_radius_m = 0.26);
   void AddScan(const SensorFrame& frame);
   ScenarioReport Finish() const;
