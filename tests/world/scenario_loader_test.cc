@@ -191,6 +191,11 @@ TEST_F(ScenarioLoaderTest, MissingScenarioFileIsAnError) {
   }
 }
 
+TEST_F(ScenarioLoaderTest, ADirectoryIsNotAScenario) {
+  EXPECT_THROW(LoadScenario(dir_.string()), ConfigError);
+  EXPECT_THROW(ReadRecordedTracks(dir_.string()), ConfigError);
+}
+
 TEST_F(ScenarioLoaderTest, MissingTrajectoryFileNamesTheScenarioKeyAndThePath) {
   const std::string error = ErrorOf("duration_s: 5\ncrowd:\n  file: people/none.tsv\n");
   EXPECT_EQ(error.rfind(BadPath() + ":3: crowd.file: ", 0), 0u) << error;

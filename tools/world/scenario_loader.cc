@@ -380,6 +380,8 @@ Scenario LoadScenarioFromString(const std::string& yaml_text, const std::string&
 }
 
 Scenario LoadScenario(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw ConfigError(path + ": cannot open file");
   const Config root = Config::LoadFile(path);
   std::string base_dir = std::filesystem::path(path).parent_path().string();
   if (base_dir.empty()) base_dir = ".";
@@ -389,8 +391,11 @@ Scenario LoadScenario(const std::string& path) {
 }
 
 std::vector<RecordedTrack> ReadRecordedTracks(const std::string& path) {
+  std::error_code ec;
   std::ifstream in(path);
-  if (!in) throw ConfigError(path + ": cannot open file");
+  if (!in || !std::filesystem::is_regular_file(path, ec)) {
+    throw ConfigError(path + ": cannot open file");
+  }
   std::map<int64_t, RecordedTrack> by_id;
   std::string line;
   int line_number = 0;
