@@ -24,7 +24,8 @@
 // Samples: the scanner sits at the origin of `room`; sample k of a scan is taken at device
 // angle start + k * sample_time * rotation_hz * 360 degrees (clockwise), its distance is the
 // room's ray plus Gaussian noise, drawn from a hash of (seed, k) so that the bytes of a scan
-// do not depend on how the transport paced them. Express capsules carry per-sample angle
+// do not depend on how the transport paced them (as long as it polls within the backlog the
+// device keeps: max(64 samples, a tenth of a revolution); beyond, samples are skipped). Express capsules carry per-sample angle
 // corrections dtheta drawn the same way, and the distance of each sample is measured at the
 // corrected angle, so a correct decoder recovers exactly the angles that were ray-cast.
 #pragma once

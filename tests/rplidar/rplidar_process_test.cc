@@ -226,6 +226,39 @@ TEST_F(RplidarProcessTest, FaultsOnARealLinkNeverBecomeBeams) {
   }
 }
 
+TEST_F(RplidarProcessTest, EmulatorProgramWithScheduledFaultsAsStartedByHand) {
+  const std::string link = directory_ + "/lidar";
+  const std::string endpoint_file = directory_ + "/endpoint";
+  ChildProcess emulator({std::string(SLAMMTT_BIN_DIR) + "/slammtt-rplidar-emulator", "--link",
+                         link, "--endpoint-file", endpoint_file, "--health", "warning:0x7",
+                         "--fault", "garbage@3.0:300", "--fault", "disconnect@4.0:1", "--quiet"});
+  ASSERT_TRUE(WaitFor([&] { return access(endpoint_file.c_str(), R_OK) == 0; }));
+  auto driver = StartDriver(link, "express");
+  // The warning is reset once (the driver waits 2 s for the reboot); scans flow; the garbage
+  // at 3 s is skipped; the unplug at 4 s is survived (the replugged device warns again and is
+  // reset again: it had been good in between).
+  ASSERT_TRUE(HandleUntil([&] {
+    const auto status = sink_.last_status();
+    return status && status->reconnects >= 1 && status->resyncs >= 1 &&
+           status->state == "scanning" &&
+           int{status->health} == int{slammtt_msgs::lidar_status_t::HEALTH_GOOD};
+  }));
+  const size_t after = sink_.scan_count();
+  ASSERT_TRUE(HandleUntil([&] { return sink_.scan_count() >= after + 5; }));
+  driver->Signal(SIGTERM);
+  std::optional<int> status = driver->Wait(kGuardMs);
+  ASSERT_TRUE(status);
+  EXPECT_EQ(WEXITSTATUS(*status), 0);
+  emulator.Signal(SIGTERM);
+  status = emulator.Wait(kGuardMs);
+  ASSERT_TRUE(status);
+  EXPECT_TRUE(WIFEXITED(*status));
+  EXPECT_EQ(WEXITSTATUS(*status), 0);
+  EXPECT_NE(access(link.c_str(), F_OK), 0) << "the emulator removes its link";
+  unlink(endpoint_file.c_str());
+  ExpectBeamsAgreeWithRoom();
+}
+
 }  // namespace
 }  // namespace rplidar
 }  // namespace slammtt
