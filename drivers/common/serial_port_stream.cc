@@ -3,6 +3,7 @@
 #include <libserialport.h>
 #include <poll.h>
 #include <sys/stat.h>
+#include <termios.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -77,6 +78,24 @@ std::unique_ptr<SerialPortStream> SerialPortStream::Open(const std::string& devi
     sp_close(port);
     sp_free_port(port);
     throw LinkError(prefix + "cannot configure 8N1 at this baud rate: " + reason);
+  }
+  // libserialport 0.1.1 sets HUPCL on open (serialport.c, sp_open), so the kernel drops DTR
+  // and RTS when the port closes. On an RPLIDAR A1/A2 a dropped DTR starts the motor: the
+  // driver's "motor off" would be undone the moment the process exits. Without HUPCL the lines
+  // stay as the driver left them; the next open() raises them again anyway.
+  int handle = -1;
+  struct termios settings = {};
+  if (sp_get_port_handle(port, &handle) != SP_OK || tcgetattr(handle, &settings) != 0) {
+    sp_close(port);
+    sp_free_port(port);
+    throw LinkError(prefix + "cannot read the line settings");
+  }
+  settings.c_cflag &= ~static_cast<tcflag_t>(HUPCL);
+  if (tcsetattr(handle, TCSANOW, &settings) != 0) {
+    const int error_number = errno;
+    sp_close(port);
+    sp_free_port(port);
+    throw LinkError(prefix + "cannot clear HUPCL: " + std::strerror(error_number));
   }
   std::string description = "serial:" + device_path;
   if (real_path != device_path) description += "=" + real_path;

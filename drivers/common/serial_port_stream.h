@@ -4,7 +4,8 @@
 // port's descriptor (sp_get_port_handle), because libserialport's blocking read cannot tell a
 // hung-up port from a quiet one: after a hangup read() returns 0 at once, which
 // sp_blocking_read() takes for "no data yet" and spins until its timeout. Here a hangup, an
-// I/O error (USB adapter unplugged) or end of file is a LinkError.
+// I/O error (USB adapter unplugged) or end of file is a LinkError. HUPCL is cleared, so closing
+// the port leaves DTR and RTS as the driver set them (an RPLIDAR A2's motor stays off).
 #pragma once
 
 #include <memory>

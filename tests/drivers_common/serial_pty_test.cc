@@ -2,6 +2,8 @@
 // test takes to reach its emulator as it would reach the device on the robot.
 #include <gtest/gtest.h>
 #include <stdlib.h>
+#include <fcntl.h>
+#include <termios.h>
 #include <unistd.h>
 
 #include <memory>
@@ -53,6 +55,20 @@ TEST_F(SerialPtyTest, DeviceSideSeesTheDtrLineTheHostSets) {
   EXPECT_FALSE(*device.HostDtr());
   host->SetDtr(true);
   EXPECT_TRUE(*device.HostDtr());
+}
+
+TEST_F(SerialPtyTest, ClosingThePortLeavesTheModemLinesAlone) {
+  PtyDevice device;
+  {
+    auto host = OpenByteStream(device.slave_path(), 115200);
+    // libserialport sets HUPCL on open; SerialPortStream clears it.
+    struct termios settings = {};
+    const int fd = open(device.slave_path().c_str(), O_RDWR | O_NOCTTY);
+    ASSERT_GE(fd, 0);
+    ASSERT_EQ(tcgetattr(fd, &settings), 0);
+    close(fd);
+    EXPECT_EQ(settings.c_cflag & HUPCL, 0u);
+  }
 }
 
 TEST_F(SerialPtyTest, NonStandardAndLowBaudRatesAreAccepted) {
