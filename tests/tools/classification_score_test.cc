@@ -52,6 +52,23 @@ TEST(ClassificationTest, DelayCountsFromFirstSightingAndIgnoresUnmatchedScans) {
   ASSERT_EQ(s.objects.size(), 1u);
   EXPECT_EQ(s.objects[0].num_matched_scans, 2);
   EXPECT_DOUBLE_EQ(*s.objects[0].delay_s, kScanUs * 1e-6);
+  EXPECT_EQ(*s.objects[0].visible_scans_until_right, 1);
+}
+
+TEST(ClassificationTest, CountsVisibleScansBeforeTheLabelSettles) {
+  // Seen once at scan 0 (undecided), out of view for 100 scans, then static from scan 102 on:
+  // a delay of 102 scans of time but only 2 visible scans.
+  ClassificationAccumulator acc(1.0);
+  const auto S = ObjectLabel::kStatic;
+  acc.AddScan(0, {Truth(1, 0, S)}, {Track(7, 0, ObjectLabel::kUndecided)});
+  for (int k = 1; k <= 100; ++k) acc.AddScan(k * kScanUs, {Truth(1, 0, S, false)}, {});
+  acc.AddScan(101 * kScanUs, {Truth(1, 0, S)}, {Track(7, 0, ObjectLabel::kUndecided)});
+  acc.AddScan(102 * kScanUs, {Truth(1, 0, S)}, {Track(7, 0, S)});
+  const ClassificationSummary s = acc.Summary();
+  ASSERT_EQ(s.objects.size(), 1u);
+  EXPECT_DOUBLE_EQ(*s.objects[0].delay_s, 102 * kScanUs * 1e-6);
+  EXPECT_EQ(*s.objects[0].visible_scans_until_right, 2);
+  EXPECT_DOUBLE_EQ(*s.mean_visible_scans_until_right, 2.0);
 }
 
 TEST(ClassificationTest, WrongAndUntrackedObjects) {

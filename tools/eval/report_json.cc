@@ -173,6 +173,7 @@ json ReportToJson(const EvalInput& input, const EvaluationReport& report) {
                          {"final_label", o.final_label ? json(LabelName(*o.final_label))
                                                        : json("untracked")},
                          {"delay_s", OrNull(o.delay_s)},
+                         {"visible_scans_until_right", OrNull(o.visible_scans_until_right)},
                          {"correct", o.correct}});
     }
     json confusion;
@@ -186,7 +187,9 @@ json ReportToJson(const EvalInput& input, const EvaluationReport& report) {
                                 {"accuracy", OrNull(s.accuracy)},
                                 {"accuracy_of_tracked", OrNull(s.accuracy_of_tracked)},
                                 {"mean_delay_s", OrNull(s.mean_delay_s)},
-                                {"max_delay_s", OrNull(s.max_delay_s)}};
+                                {"max_delay_s", OrNull(s.max_delay_s)},
+                                {"mean_visible_scans_until_right",
+                                 OrNull(s.mean_visible_scans_until_right)}};
   } else {
     detail["classification"] = nullptr;
   }
@@ -244,7 +247,8 @@ std::string ReportSummaryText(const EvaluationReport& report) {
     int64_t correct = 0;
     for (const ObjectClassification& o : c.objects) correct += o.correct ? 1 : 0;
     out << correct << " of " << c.objects.size() << " objects labelled right (accuracy "
-        << FixedOr(c.accuracy, 3) << "), mean delay " << FixedOr(c.mean_delay_s, 2) << " s";
+        << FixedOr(c.accuracy, 3) << "), mean delay " << FixedOr(c.mean_delay_s, 2) << " s ("
+        << FixedOr(c.mean_visible_scans_until_right, 1) << " visible scans)";
   } else {
     out << "n/a";
   }

@@ -51,6 +51,7 @@ void ClassificationAccumulator::AddScan(int64_t utime, const std::vector<TruthOb
       it->second.true_class = object->true_class;
       it->second.first_visible_utime = utime;
     }
+    it->second.visible_utimes.push_back(utime);
   }
   Eigen::MatrixXd cost(visible.size(), tracks.size());
   for (size_t i = 0; i < visible.size(); ++i) {
@@ -75,6 +76,7 @@ ClassificationSummary ClassificationAccumulator::Summary() const {
   int64_t tracked = 0;
   double delay_sum_s = 0.0;
   int64_t num_delays = 0;
+  int64_t visible_scans_sum = 0;
   for (const auto& [id, history] : histories_) {
     ObjectClassification object;
     object.id = id;
@@ -98,9 +100,14 @@ ClassificationSummary ClassificationAccumulator::Summary() const {
       for (size_t k = 0; k < history.labels.size(); ++k) {
         if (history.labels[k].second != history.true_class) settled = k + 1;
       }
+      const int64_t settled_utime = history.labels[settled].first;
       const double delay_s =
-          static_cast<double>(history.labels[settled].first - history.first_visible_utime) * 1e-6;
+          static_cast<double>(settled_utime - history.first_visible_utime) * 1e-6;
       object.delay_s = delay_s;
+      int64_t visible_before = 0;
+      for (int64_t t : history.visible_utimes) visible_before += t < settled_utime ? 1 : 0;
+      object.visible_scans_until_right = visible_before;
+      visible_scans_sum += visible_before;
       delay_sum_s += delay_s;
       ++num_delays;
       summary.max_delay_s = std::max(summary.max_delay_s.value_or(0.0), delay_s);
@@ -113,7 +120,11 @@ ClassificationSummary ClassificationAccumulator::Summary() const {
   if (tracked > 0) {
     summary.accuracy_of_tracked = static_cast<double>(correct) / static_cast<double>(tracked);
   }
-  if (num_delays > 0) summary.mean_delay_s = delay_sum_s / static_cast<double>(num_delays);
+  if (num_delays > 0) {
+    summary.mean_delay_s = delay_sum_s / static_cast<double>(num_delays);
+    summary.mean_visible_scans_until_right =
+        static_cast<double>(visible_scans_sum) / static_cast<double>(num_delays);
+  }
   return summary;
 }
 

@@ -10,7 +10,9 @@
 //   visible (an object never tracked counts as wrong: it was never classified);
 // - delay = time from the object's first visible scan to the first matched scan from which on the
 //   label stays right in every later matched scan (scans in which the object is not matched
-//   carry no label and do not interrupt); no delay when the final label is wrong.
+//   carry no label and do not interrupt); no delay when the final label is wrong. Because an
+//   object may leave the field of view for a long time, the number of scans in which it was
+//   visible before that settling scan is reported too (visible_scans_until_right).
 #pragma once
 
 #include <Eigen/Core>
@@ -50,6 +52,7 @@ struct ObjectClassification {
   int64_t num_matched_scans = 0;
   std::optional<ObjectLabel> final_label;  // absent: never tracked
   std::optional<double> delay_s;           // absent: final label wrong or never tracked
+  std::optional<int64_t> visible_scans_until_right;  // visible scans before the settling scan
   bool correct = false;
 };
 
@@ -61,6 +64,7 @@ struct ClassificationSummary {
   std::optional<double> accuracy_of_tracked;  // over the objects tracked at least once
   std::optional<double> mean_delay_s;         // over the objects with a delay
   std::optional<double> max_delay_s;
+  std::optional<double> mean_visible_scans_until_right;
 };
 
 class ClassificationAccumulator {
@@ -79,6 +83,7 @@ class ClassificationAccumulator {
   struct History {
     ObjectLabel true_class = ObjectLabel::kStatic;
     int64_t first_visible_utime = 0;
+    std::vector<int64_t> visible_utimes;
     std::vector<std::pair<int64_t, ObjectLabel>> labels;  // (utime, label) of matched scans
   };
   double threshold_m_;
