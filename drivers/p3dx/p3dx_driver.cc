@@ -350,7 +350,10 @@ void P3dxDriver::HandleSyncReply(const std::vector<uint8_t>& payload) {
   if (!Send(EncodeP3dxCommand(p3dx_command::kOpen))) return;
   if (options_.enable_motors && !Send(EncodeP3dxIntCommand(p3dx_command::kEnable, 1))) return;
   opened_us_ = clock_->NowMonotonicUs();
+  // A new session starts with the robot at rest.
   sent_once_ = false;
+  sent_vel_mmps_ = 0;
+  sent_rvel_degps_ = 0;
   SetState(State::kOpening);
 }
 
@@ -389,8 +392,12 @@ void P3dxDriver::HandleSip(const P3dxStandardSip& sip, int64_t arrival_utime) {
     LogInfo() << "connected to '" << identity_.name << "' (" << identity_.robot_class << " "
               << identity_.subclass << ") on " << endpoint_description_;
     SetState(State::kRunning);
-    if (have_command_) SendVelocity();
-    if (!link_) return;
+    // Only a command that is still fresh moves the new session; a stale one would drive the
+    // robot until the command timeout caught it.
+    if (have_command_ && now - last_command_us_ < Seconds(options_.command_timeout_s)) {
+      SendVelocity();
+      if (!link_) return;
+    }
   }
   const bool flags_changed =
       !have_sip_ || sip.stall_and_bumpers != last_sip_.stall_and_bumpers ||

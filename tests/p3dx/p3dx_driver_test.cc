@@ -485,6 +485,38 @@ TEST_F(P3dxDriverTest, OdometryIsContinuousAcrossAReconnection) {
   }
 }
 
+TEST_F(P3dxDriverTest, AStaleCommandDoesNotMoveTheRobotAfterAReconnection) {
+  Start();
+  RunFor(1.0);
+  RunFor(1.0, CommandsAt10Hz(0.3, 0.0));
+  robot_->Unplug();  // commands stop while the link is down
+  RunFor(1.0);
+  robot_->Plug();
+  // The robot may still roll from the old session (its watchdog or our stale-session stop ends
+  // that); once the new session runs it must stand still.
+  bool moved_in_new_session = false;
+  RunFor(5.0, [&] {
+    if (driver_->state() == P3dxDriver::State::kRunning && robot_->model().moving()) {
+      moved_in_new_session = true;
+    }
+  });
+  ASSERT_EQ(driver_->state(), P3dxDriver::State::kRunning);
+  EXPECT_FALSE(moved_in_new_session);
+  // After the new OPEN the robot heard no VEL but zeros (the old session's stop by its own
+  // watchdog does not count).
+  const auto received = Received();
+  size_t open_index = 0;
+  for (size_t i = 0; i < received.size(); ++i) {
+    if (received[i].command.number == cmd::kOpen && !received[i].connected) open_index = i;
+  }
+  ASSERT_GT(open_index, 0u);
+  for (size_t i = open_index; i < received.size(); ++i) {
+    if (received[i].command.number == cmd::kVel || received[i].command.number == cmd::kRvel) {
+      EXPECT_EQ(received[i].command.value, 0);
+    }
+  }
+}
+
 TEST_F(P3dxDriverTest, BumperAndStallFlagsReachBaseStatus) {
   Start();
   RunFor(1.0);
