@@ -40,7 +40,7 @@ int main(int argc, char** argv) {
     try {
       rplidar::CheckRplidarDriverOptions(options);
     } catch (const std::invalid_argument& e) {
-      throw std::runtime_error(std::string("rplidar.port: ") + e.what());
+      throw std::runtime_error(std::string("rplidar.port / --port: ") + e.what());
     }
 
     std::unique_ptr<lcm::LCM> lcm = OpenLcm(settings.lcm_url);

@@ -334,6 +334,52 @@ TEST(RplidarDriverTest, StopEndsTheScanAndStopsTheMotor) {
   }
 }
 
+// A link that only ever delivers noise (a wrong baud rate looks like this).
+class NoiseLink : public ByteStream {
+ public:
+  explicit NoiseLink(VirtualClock* clock) : clock_(clock) {}
+  void Write(const uint8_t*, size_t, int) override {}
+  size_t Read(uint8_t* buffer, size_t capacity, int timeout_ms) override {
+    clock_->now_us_ += std::min<int64_t>(1000, int64_t{timeout_ms} * 1000);
+    const size_t count = std::min<size_t>(capacity, 11);
+    for (size_t i = 0; i < count; ++i) {
+      state_ = state_ * 6364136223846793005ull + 1442695040888963407ull;
+      buffer[i] = static_cast<uint8_t>(state_ >> 56);
+    }
+    return count;
+  }
+  void FlushInput() override {}
+  void SetDtr(bool) override {}
+  std::string Describe() const override { return "virtual:noise"; }
+
+ private:
+  VirtualClock* clock_;
+  uint64_t state_ = 1;
+};
+
+TEST(RplidarDriverTest, NoiseInsteadOfRepliesIsReportedAndRetried) {
+  VirtualClock clock;
+  RecordingSink sink(&clock);
+  RplidarDriverOptions options;
+  options.port = "virtual";
+  int opens = 0;
+  RplidarDriver driver(
+      options,
+      [&]() -> std::unique_ptr<ByteStream> {
+        ++opens;
+        return std::make_unique<NoiseLink>(&clock);
+      },
+      &clock, &sink, "LASER_SCAN", "LIDAR_STATUS");
+  const int64_t end = clock.now_us_ + 20 * 1000000LL;
+  driver.Run([&] { return clock.now_us_ > end; });
+  EXPECT_GE(opens, 3);
+  EXPECT_EQ(sink.scan_count(), 0u);
+  EXPECT_GE(driver.status().reconnects, 3);
+  EXPECT_NE(driver.status().last_error.find("no reply to GET_INFO within 1000 ms"),
+            std::string::npos)
+      << driver.status().last_error;
+}
+
 }  // namespace
 }  // namespace rplidar
 }  // namespace slammtt
