@@ -220,8 +220,10 @@ RplidarDriver::SessionEnd RplidarDriver::Session(ByteStream& stream,
             << ", hardware " << int{info.hardware} << ", serial " << info.SerialNumberHex()
             << ", health " << HealthName(static_cast<HealthStatus>(status_.health));
 
-  // Firmware >= 1.17 answers GET_SAMPLERATE; older firmware does not, which is fine.
-  if (info.firmware_major > 1 || (info.firmware_major == 1 && info.firmware_minor >= 17)) {
+  // Firmware >= 1.17 answers GET_SAMPLERATE and knows EXPRESS_SCAN (sl_lidar_cmd.h).
+  const bool firmware_1_17 =
+      info.firmware_major > 1 || (info.firmware_major == 1 && info.firmware_minor >= 17);
+  if (firmware_1_17) {
     try {
       Send(stream, GetSampleRateRequest());
       const std::vector<uint8_t> rate_bytes =
@@ -238,7 +240,14 @@ RplidarDriver::SessionEnd RplidarDriver::Session(ByteStream& stream,
   StartMotor(stream);
   if (should_stop()) return SessionEnd::kStopRequested;
 
-  const bool express = options_.scan_mode == ScanMode::kExpress;
+  bool express = options_.scan_mode == ScanMode::kExpress;
+  if (express && !firmware_1_17) {
+    LogWarning() << "firmware " << int{info.firmware_major} << "." << int{info.firmware_minor}
+                 << " has no express scan (needs 1.17): using the standard scan";
+    express = false;
+  }
+  active_mode_ = express ? ScanMode::kExpress : ScanMode::kStandard;
+  status_.scan_mode = ScanModeName(active_mode_);
   Send(stream, express ? ExpressScanRequest()
                        : (options_.force_scan ? ForceScanRequest() : ScanRequest()));
   std::vector<uint8_t> leftover;
@@ -249,7 +258,7 @@ RplidarDriver::SessionEnd RplidarDriver::Session(ByteStream& stream,
   assembler_.Reset();
   revolution_times_us_.clear();
   SetState("scanning");
-  LogInfo() << "scanning (" << ScanModeName(options_.scan_mode) << ")";
+  LogInfo() << "scanning (" << ScanModeName(active_mode_) << ")";
   backoff_.Reset();
 
   int64_t last_samples_us = clock_->NowMonotonicUs();
@@ -330,7 +339,7 @@ void RplidarDriver::StopDevice(ByteStream& stream) {
 
 void RplidarDriver::HandleData(const uint8_t* data, size_t size, int64_t arrival_utime) {
   samples_.clear();
-  if (options_.scan_mode == ScanMode::kExpress) {
+  if (active_mode_ == ScanMode::kExpress) {
     express_decoder_.Feed(data, size, arrival_utime, &samples_);
   } else {
     standard_decoder_.Feed(data, size, arrival_utime, &samples_);

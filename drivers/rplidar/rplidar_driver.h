@@ -10,7 +10,8 @@
 //   without another reset; a warning that persists is logged and scanning goes on ->
 //   GET_SAMPLERATE (informative) -> motor on: DTR cleared (A1/A2 through the USB adapter), or
 //   SET_MOTOR_PWM when GET_ACC_BOARD_FLAG says the accessory board takes it -> SCAN,
-//   FORCE_SCAN or legacy EXPRESS_SCAN -> decode, assemble revolutions, publish.
+//   FORCE_SCAN or legacy EXPRESS_SCAN (firmware >= 1.17; older firmware gets the standard scan,
+//   with a warning) -> decode, assemble revolutions, publish.
 // A link error (unplugged, closed, write timeout), a device that stops answering, or no scan
 // data for data_timeout_ms closes the link, is reported (LIDAR_STATUS state "reconnecting",
 // last_error) and the link is reopened after a backoff doubling from reconnect_initial_ms to
@@ -86,6 +87,7 @@ class RplidarDriver {
   bool reset_done_ = false;      // one RESET per health problem, until health is good again
   bool use_pwm_ = false;         // how the motor of this session was started
   bool motor_started_ = false;
+  ScanMode active_mode_ = ScanMode::kExpress;  // the configured mode unless the firmware lacks it
   StandardNodeDecoder standard_decoder_;
   ExpressCapsuleDecoder express_decoder_;
   RevolutionAssembler assembler_;

@@ -334,6 +334,18 @@ TEST(RplidarDriverTest, StopEndsTheScanAndStopsTheMotor) {
   }
 }
 
+TEST(RplidarDriverTest, FirmwareWithoutExpressScanGetsTheStandardScan) {
+  RplidarDeviceOptions device;
+  device.info.firmware_minor = 10;  // 1.10: no GET_SAMPLERATE, no EXPRESS_SCAN
+  Rig rig(device, ScanMode::kExpress);
+  rig.Run([&] { return rig.sink.scan_count() >= 3; });
+  EXPECT_EQ(rig.model.stats().requests.count(kExpressScan), 0u);
+  EXPECT_EQ(rig.model.stats().requests.count(kGetSampleRate), 0u);
+  EXPECT_EQ(rig.model.stats().requests.at(kScan), 1);
+  EXPECT_EQ(rig.final_status.scan_mode, "standard");
+  ExpectScansMatchTheRoom(rig, 199, 201);
+}
+
 // A link that only ever delivers noise (a wrong baud rate looks like this).
 class NoiseLink : public ByteStream {
  public:
