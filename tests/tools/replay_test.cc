@@ -137,6 +137,34 @@ TEST(ReplayTest, RunsStagesInLogOrderAndReplacesTheirOutputs) {
   EXPECT_EQ(timing[0].timestamp_us, 110);
 }
 
+// Publishes two FEAT messages per SCAN.
+class DoubleSegmenter : public Stage {
+ public:
+  std::string Name() const override { return "double"; }
+  std::vector<std::string> InputChannels() const override { return {"SCAN"}; }
+  void Handle(const std::string&, const void*, int, MessageSink& out) override {
+    out.Publish("FEAT", "x1", 2);
+    out.Publish("FEAT", "x2", 2);
+  }
+};
+
+TEST(ReplayTest, ConsumersRunOnceTheProducerHasReturned) {
+  // As separate processes would: the estimator sees the segmenter's outputs after the segmenter
+  // is done with the scan, so all of the segmenter's outputs come first.
+  TempDir dir;
+  WriteLog(dir.File("in.lcm"), {Event(7, "SCAN", "s")});
+  std::vector<ReplayStage> stages;
+  stages.push_back(ReplayStage{std::make_unique<DoubleSegmenter>(), {"FEAT"}});
+  stages.push_back(ReplayStage{std::make_unique<FakeEstimator>(), {"EST"}});
+  ASSERT_TRUE(ReplayLogFile(dir.File("in.lcm"), dir.File("out.lcm"), std::move(stages),
+                            ReplayFileOptions())
+                  .error.empty());
+  std::vector<std::string> lines;
+  for (const LogEvent& e : ReadLog(dir.File("out.lcm"))) lines.push_back(e.channel + " " + Text(e));
+  EXPECT_EQ(lines, (std::vector<std::string>{"SCAN s", "FEAT x1", "FEAT x2", "EST FEAT:x1;",
+                                             "EST FEAT:x1;FEAT:x2;"}));
+}
+
 TEST(ReplayTest, TwoRunsGiveIdenticalBytes) {
   TempDir dir;
   std::vector<LogEvent> events;

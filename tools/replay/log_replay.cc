@@ -47,7 +47,18 @@ class LogReplay::CascadeSink : public MessageSink {
     }
     ++stats.messages_published;
     output_(timestamp_us_, channel, data, size);
-    replay_->Deliver(channel, data, size, timestamp_us_, eventnum_, output_, timing_, depth_ + 1);
+    // Downstream stages get it once this stage has returned (DeliverPending), as a separate
+    // process would: the producer's STAGE_TIMING must not include its consumers' work.
+    const auto* bytes = static_cast<const uint8_t*>(data);
+    pending_.emplace_back(channel, std::vector<uint8_t>(bytes, bytes + size));
+  }
+
+  void DeliverPending() {
+    for (const auto& [channel, bytes] : pending_) {
+      replay_->Deliver(channel, bytes.data(), static_cast<int>(bytes.size()), timestamp_us_,
+                       eventnum_, output_, timing_, depth_ + 1);
+    }
+    pending_.clear();
   }
 
  private:
@@ -58,6 +69,7 @@ class LogReplay::CascadeSink : public MessageSink {
   const EventWriter& output_;
   const EventWriter& timing_;
   int depth_;
+  std::vector<std::pair<std::string, std::vector<uint8_t>>> pending_;
 };
 
 LogReplay::LogReplay(std::vector<ReplayStage> stages, std::string timing_channel)
@@ -137,6 +149,7 @@ void LogReplay::Deliver(const std::string& channel, const void* data, int size,
       LogError() << stage.Name() << ": message on " << channel << " (input event " << eventnum
                  << ") failed: " << e.what();
     }
+    sink.DeliverPending();
   }
 }
 

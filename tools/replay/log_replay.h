@@ -13,8 +13,9 @@
 //   output replaces it, and the recorded event is neither copied nor fed to any stage (FEATURES
 //   of the input are dropped when the segmenter runs; the estimator sees only the new ones).
 // - What a stage publishes is written at once, with the timestamp of the input event that caused
-//   it, and handed at once to every running stage that consumes that channel (depth first, in
-//   stage order), as the live bus would deliver it.
+//   it, and handed to every running stage that consumes that channel (in stage order) as soon
+//   as the producing stage returns, as a separate process on the live bus would get it; so a
+//   stage's STAGE_TIMING never includes the work of its consumers.
 // - STAGE_TIMING describes the machine, not the world: it goes to a separate timing output so
 //   that the main output is byte-identical run after run. Input STAGE_TIMING events are dropped
 //   whenever a stage runs (they describe another run).

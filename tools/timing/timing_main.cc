@@ -54,7 +54,7 @@ std::string TextTable(const std::vector<StageTimingSummary>& summaries) {
     out << Row(s.stage, s.total_ns);
     if (s.share_of_period) {
       char share[96];
-      std::snprintf(share, sizeof(share), "   %.2f%% of the %.1f ms period, load %.2f%%",
+      std::snprintf(share, sizeof(share), "   %.3f%% of the %.1f ms period, load %.3f%%",
                     100.0 * *s.share_of_period,
                     static_cast<double>(*s.period_median_us) * 1e-3, 100.0 * *s.load);
       out << share;
