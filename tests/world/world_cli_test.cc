@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <chrono>
 #include <filesystem>
+#include <thread>
 #include <fstream>
 #include <map>
 
@@ -253,6 +255,19 @@ TEST_F(WorldCliTest, UnknownScenarioAndBadOptions) {
   run = World({"--scenario", "s1-crossing", "--log", Path("no-such-dir/out.lcm")});
   EXPECT_EQ(run.exit_code, 1);
   EXPECT_TRUE(LeftFiles().empty());
+}
+
+TEST_F(WorldCliTest, InterruptedLogRunLeavesNothing) {
+  // 10^5 simulated seconds take tens of seconds: the run is still going when SIGINT comes.
+  const pid_t pid = testing_world::StartProcess(
+      {kWorld, "--scenario", "s1-crossing", "--duration", "100000", "--log", Path("long.lcm")},
+      Path("long.out"), Path("long.err"));
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  kill(pid, SIGINT);
+  EXPECT_EQ(testing_world::WaitProcess(pid), 1);
+  EXPECT_EQ(ReadWholeFile(Path("long.err")), "slammtt-world: error: interrupted: no log written\n");
+  EXPECT_FALSE(fs::exists(Path("long.lcm")));
+  EXPECT_FALSE(fs::exists(Path("long.lcm.partial")));
 }
 
 TEST_F(WorldCliTest, ReportPrintsTheScenarioFigures) {
