@@ -34,6 +34,7 @@ int Main(int argc, char** argv) {
   }
   supervisor_settings.config_path = absolute;
   supervisor_settings.lcm_url = settings.lcm_url;
+  supervisor_settings.lcm_url_from_command_line = cl.Value("lcm-url").has_value();
   supervisor_settings.self_directory = SelfDirectory();
   Supervisor supervisor(plan, supervisor_settings);
   if (cl.Flag("dry-run")) {

@@ -138,7 +138,6 @@ Supervisor::Supervisor(const LaunchPlan& plan, const SupervisorSettings& setting
     }
     children_.push_back(std::make_unique<Child>(spec, path, plan_, width));
   }
-  MakeDirectories(plan_.log_directory);
 }
 
 Supervisor::~Supervisor() {
@@ -167,6 +166,15 @@ std::string Supervisor::NextLogFile() const {
   return candidate;
 }
 
+std::vector<std::string> Supervisor::Arguments(
+    const Child& child, const std::map<std::string, std::string>& variables) const {
+  std::vector<std::string> args = LaunchArguments(child.spec, settings_.config_path, variables);
+  if (child.spec.pass_config && settings_.lcm_url_from_command_line) {
+    args.insert(args.begin() + 2, {"--lcm-url", settings_.lcm_url});
+  }
+  return args;
+}
+
 std::vector<std::vector<std::string>> Supervisor::CommandLines() const {
   std::vector<std::vector<std::string>> lines;
   const std::map<std::string, std::string> variables = {
@@ -176,9 +184,7 @@ std::vector<std::vector<std::string>> Supervisor::CommandLines() const {
       {"log_file", NextLogFile()}};
   for (const auto& child : children_) {
     std::vector<std::string> line = {child->path};
-    for (std::string& arg : LaunchArguments(child->spec, settings_.config_path, variables)) {
-      line.push_back(std::move(arg));
-    }
+    for (std::string& arg : Arguments(*child, variables)) line.push_back(std::move(arg));
     lines.push_back(std::move(line));
   }
   return lines;
@@ -191,9 +197,7 @@ void Supervisor::Start(Child* child) {
       {"log_directory", plan_.log_directory},
       {"log_file", NextLogFile()}};
   std::vector<std::string> argv = {child->path};
-  for (std::string& arg : LaunchArguments(child->spec, settings_.config_path, variables)) {
-    argv.push_back(std::move(arg));
-  }
+  for (std::string& arg : Arguments(*child, variables)) argv.push_back(std::move(arg));
   std::vector<char*> c_argv;
   for (std::string& arg : argv) c_argv.push_back(arg.data());
   c_argv.push_back(nullptr);
@@ -384,6 +388,7 @@ void Supervisor::StopGroup(bool stop_last_group) {
 }
 
 int Supervisor::Run() {
+  MakeDirectories(plan_.log_directory);
   for (auto& child : children_) {
     if (ShutdownRequested()) break;
     Start(child.get());

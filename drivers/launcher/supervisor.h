@@ -9,6 +9,7 @@
 // launcher's stdout and stderr.
 #pragma once
 
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -20,6 +21,9 @@ namespace slammtt {
 struct SupervisorSettings {
   std::string config_path;     // absolute: {config} and --config of the children
   std::string lcm_url;         // {lcm_url}
+  // Given on the launcher's command line: also passed as --lcm-url to every pass_config process,
+  // so that one option moves the whole stack to another bus.
+  bool lcm_url_from_command_line = false;
   std::string self_directory;  // where slammtt-launch is: programs are looked up there first
 };
 
@@ -33,8 +37,7 @@ std::string SelfDirectory();
 
 class Supervisor {
  public:
-  // Resolves every program and creates the log directory; std::runtime_error naming the
-  // process (or the directory) when that fails, before anything is started.
+  // Resolves every program; std::runtime_error naming the process when one is missing.
   Supervisor(const LaunchPlan& plan, const SupervisorSettings& settings);
   ~Supervisor();
   Supervisor(const Supervisor&) = delete;
@@ -43,7 +46,8 @@ class Supervisor {
   // The command lines that Run() would start first, for --dry-run and the docs.
   std::vector<std::vector<std::string>> CommandLines() const;
 
-  // Runs the stack until shutdown is requested (runtime/shutdown.h), until a process is given up
+  // Creates the log directory (std::runtime_error when it cannot, before anything starts), then
+  // runs the stack until shutdown is requested (runtime/shutdown.h), until a process is given up
   // with on_give_up: stop_all, or until every process ended for good. Stops everything before
   // returning. Returns 0, or 1 when a process failed for good.
   int Run();
@@ -56,6 +60,8 @@ class Supervisor {
   void StopGroup(bool stop_last_group);
   void DrainAndClose(Child* child);
   std::string NextLogFile() const;
+  std::vector<std::string> Arguments(const Child& child,
+                                     const std::map<std::string, std::string>& variables) const;
 
   LaunchPlan plan_;
   SupervisorSettings settings_;

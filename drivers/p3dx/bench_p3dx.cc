@@ -4,7 +4,7 @@
 //   tests/support/netns-run build/bin/bench_p3dx --benchmark_filter=CommandLatency
 //       --benchmark_repetitions=5   (one line)
 //
-// BM_ReceiveSip: one extended SIP (42 bytes) through the streaming decoder, the SIP parser and
+// BM_ReceiveSip: one extended SIP (37 bytes) through the streaming decoder, the SIP parser and
 // the odometry integrator, fed as the serial line delivers it (8-byte chunks).
 // BM_CommandLatency: a VELOCITY_COMMAND published on LCM until the emulated robot (in this
 // process, over TCP) has received the VEL it turns into, through a real slammtt-p3dx process;

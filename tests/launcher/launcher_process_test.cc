@@ -263,6 +263,27 @@ TEST_F(LauncherProcessTest, DryRunPrintsTheCommandLines) {
   ASSERT_EQ(launcher_->Wait(10000), 0);
   const std::string out = ReadWholeFile(out_);
   EXPECT_NE(out.find("/sh --config " + directory_ + "/robot.yaml -x\n"), std::string::npos) << out;
+  struct stat info = {};
+  EXPECT_NE(stat((directory_ + "/logs").c_str(), &info), 0);  // a dry run creates nothing
+
+  // --lcm-url on the launcher's command line moves every pass_config process along.
+  Launch(directory_ + "/robot.yaml", {"--dry-run", "--lcm-url", "udpm://239.255.76.67:7668?ttl=0"});
+  ASSERT_EQ(launcher_->Wait(10000), 0);
+  EXPECT_NE(ReadWholeFile(out_).find("/sh --config " + directory_ +
+                                     "/robot.yaml --lcm-url udpm://239.255.76.67:7668?ttl=0 -x\n"),
+            std::string::npos)
+      << ReadWholeFile(out_);
+}
+
+TEST_F(LauncherProcessTest, AnUnusableLogDirectoryStopsBeforeAnythingStarts) {
+  const std::string path = directory_ + "/robot.yaml";
+  std::ofstream(path) << "robot:\n  log_directory: /proc/no-logs-here\n  processes:\n"
+                         "    - {name: a, program: sh, pass_config: false, args: ['-c', 'echo ran']}\n";
+  Launch(path);
+  EXPECT_EQ(launcher_->Wait(10000), 1);
+  const std::string all = ReadWholeFile(out_) + ReadWholeFile(err_);
+  EXPECT_NE(all.find("cannot create the log directory /proc/no-logs-here"), std::string::npos) << all;
+  EXPECT_EQ(all.find("ran"), std::string::npos);
 }
 
 }  // namespace
