@@ -27,6 +27,20 @@ std::string Describe(const YAML::Node& node) {
   return "\"" + node.Scalar() + "\"";
 }
 
+int LineOfNode(const YAML::Node& node);
+
+// The text of a mapping key; a key that is a list or a mapping ("[]: 3") is bad input, reported
+// like any other, never a yaml-cpp exception that names no file.
+std::string KeyText(const YAML::Node& key, const std::string& source, const std::string& path) {
+  if (!key.IsScalar()) {
+    const int line = LineOfNode(key);
+    throw ConfigError(source + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": " +
+                      (path.empty() ? "" : path + ": ") + "keys must be plain text, got " +
+                      Describe(key));
+  }
+  return key.Scalar();
+}
+
 int LineOfNode(const YAML::Node& node) {
   if (!node.IsDefined()) return -1;
   const YAML::Mark mark = node.Mark();
@@ -88,7 +102,9 @@ bool Config::IsScalar() const { return impl_->node.IsScalar(); }
 std::vector<std::string> Config::Keys() const {
   std::vector<std::string> keys;
   if (!impl_->node.IsMap()) return keys;
-  for (const auto& entry : impl_->node) keys.push_back(entry.first.as<std::string>());
+  for (const auto& entry : impl_->node) {
+    keys.push_back(KeyText(entry.first, shared_->source, path_));
+  }
   return keys;
 }
 
@@ -102,7 +118,7 @@ std::string Config::Where() const {
 std::string Config::LineOf(const std::string& key) const {
   if (impl_->node.IsMap()) {
     for (const auto& entry : impl_->node) {
-      if (entry.first.as<std::string>() == key) {
+      if (entry.first.IsScalar() && entry.first.Scalar() == key) {
         const int line = LineOfNode(entry.first);
         if (line > 0) return shared_->source + ":" + std::to_string(line);
       }
@@ -268,7 +284,7 @@ void Config::CheckUnused() const {
   const YAML::Node& n = impl_->node;
   if (n.IsMap()) {
     for (const auto& entry : n) {
-      const std::string key = entry.first.as<std::string>();
+      const std::string key = KeyText(entry.first, shared_->source, path_);
       const std::string child_path = ChildPath(key);
       if (shared_->used_paths.count(child_path) == 0) FailKey(key, "unknown key");
       Config(std::make_shared<Impl>(Impl{entry.second}), shared_, child_path).CheckUnused();

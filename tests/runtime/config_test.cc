@@ -80,6 +80,18 @@ TEST(ConfigTest, BadYamlAndMissingFile) {
   EXPECT_NO_THROW(Config::FromString("", "empty.yaml"));
 }
 
+TEST(ConfigTest, NonTextKeyIsAConfigErrorNamingTheFile) {
+  const Config c = Config::FromString("world:\n  [1, 2]: 3\n", "k.yaml");
+  const Config w = c.Child("world");
+  try {
+    w.Keys();
+    FAIL() << "expected ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_STREQ(e.what(), "k.yaml:2: world: keys must be plain text, got a list");
+  }
+  EXPECT_THROW(c.CheckUnused(), ConfigError);
+}
+
 TEST(ConfigTest, CheckKeysAmong) {
   const Config c = Config::FromString("lcm: {}\nsegmentr: {}\n", "stack.yaml");
   EXPECT_THROW(c.CheckKeysAmong({"lcm", "segmenter"}), ConfigError);
