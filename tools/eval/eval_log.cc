@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "runtime/lcm_io.h"
+#include "tools/replay/message_checks.h"
 #include "slammtt_msgs/ground_truth_t.hpp"
 #include "slammtt_msgs/map_t.hpp"
 #include "slammtt_msgs/odometry_t.hpp"
@@ -13,9 +14,15 @@
 namespace slammtt {
 namespace {
 
+// Positions, velocities and covariances beyond these are not a robot's world but a broken
+// message; bounding them also keeps every later sum and difference finite.
+constexpr double kMaxMagnitude = 1e6;
+// Times from 0 to about year 33000 in microseconds: differences of two never overflow.
+constexpr int64_t kMaxUtime = 1000000000000000000LL;
+
 bool Finite(std::initializer_list<double> values) {
   for (double v : values) {
-    if (!std::isfinite(v)) return false;
+    if (!std::isfinite(v) || std::abs(v) > kMaxMagnitude) return false;
   }
   return true;
 }
@@ -23,10 +30,12 @@ bool Finite(std::initializer_list<double> values) {
 template <class T>
 bool AllFinite(const T* values, int count) {
   for (int k = 0; k < count; ++k) {
-    if (!std::isfinite(values[k])) return false;
+    if (!std::isfinite(values[k]) || std::abs(values[k]) > kMaxMagnitude) return false;
   }
   return true;
 }
+
+bool ValidUtime(int64_t utime) { return utime >= 0 && utime <= kMaxUtime; }
 
 // Sorts by utime (stable: a repeated utime keeps the first message) and drops repeats.
 template <class T>
@@ -58,11 +67,12 @@ EvalInput ReadEvalInput(const std::string& path, const Channels& channels, LogRe
   *read = ForEachLogEvent(path, [&](const LogEventView& e) {
     if (e.channel == truth_channel) {
       slammtt_msgs::ground_truth_t msg{};
-      if (!Decode(e.data, e.size, &msg)) {
+      if (!DecodeChecked(e.data, e.size, &msg)) {
         ++input.rejected["ground_truth"];
         return;
       }
-      bool ok = Finite({msg.robot_x_m, msg.robot_y_m, msg.robot_heading_rad});
+      bool ok = ValidUtime(msg.utime) &&
+                Finite({msg.robot_x_m, msg.robot_y_m, msg.robot_heading_rad});
       TruthScan scan;
       scan.utime = msg.utime;
       scan.robot = Pose2{msg.robot_x_m, msg.robot_y_m, WrapAngle(msg.robot_heading_rad)};
@@ -86,25 +96,27 @@ EvalInput ReadEvalInput(const std::string& path, const Channels& channels, LogRe
       input.truth.push_back(std::move(scan));
     } else if (e.channel == odometry_channel) {
       slammtt_msgs::odometry_t msg{};
-      if (!Decode(e.data, e.size, &msg) || !Finite({msg.x_m, msg.y_m, msg.heading_rad})) {
+      if (!DecodeChecked(e.data, e.size, &msg) || !ValidUtime(msg.utime) ||
+          !Finite({msg.x_m, msg.y_m, msg.heading_rad})) {
         ++input.rejected["odometry"];
         return;
       }
       input.odometry.push_back({msg.utime, Pose2{msg.x_m, msg.y_m, WrapAngle(msg.heading_rad)}});
     } else if (e.channel == pose_channel) {
       slammtt_msgs::pose_t msg{};
-      if (!Decode(e.data, e.size, &msg) || !Finite({msg.x_m, msg.y_m, msg.heading_rad})) {
+      if (!DecodeChecked(e.data, e.size, &msg) || !ValidUtime(msg.utime) ||
+          !Finite({msg.x_m, msg.y_m, msg.heading_rad})) {
         ++input.rejected["pose"];
         return;
       }
       input.estimate.push_back({msg.utime, Pose2{msg.x_m, msg.y_m, WrapAngle(msg.heading_rad)}});
     } else if (e.channel == tracks_channel) {
       slammtt_msgs::tracks_t msg{};
-      if (!Decode(e.data, e.size, &msg)) {
+      if (!DecodeChecked(e.data, e.size, &msg)) {
         ++input.rejected["tracks"];
         return;
       }
-      bool ok = true;
+      bool ok = ValidUtime(msg.utime);
       TrackScan scan;
       scan.utime = msg.utime;
       for (const auto& t : msg.tracks) {
@@ -132,11 +144,11 @@ EvalInput ReadEvalInput(const std::string& path, const Channels& channels, LogRe
       input.tracks.push_back(std::move(scan));
     } else if (e.channel == map_channel) {
       slammtt_msgs::map_t msg{};
-      if (!Decode(e.data, e.size, &msg)) {
+      if (!DecodeChecked(e.data, e.size, &msg)) {
         ++input.rejected["map"];
         return;
       }
-      bool ok = true;
+      bool ok = ValidUtime(msg.utime);
       std::vector<LandmarkSample> landmarks;
       for (const auto& l : msg.landmarks) {
         ok = ok && Finite({l.x_m, l.y_m}) && AllFinite(l.covariance, 4);
