@@ -233,7 +233,7 @@ TEST_P(P3dxProcessTest, DamagedPacketsNeverBecomeOdometry) {
   StartEmulator({ParseP3dxEmulatorFault("garbage@1:300"), ParseP3dxEmulatorFault("bad-checksum@1.5:3"),
                  ParseP3dxEmulatorFault("short@2:2"), ParseP3dxEmulatorFault("truncate@2.5:2"),
                  ParseP3dxEmulatorFault("drop@3:5"), ParseP3dxEmulatorFault("silence@3.5:1.5"),
-                 ParseP3dxEmulatorFault("bumper@5.5:3,0")});
+                 ParseP3dxEmulatorFault("bumper@5.5:3,0"), ParseP3dxEmulatorFault("stall@6:0,1")});
   StartDriver();
   ASSERT_TRUE(WaitConnected());
   PumpUntil(8.0, [] { return false; });
@@ -244,6 +244,8 @@ TEST_P(P3dxProcessTest, DamagedPacketsNeverBecomeOdometry) {
   EXPECT_GE(last.short_packets, 2);
   EXPECT_EQ(last.reconnects, 1);  // the silence outlasted the 1 s SIP timeout
   EXPECT_EQ(last.bumpers, 3);
+  EXPECT_FALSE(last.left_wheel_stall);
+  EXPECT_TRUE(last.right_wheel_stall);
   ASSERT_GT(odometry_.size(), 40u);
   for (const auto& o : odometry_) {
     ASSERT_EQ(o.x_m, 0.0);
