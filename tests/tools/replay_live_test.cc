@@ -148,7 +148,8 @@ TEST(ReplayLiveTest, LivePlaybackEvaluatesLikeTheReplay) {
                    std::string::npos;
       },
       20.0))
-      << testing::FileBytes(dir.File("segmenter.txt")) << testing::FileBytes(dir.File("estimator.txt"));
+      << testing::FileBytes(dir.File("segmenter.txt"))
+      << testing::FileBytes(dir.File("estimator.txt"));
   // The logger is ready once a probe it receives reaches its file.
   Child logger({"lcm-logger", "-f", "--flush-interval=20", dir.File("live.lcm")},
                dir.File("logger.txt"));
@@ -201,7 +202,8 @@ TEST(ReplayLiveTest, LivePlaybackEvaluatesLikeTheReplay) {
       {"ate_rmse_m", 0.01},         {"odometry_ate_rmse_m", 0.0}, {"ospa_mean_m", 0.01},
       {"gospa_mean_m", 0.01},       {"mota", 0.02},               {"motp_m", 0.01},
       {"id_switches", 1.0},         {"fragmentations", 1.0},      {"movers_in_static_map", 1.0},
-      {"landmark_rmse_m", 0.02},    {"static_recall", 0.05},      {"classification_accuracy", 0.05}};
+      {"landmark_rmse_m", 0.02},    {"static_recall", 0.05},
+      {"classification_accuracy", 0.05}};
   for (const auto& [key, allowed] : tolerance) {
     ASSERT_EQ(a[key].is_null(), b[key].is_null()) << key;
     if (b[key].is_null()) continue;

@@ -175,7 +175,8 @@ TEST(ReplayTest, TwoRunsGiveIdenticalBytes) {
   }
   WriteLog(dir.File("in.lcm"), events);
   ReplayFileOptions first = Options(dir);
-  ASSERT_TRUE(ReplayLogFile(dir.File("in.lcm"), dir.File("a.lcm"), FakeStack(), first).error.empty());
+  ASSERT_TRUE(
+      ReplayLogFile(dir.File("in.lcm"), dir.File("a.lcm"), FakeStack(), first).error.empty());
   ReplayFileOptions second;
   second.timing_path = dir.File("b.timing.lcm");
   ASSERT_TRUE(

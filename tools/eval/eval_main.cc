@@ -37,7 +37,8 @@ int Run(int argc, char** argv) {
                  "log: trajectory error (and that of raw odometry), static map, OSPA/GOSPA and "
                  "CLEAR-MOT tracking, static/moving classification.");
   AddStandardOptions(&cl);
-  cl.AddPositional("LOG.lcm", "a log with GROUND_TRUTH (slammtt-world, or slammtt-replay's output)");
+  cl.AddPositional("LOG.lcm",
+                   "a log with GROUND_TRUTH (slammtt-world, or slammtt-replay's output)");
   cl.AddOption("json", "REPORT.json", "write the full report as JSON");
   cl.AddOption("plots", "DIR", "write trajectory.svg, map.svg, tracks.svg, errors.svg into DIR");
   if (!cl.Parse(argc, argv)) return 0;

@@ -4,7 +4,7 @@
 // - OSPA, optimal sub-pattern assignment (Schuhmacher, Vo & Vo, "A Consistent Metric for
 //   Performance Evaluation of Multi-Object Filters", IEEE Trans. Signal Processing 56(8), 2008,
 //   eq. 3): with m = min(|X|, |Y|), n = max(|X|, |Y|) and d_c(x, y) = min(c, |x - y|),
-//     OSPA = ( (1/n) * ( min over injections pi of sum_i d_c(x_i, y_pi(i))^p + c^p (n - m) ) )^(1/p)
+//     OSPA = ( (1/n) ( min over injections pi of sum_i d_c(x_i, y_pi(i))^p + c^p (n - m) ) )^(1/p)
 //   It is normalised per object: a value in metres between 0 and c.
 // - GOSPA, generalised OSPA (Rahmathullah, Garcia-Fernandez & Svensson, "Generalized optimal
 //   sub-pattern assignment metric", FUSION 2017, eq. 1 and Proposition 1 for alpha = 2):

@@ -174,7 +174,9 @@ ReplayFileResult ReplayLogFile(const std::string& input_path, const std::string&
 
   LogWriter writer(output_path);
   std::unique_ptr<LogWriter> timing_writer;
-  if (!options.timing_path.empty()) timing_writer = std::make_unique<LogWriter>(options.timing_path);
+  if (!options.timing_path.empty()) {
+    timing_writer = std::make_unique<LogWriter>(options.timing_path);
+  }
   const EventWriter output = [&](int64_t ts, const std::string& ch, const void* d, int n) {
     writer.Write(ts, ch, d, n);
   };

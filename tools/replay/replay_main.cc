@@ -62,7 +62,9 @@ int Run(int argc, char** argv) {
   }
   section.CheckUnused();
   options.timing_channel = settings.channels.Get("stage_timing");
-  if (!cl.Flag("no-timing")) options.timing_path = cl.ValueOr("timing-log", *output + ".timing.lcm");
+  if (!cl.Flag("no-timing")) {
+    options.timing_path = cl.ValueOr("timing-log", *output + ".timing.lcm");
+  }
   // The steady clock only paces and annotates the progress line; no output depends on it.
   const auto start = std::chrono::steady_clock::now();
   options.on_progress = [&](const ReplayProgress& p) {
