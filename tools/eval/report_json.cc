@@ -51,9 +51,10 @@ std::string Fixed(double value, int decimals) {
   return text;
 }
 
+// The value with its unit, or "n/a" without one.
 template <class T>
-std::string FixedOr(const std::optional<T>& value, int decimals) {
-  return value ? Fixed(static_cast<double>(*value), decimals) : std::string("n/a");
+std::string FixedOr(const std::optional<T>& value, int decimals, const std::string& unit = "") {
+  return value ? Fixed(static_cast<double>(*value), decimals) + unit : std::string("n/a");
 }
 
 }  // namespace
@@ -225,8 +226,8 @@ std::string ReportSummaryText(const EvaluationReport& report) {
   if (report.map) {
     const MapScore& m = *report.map;
     out << m.num_matched << " of " << m.num_static_truth << " static objects found (recall "
-        << FixedOr(m.static_recall, 3) << "), landmark RMSE " << FixedOr(m.landmark_rmse_m, 3)
-        << " m, " << m.num_movers_in_static_map << " movers in the static map, "
+        << FixedOr(m.static_recall, 3) << "), landmark RMSE " << FixedOr(m.landmark_rmse_m, 3, " m")
+        << ", " << m.num_movers_in_static_map << " movers in the static map, "
         << m.num_unexplained << " other landmarks";
   } else {
     out << "n/a";
@@ -236,7 +237,7 @@ std::string ReportSummaryText(const EvaluationReport& report) {
     const TrackingResult& t = *report.tracking;
     out << "OSPA mean " << Fixed(t.ospa_mean_m, 3) << " m, GOSPA mean " << Fixed(t.gospa_mean_m, 3)
         << " m, MOTA " << FixedOr(t.clear_mot.mota, 3) << ", MOTP "
-        << FixedOr(t.clear_mot.motp_m, 3) << " m, " << t.clear_mot.num_id_switches
+        << FixedOr(t.clear_mot.motp_m, 3, " m") << ", " << t.clear_mot.num_id_switches
         << " identity switches, " << t.clear_mot.num_fragmentations << " fragmentations";
   } else {
     out << "n/a";
@@ -247,7 +248,7 @@ std::string ReportSummaryText(const EvaluationReport& report) {
     int64_t correct = 0;
     for (const ObjectClassification& o : c.objects) correct += o.correct ? 1 : 0;
     out << correct << " of " << c.objects.size() << " objects labelled right (accuracy "
-        << FixedOr(c.accuracy, 3) << "), mean delay " << FixedOr(c.mean_delay_s, 2) << " s ("
+        << FixedOr(c.accuracy, 3) << "), mean delay " << FixedOr(c.mean_delay_s, 2, " s") << " ("
         << FixedOr(c.mean_visible_scans_until_right, 1) << " visible scans)";
   } else {
     out << "n/a";
