@@ -1,6 +1,7 @@
 #include "child_process.h"
 
 #include <fcntl.h>
+#include <ftw.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -84,6 +85,14 @@ std::string MakeTempDirectory(const std::string& prefix) {
   buffer.push_back('\0');
   if (mkdtemp(buffer.data()) == nullptr) throw std::runtime_error("mkdtemp failed for " + pattern);
   return buffer.data();
+}
+
+void RemoveDirectoryTree(const std::string& path) {
+  if (path.empty() || path == "/") return;
+  nftw(
+      path.c_str(),
+      [](const char* entry, const struct stat*, int, struct FTW*) { return remove(entry); }, 16,
+      FTW_DEPTH | FTW_PHYS);
 }
 
 }  // namespace slammtt

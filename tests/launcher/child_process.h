@@ -39,5 +39,7 @@ class ChildProcess {
 std::string ReadWholeFile(const std::string& path);
 // A fresh directory under $TMPDIR (or /tmp) for one test.
 std::string MakeTempDirectory(const std::string& prefix);
+// Removes a directory and everything in it (tests clean up after themselves when they pass).
+void RemoveDirectoryTree(const std::string& path);
 
 }  // namespace slammtt

@@ -29,6 +29,9 @@ class LauncherProcessTest : public ::testing::Test {
   void TearDown() override {
     if (HasFailure()) {
       std::cerr << "stdout:\n" << ReadWholeFile(out_) << "stderr:\n" << ReadWholeFile(err_);
+    } else {
+      launcher_.reset();
+      RemoveDirectoryTree(directory_);
     }
   }
 

@@ -99,6 +99,7 @@ TEST(RobotStackTest, RobotYamlRunsTheWholeStackAgainstTheEmulators) {
   laser.Signal(SIGINT);
   EXPECT_EQ(base.Wait(5000), 0);
   EXPECT_EQ(laser.Wait(5000), 0);
+  if (!::testing::Test::HasFailure()) RemoveDirectoryTree(directory);
 }
 
 }  // namespace

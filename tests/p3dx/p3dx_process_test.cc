@@ -44,7 +44,11 @@ class P3dxProcessTest : public ::testing::TestWithParam<Transport> {
     driver_.reset();
     stop_ = true;
     if (emulator_thread_.joinable()) emulator_thread_.join();
-    if (HasFailure()) std::cerr << "driver output:\n" << ReadWholeFile(directory_ + "/driver.log");
+    if (HasFailure()) {
+      std::cerr << "driver output:\n" << ReadWholeFile(directory_ + "/driver.log");
+    } else {
+      RemoveDirectoryTree(directory_);
+    }
   }
 
   void StartEmulator(std::vector<P3dxEmulatorFault> faults = {}) {
@@ -289,6 +293,7 @@ TEST(P3dxProcessOptionsTest, BadOptionsAreOneLineErrors) {
   for (const std::string* text : {&a, &b, &c}) {
     EXPECT_EQ(std::count(text->begin(), text->end(), '\n'), 1) << *text;
   }
+  if (!::testing::Test::HasFailure()) RemoveDirectoryTree(directory);
 }
 
 }  // namespace
