@@ -51,6 +51,19 @@ void InflateMoverVelocities(const Eigen::Matrix2d& added, SlamState* state) {
   }
 }
 
+void AddVelocityJump(int k, double dt_s, double sigma_mps, SlamState* state) {
+  const StateObject& o = state->object(k);
+  if (!o.has_velocity()) return;
+  const double q = sigma_mps * sigma_mps;
+  auto cov = state->covariance();
+  const int p = o.position_index;
+  const int v = o.velocity_index;
+  cov.block<2, 2>(p, p) += q * dt_s * dt_s * Eigen::Matrix2d::Identity();
+  cov.block<2, 2>(p, v) += q * dt_s * Eigen::Matrix2d::Identity();
+  cov.block<2, 2>(v, p) += q * dt_s * Eigen::Matrix2d::Identity();
+  cov.block<2, 2>(v, v) += q * Eigen::Matrix2d::Identity();
+}
+
 RobotMotionAccumulator::RobotMotionAccumulator(const Eigen::Vector3d& start_pose)
     : pose_(start_pose) {}
 

@@ -25,6 +25,13 @@ void PredictMovers(double dt_s, double sigma_q_mps2, SlamState* state);
 // model (the estimator's time-gap handling).
 void InflateMoverVelocities(const Eigen::Matrix2d& added, SlamState* state);
 
+// A velocity jump of covariance sigma^2 I at the start of the last dt_s for object k (which has
+// velocity states): adds sigma^2 [dt^2 I, dt I; dt I, I] to its (position, velocity) block. The
+// covariance resetting of manoeuvring targets (Bar-Shalom, Li and Kirubarajan, Estimation with
+// Applications to Tracking and Navigation, 2001, section 11.2): used when a mover's measurement
+// falls outside its gate right after a turn.
+void AddVelocityJump(int k, double dt_s, double sigma_mps, SlamState* state);
+
 // A chain of eq.-1 steps composed into one robot transition: the composed pose, Jacobian
 // F = F_k ... F_1 and noise Q = sum of the step noises propagated through the later steps.
 // Applying it once costs the same O(n) as one step, whatever the number of odometry messages

@@ -133,6 +133,7 @@ std::string CheckEstimatorOptions(const EstimatorOptions& o) {
   }
   if (!non_negative(o.mover_acceleration_sigma_mps2)) return "acceleration_sigma must be >= 0";
   if (!positive(o.new_object_velocity_sigma_mps)) return "new_object_velocity_sigma must be > 0";
+  if (!non_negative(o.manoeuvre_velocity_sigma_mps)) return "manoeuvre_velocity_sigma must be >= 0";
   if (!positive(o.max_time_gap_s)) return "max_time_gap_s must be > 0";
   if (!non_negative(o.gap_robot_position_sigma_mps) ||
       !non_negative(o.gap_robot_heading_sigma_radps) ||
@@ -160,8 +161,7 @@ std::string CheckEstimatorOptions(const EstimatorOptions& o) {
   }
   const MotionClassifierOptions& c = o.classifier;
   if (!non_negative(c.moving_chi2) || !non_negative(c.moving_min_speed_mps) ||
-      !non_negative(c.still_max_speed_mps) || !non_negative(c.still_max_sigma_mps) ||
-      !non_negative(c.still_hold_s) || !non_negative(c.still_leak) ||
+      !non_negative(c.still_max_speed_mps) || !non_negative(c.still_hold_s) ||
       !positive(c.started_moving_chi2)) {
     return "classifier thresholds must be >= 0";
   }
@@ -439,6 +439,22 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
   }
   // --- level 3 (line 9): what is left, with the wider gate d2
   if (options_.level3 && options_.mode != AssociationMode::kStaticNearestNeighbour) {
+    // Manoeuvres: an unassigned MOVING object with an unassigned measurement inside its gate
+    // dn (undecided objects still have their wide velocity prior).
+    if (options_.manoeuvre_velocity_sigma_mps > 0.0 && dt > 0.0) {
+      std::vector<uint8_t> jumped(static_cast<size_t>(num_objects_before), 0);
+      for (const Candidate& c : gated) {
+        const size_t j = static_cast<size_t>(c.object);
+        if (jumped[j] || c.nis >= dn || !assignment.MeasurementFree(c.measurement) ||
+            !assignment.ObjectFree(c.object) || !state_.object(c.object).has_velocity() ||
+            state_.object(c.object).record.object_class != ObjectClass::kMoving) {
+          continue;
+        }
+        AddVelocityJump(c.object, dt, options_.manoeuvre_velocity_sigma_mps, &state_);
+        jumped[j] = 1;
+        ++counts.manoeuvres;
+      }
+    }
     predictions = PredictObservations(state_, options_.sensor);
     std::vector<Candidate> remaining;
     for (int i = 0; i < num_measurements; ++i) {
@@ -496,8 +512,9 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
       if (object.has_velocity()) {
         const Eigen::Matrix2d velocity_cov =
             state_.covariance().block<2, 2>(object.velocity_index, object.velocity_index);
-        const ClassChange change = ClassifyMover(state_.velocity(j), velocity_cov, dt,
-                                                 options_.classifier, &record);
+        const ClassChange change = ClassifyMover(state_.position(j), state_.velocity(j),
+                                                 velocity_cov, scan.utime, options_.classifier,
+                                                 &record);
         if (change == ClassChange::kBecameMoving) {
           record.class_change_utime = scan.utime;
           ++counts.became_moving;
@@ -506,7 +523,6 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
           ObjectRecord& r = state_.object(j).record;
           r.object_class = ObjectClass::kStatic;
           r.class_change_utime = scan.utime;
-          r.static_evidence_s = 0.0;
           r.moving_evidence_scans = 0;
           ClearLandmarkEvidence(&r);
           ++counts.became_static;
@@ -529,8 +545,8 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
         ObjectRecord& r = state_.object(j).record;
         r.object_class = ObjectClass::kUndecided;
         r.class_change_utime = scan.utime;
-        r.static_evidence_s = 0.0;
         r.moving_evidence_scans = 0;
+        RestartStillWindow(state_.position(j), scan.utime, &r);
         ++counts.started_moving;
       }
     }
@@ -559,8 +575,9 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
     const Eigen::Vector2d position = PointFromRangeBearing(
         state_.robot_pose(), z.range_bearing, options_.sensor, &jacobian_robot,
         &jacobian_measurement);
-    const ObjectRecord record = NewObjectRecord(
+    ObjectRecord record = NewObjectRecord(
         next_id_++, scan.utime, static_world ? ObjectClass::kStatic : ObjectClass::kUndecided);
+    RestartStillWindow(position, scan.utime, &record);
     const int k = state_.AddObject(position, jacobian_robot,
                                    jacobian_measurement * z.covariance *
                                        jacobian_measurement.transpose(),

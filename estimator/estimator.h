@@ -10,7 +10,8 @@
 //   level1       one update with the pairs J settles (lines 5-6);
 //   ransac       1-point RANSAC over the ambiguous pairs (line 7.a-d: ml_ransac.h);
 //   level2_3     update with the best hypothesis' pairs gated by d1 (line 7.e), then the
-//                optional third level with gate d2 > d1 (line 9);
+//                optional third level with gate d2 > d1 (line 9), after giving the movers
+//                that lost their measurement in a turn a velocity jump (manoeuvre);
 //   track_management  hits and misses, static/moving classification with hysteresis (line 12,
 //                motion_classifier.h), pruning (line 11), new objects from measurements
 //                outside gate dn of every object (line 13: moving, zero velocity, large
@@ -70,6 +71,11 @@ struct EstimatorOptions {
   OdometryNoiseOptions odometry_noise;
   double mover_acceleration_sigma_mps2 = 0.5;    // sigma_Q of eq. 8
   double new_object_velocity_sigma_mps = 1.0;    // prior of a new object's velocity
+  // Manoeuvres: a MOVING object with no measurement after level 2 while an
+  // unassigned measurement lies inside its gate dn gets a velocity jump of this standard
+  // deviation over the last interval (ekf_prediction.h: AddVelocityJump) before level 3 tries
+  // again. 0 disables it.
+  double manoeuvre_velocity_sigma_mps = 1.5;
 
   // Robustness.
   double max_time_gap_s = 1.0;                   // longer gaps inflate the uncertainty
@@ -150,6 +156,7 @@ struct StepCounts {
   int level1_updates = 0;
   int level2_updates = 0;
   int level3_updates = 0;
+  int manoeuvres = 0;           // movers given a velocity jump before level 3
   int hypotheses = 0;
   int new_objects = 0;
   int objects_refused = 0;      // by the object cap

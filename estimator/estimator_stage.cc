@@ -98,6 +98,8 @@ EstimatorStageOptions ReadEstimatorOptions(const Config& s) {
       Double(s, "acceleration_sigma_mps2", o.mover_acceleration_sigma_mps2);
   o.new_object_velocity_sigma_mps =
       Double(s, "new_object_velocity_sigma_mps", o.new_object_velocity_sigma_mps);
+  o.manoeuvre_velocity_sigma_mps =
+      Double(s, "manoeuvre_velocity_sigma_mps", o.manoeuvre_velocity_sigma_mps);
   o.max_time_gap_s = Double(s, "max_time_gap_s", o.max_time_gap_s);
   o.gap_robot_position_sigma_mps =
       Double(s, "gap_robot_position_sigma_mps", o.gap_robot_position_sigma_mps);
@@ -129,9 +131,7 @@ EstimatorStageOptions ReadEstimatorOptions(const Config& s) {
   c.moving_min_speed_mps = Double(s, "moving_min_speed_mps", c.moving_min_speed_mps);
   c.moving_confirm_scans = IntKey(s, "moving_confirm_scans", c.moving_confirm_scans, 1, 1000);
   c.still_max_speed_mps = Double(s, "still_max_speed_mps", c.still_max_speed_mps);
-  c.still_max_sigma_mps = Double(s, "still_max_sigma_mps", c.still_max_sigma_mps);
   c.still_hold_s = Double(s, "still_hold_s", c.still_hold_s);
-  c.still_leak = Double(s, "still_leak", c.still_leak);
   c.started_moving_chi2 = Double(s, "started_moving_chi2", c.started_moving_chi2);
   s.CheckUnused();
   const std::string problem = CheckEstimatorOptions(o);

@@ -5,48 +5,43 @@
 
 namespace slammtt {
 
-ClassChange ClassifyMover(const Eigen::Vector2d& velocity, const Eigen::Matrix2d& velocity_cov,
-                          double dt_s, const MotionClassifierOptions& options,
-                          ObjectRecord* record) {
+ClassChange ClassifyMover(const Eigen::Vector2d& position, const Eigen::Vector2d& velocity,
+                          const Eigen::Matrix2d& velocity_cov, int64_t utime,
+                          const MotionClassifierOptions& options, ObjectRecord* record) {
   const double speed = velocity.norm();
   const Eigen::Matrix2d cov = 0.5 * (velocity_cov + velocity_cov.transpose());
   const double det = cov(0, 0) * cov(1, 1) - cov(0, 1) * cov(1, 0);
   double mahalanobis = 0.0;
   if (det > 0.0) {
-    mahalanobis = (cov(1, 1) * velocity(0) * velocity(0) - 2.0 * cov(0, 1) * velocity(0) * velocity(1) +
+    mahalanobis = (cov(1, 1) * velocity(0) * velocity(0) -
+                   2.0 * cov(0, 1) * velocity(0) * velocity(1) +
                    cov(0, 0) * velocity(1) * velocity(1)) /
                   det;
   }
-  // Largest eigenvalue of a symmetric 2x2.
-  const double half_trace = 0.5 * (cov(0, 0) + cov(1, 1));
-  const double half_gap = std::sqrt(0.25 * (cov(0, 0) - cov(1, 1)) * (cov(0, 0) - cov(1, 1)) +
-                                    cov(0, 1) * cov(0, 1));
-  const double largest_sigma = std::sqrt(std::max(0.0, half_trace + half_gap));
-
   const bool moving = mahalanobis > options.moving_chi2 && speed > options.moving_min_speed_mps;
-  const bool still =
-      speed < options.still_max_speed_mps && largest_sigma < options.still_max_sigma_mps;
-
-  record->moving_evidence_scans = moving ? record->moving_evidence_scans + 1 : 0;
-  // Still evidence leaks away instead of resetting on one noisy scan (a static object's velocity
-  // estimate fluctuates around zero with the steady-state spread that sigma_Q leaves); evidence
-  // of motion clears it.
   if (moving) {
-    record->static_evidence_s = 0.0;
-  } else if (still) {
-    record->static_evidence_s += dt_s;
+    ++record->moving_evidence_scans;
+    RestartStillWindow(position, utime, record);
   } else {
-    record->static_evidence_s =
-        std::max(0.0, record->static_evidence_s - options.still_leak * dt_s);
+    record->moving_evidence_scans = 0;
   }
-
   if (record->object_class == ObjectClass::kUndecided &&
       record->moving_evidence_scans >= options.moving_confirm_scans) {
     record->object_class = ObjectClass::kMoving;
     return ClassChange::kBecameMoving;
   }
-  if (record->static_evidence_s >= options.still_hold_s) return ClassChange::kBecameStatic;
+  const double window_s = 1e-6 * static_cast<double>(utime - record->still_anchor_utime);
+  const double displacement_m = (position - record->still_anchor_m).norm();
+  if (!moving && window_s >= options.still_hold_s &&
+      displacement_m <= options.still_max_speed_mps * window_s) {
+    return ClassChange::kBecameStatic;
+  }
   return ClassChange::kNone;
+}
+
+void RestartStillWindow(const Eigen::Vector2d& position, int64_t utime, ObjectRecord* record) {
+  record->still_anchor_m = position;
+  record->still_anchor_utime = utime;
 }
 
 ClassChange ClassifyLandmark(const Eigen::Vector2d& offset_m, const Eigen::Matrix2d& covariance,

@@ -2,19 +2,19 @@
 // line 12), from the estimated velocity and its uncertainty, with hysteresis, in both
 // directions.
 //
-// Objects with velocity states (UNDECIDED or MOVING) are judged on their velocity estimate v
-// with covariance P_v at every scan:
-//   "moving" evidence: v^T P_v^-1 v > moving_chi2 (the velocity differs significantly from
-//                      zero) and |v| > moving_min_speed_mps (and not a crawl);
-//   "still" evidence:  |v| < still_max_speed_mps and the largest velocity standard deviation
-//                      is below still_max_sigma_mps (we know it well enough to say it is slow).
+// Objects with velocity states (UNDECIDED or MOVING) are judged at every scan:
+//   "moving" evidence: v^T P_v^-1 v > moving_chi2 (the velocity estimate differs significantly
+//                      from zero) and |v| > moving_min_speed_mps;
+//   "still" evidence:  since the last moving evidence (or since the object got its velocity
+//                      states), at least still_hold_s have passed and the position estimate
+//                      has moved by at most still_max_speed_mps times that time.
+// The still test looks at the displacement over a window that grows, not at the instantaneous
+// velocity estimate: with the process noise movers need (sigma_Q), a static object's velocity
+// estimate keeps a standard deviation of about 0.2 m/s at the paper's sensor noise, while the
+// mean velocity over T seconds is known to about sigma_position * sqrt(2) / T.
 // UNDECIDED -> MOVING after moving_confirm_scans consecutive "moving" scans.
-// UNDECIDED or MOVING -> STATIC once still_hold_s of "still" evidence has accumulated: each
-// still scan adds its duration, a scan that is neither still nor moving removes still_leak
-// times its duration, a moving scan clears it (a static object's velocity estimate fluctuates
-// around zero, so one noisy scan must not restart the count); the
-// estimator then conditions the state on v = 0 and removes the velocity states
-// (SlamState::RemoveVelocityAssumingZero).
+// UNDECIDED or MOVING -> STATIC on "still" evidence; the estimator then conditions the state on
+// v = 0 and removes the velocity states (SlamState::RemoveVelocityAssumingZero).
 // A STATIC landmark has no velocity to judge; it is judged on its measurements instead. Each
 // scan that has a measurement of it (its associated one, or else an unassociated measurement
 // inside the new-object gate of it: most likely the landmark, moved) adds the offset d of the
@@ -39,10 +39,8 @@ struct MotionClassifierOptions {
   double moving_chi2 = 9.21;              // 99 % for 2 dof
   double moving_min_speed_mps = 0.3;
   int moving_confirm_scans = 2;
-  double still_max_speed_mps = 0.2;
-  double still_max_sigma_mps = 0.25;
+  double still_max_speed_mps = 0.15;
   double still_hold_s = 2.0;
-  double still_leak = 1.0;
   double started_moving_chi2 = 23.0;      // 1e-5 false alarms per scan and landmark (2 dof)
 };
 
@@ -53,12 +51,15 @@ enum class ClassChange {
   kStartedMoving,      // STATIC -> UNDECIDED: add velocity states
 };
 
-// Judges an object with velocity states and updates its evidence; dt_s is the time since the
-// previous scan. Returns the class change to apply (the record's object_class is updated for
-// kBecameMoving; the caller updates it for the other changes once the state is changed).
-ClassChange ClassifyMover(const Eigen::Vector2d& velocity, const Eigen::Matrix2d& velocity_cov,
-                          double dt_s, const MotionClassifierOptions& options,
-                          ObjectRecord* record);
+// Judges an object with velocity states at utime and updates its evidence. Returns the class
+// change to apply (the record's object_class is updated for kBecameMoving; the caller updates
+// it for kBecameStatic once the state is changed).
+ClassChange ClassifyMover(const Eigen::Vector2d& position, const Eigen::Vector2d& velocity,
+                          const Eigen::Matrix2d& velocity_cov, int64_t utime,
+                          const MotionClassifierOptions& options, ObjectRecord* record);
+
+// Opens a new "still" window at the object's current position (creation, new velocity states).
+void RestartStillWindow(const Eigen::Vector2d& position, int64_t utime, ObjectRecord* record);
 
 // Adds one offset of a measured point from a static landmark (map frame, with covariance) and
 // judges the window. Returns kStartedMoving (and clears the window) when the landmark moved.

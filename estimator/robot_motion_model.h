@@ -37,10 +37,14 @@ OdometryIncrement IncrementBetweenOdometryPoses(const Eigen::Vector3d& from,
 // Noise of one odometry increment, as variances that grow with the motion (independent
 // encoder errors accumulate linearly in variance with the distance rolled, as in the usual
 // odometry error models, e.g. Thrun, Burgard and Fox, Probabilistic Robotics, section 5.4).
+// Defaults: a P3-DX with healthy wheels, as the synthetic base models it (0.5 % wheel slip per
+// reading, 0.002 rad encoder noise, up to 0.05 % wheel-size bias; docs/world.md): about 1 cm
+// per sqrt(m) along the path and 0.01 rad per sqrt(m) of heading, several times what the slip
+// alone gives so that the wheel-size bias stays inside the model.
 struct OdometryNoiseOptions {
-  double distance_var_per_m = 0.0025;          // [m^2 per m travelled] (5 cm after 1 m)
-  double rotation_var_per_rad = 0.0025;        // [rad^2 per rad turned]
-  double rotation_var_per_m = 0.0004;          // [rad^2 per m travelled] (wheel slip)
+  double distance_var_per_m = 1e-4;            // [m^2 per m travelled] (1 cm after 1 m)
+  double rotation_var_per_rad = 1e-4;          // [rad^2 per rad turned]
+  double rotation_var_per_m = 1e-4;            // [rad^2 per m travelled] (0.01 rad after 1 m)
   double distance_var_per_s = 1e-6;            // floor that keeps a standing robot well-posed
   double rotation_var_per_s = 1e-6;
 };

@@ -34,7 +34,10 @@ struct ObjectRecord {
   double unseen_in_view_s = 0.0;   // time in the field of view without a measurement
   // Classification evidence (motion_classifier.h).
   int moving_evidence_scans = 0;   // consecutive scans whose velocity says "moving"
-  double static_evidence_s = 0.0;  // time the velocity has said "standing still"
+  // Where the object's estimate was when the current "still" window opened (at creation, when
+  // it gained velocity states and at every scan of moving evidence).
+  Eigen::Vector2d still_anchor_m = Eigen::Vector2d::Zero();
+  int64_t still_anchor_utime = 0;
   // Static landmark: its last measurements' offsets from it in the map frame (measured point
   // minus estimate) with their covariances, a ring of kOffsetWindow (motion_classifier.h).
   static constexpr int kOffsetWindow = 4;

@@ -121,6 +121,7 @@ TEST_F(BadInputTest, EmptyScanIsAValidScan) {
 TEST_F(BadInputTest, TimeGapInflatesInsteadOfTrustingTheLongPrediction) {
   EstimatorOptions options;
   options.max_time_gap_s = 1.0;
+  options.classifier.still_hold_s = 100.0;  // keep the objects' velocity states for the check
   auto run = [&](int64_t gap_us) {
     Estimator estimator(options);
     std::mt19937_64 rng(1);
