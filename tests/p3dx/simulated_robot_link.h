@@ -25,9 +25,7 @@ class SimulatedClock : public DriverClock {
   static constexpr int64_t kEpochOffsetUs = 1700000000000000;
   int64_t NowUtime() override { return now_us + kEpochOffsetUs; }
   int64_t NowMonotonicUs() override { return now_us; }
-  // Overrides DriverClock::SleepUs where drivers/common has it (no `override`, so this also
-  // builds against the version without it).
-  void SleepUs(int64_t duration_us) { now_us += duration_us > 0 ? duration_us : 0; }
+  void SleepUs(int64_t duration_us) override { now_us += duration_us > 0 ? duration_us : 0; }
   int64_t now_us = 1000000;
 };
 
