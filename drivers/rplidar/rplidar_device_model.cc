@@ -163,6 +163,7 @@ void RplidarDeviceModel::StartScan(ScanKind kind, bool force, int64_t now_us) {
   force_ = force;
   scan_requested_us_ = now_us;
   epoch_us_ = -1;
+  restart_capsule_ = false;
   next_sample_ = 0;
   ++scan_number_;
   const ResponseDescriptor descriptor = DescriptorFor(
@@ -234,6 +235,7 @@ std::vector<uint8_t> RplidarDeviceModel::TakeOutput(int64_t now_us) {
       if (due > next_sample_) {
         stats_.samples_skipped += due - next_sample_;
         next_sample_ = scan_ == ScanKind::kExpress ? due / 32 * 32 : due;
+        restart_capsule_ = true;
       }
     }
     return {};
@@ -273,20 +275,24 @@ void RplidarDeviceModel::GenerateScan(int64_t now_us) {
   const uint16_t sample_us = express ? options_.express_sample_us : options_.standard_sample_us;
   const int64_t due = (now_us - epoch_us_) / sample_us;
   // A transmitter that fell far behind (a stalled emulator) skips ahead instead of bursting:
-  // at most a tenth of a revolution of backlog is sent.
+  // at most one revolution of backlog is sent. Express capsules after a gap restart the scan
+  // (S bit), as the device does, so no host interpolates across the gap.
   const int64_t per_revolution =
       static_cast<int64_t>(1e6 / (options_.rotation_hz * sample_us));
-  const int64_t backlog_limit = std::max<int64_t>(64, per_revolution / 10);
+  const int64_t backlog_limit = std::max<int64_t>(64, per_revolution);
   if (due - next_sample_ > backlog_limit) {
     int64_t resume = due - backlog_limit;
     if (express) resume = resume / 32 * 32;
     stats_.samples_skipped += resume - next_sample_;
     next_sample_ = resume;
+    restart_capsule_ = true;
   }
   if (express) {
     // Capsule i carries samples 32 i .. 32 i + 31 and leaves once they are measured.
     while (next_sample_ + 32 <= due) {
-      EmitPacket(ExpressCapsule(next_sample_ / 32), true);
+      const int64_t index = next_sample_ / 32;
+      EmitPacket(ExpressCapsule(index, index == 0 || restart_capsule_), true);
+      restart_capsule_ = false;
       next_sample_ += 32;
     }
   } else {
@@ -330,7 +336,8 @@ std::vector<uint8_t> RplidarDeviceModel::StandardNode(int64_t k) const {
           static_cast<uint8_t>(distance_q2 >> 8)};
 }
 
-std::vector<uint8_t> RplidarDeviceModel::ExpressCapsule(int64_t capsule_index) const {
+std::vector<uint8_t> RplidarDeviceModel::ExpressCapsule(int64_t capsule_index,
+                                                        bool start_flag) const {
   const int64_t first = capsule_index * 32;
   const uint16_t start_q6 = AngleQ6(SampleAngleDeg(first, options_.express_sample_us));
   const uint16_t next_q6 = AngleQ6(SampleAngleDeg(first + 32, options_.express_sample_us));
@@ -342,8 +349,7 @@ std::vector<uint8_t> RplidarDeviceModel::ExpressCapsule(int64_t capsule_index) c
   if (start_q8 > next_q8) diff_q8 += int64_t{360} << 8;
   const int64_t increment_q16 = diff_q8 << 3;
   std::vector<uint8_t> capsule(kExpressCapsuleSize, 0);
-  const uint16_t start_word =
-      static_cast<uint16_t>(start_q6 | (capsule_index == 0 ? 0x8000 : 0));
+  const uint16_t start_word = static_cast<uint16_t>(start_q6 | (start_flag ? 0x8000 : 0));
   capsule[2] = static_cast<uint8_t>(start_word & 0xFF);
   capsule[3] = static_cast<uint8_t>(start_word >> 8);
   int64_t angle_q16 = start_q8 << 8;

@@ -25,7 +25,8 @@
 // angle start + k * sample_time * rotation_hz * 360 degrees (clockwise), its distance is the
 // room's ray plus Gaussian noise, drawn from a hash of (seed, k) so that the bytes of a scan
 // do not depend on how the transport paced them (as long as it polls within the backlog the
-// device keeps: max(64 samples, a tenth of a revolution); beyond, samples are skipped). Express capsules carry per-sample angle
+// device keeps: one revolution; beyond, samples are skipped and the next express capsule
+// carries the S bit, so the host restarts its interpolation instead of bridging the gap). Express capsules carry per-sample angle
 // corrections dtheta drawn the same way, and the distance of each sample is measured at the
 // corrected angle, so a correct decoder recovers exactly the angles that were ray-cast.
 #pragma once
@@ -118,7 +119,7 @@ class RplidarDeviceModel {
   void GenerateScan(int64_t now_us);
   void EmitPacket(std::vector<uint8_t> packet, bool express);
   std::vector<uint8_t> StandardNode(int64_t k) const;
-  std::vector<uint8_t> ExpressCapsule(int64_t capsule_index) const;
+  std::vector<uint8_t> ExpressCapsule(int64_t capsule_index, bool start_flag) const;
   // Distance in millimetres at a device angle for sample k (0: no return), and its quality.
   double MeasureMm(double device_angle_deg, int64_t k, uint8_t* quality) const;
   uint64_t Hash(int64_t k, uint64_t stream) const;
@@ -137,6 +138,7 @@ class RplidarDeviceModel {
   int64_t epoch_us_ = -1;       // time of sample 0 of the data stream, -1 until it starts
   int64_t next_sample_ = 0;     // standard: next node; express: next capsule * 32
   uint64_t scan_number_ = 0;    // new noise per scan
+  bool restart_capsule_ = false;  // the next capsule follows a gap: S bit set
 
   std::optional<bool> host_dtr_;
   int pwm_ = 0;

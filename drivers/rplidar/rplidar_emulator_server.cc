@@ -12,6 +12,10 @@ namespace {
 
 constexpr int kPollMs = 2;
 constexpr int64_t kDtrPollUs = 5000;
+// What the USB adapter and the kernel would buffer for a host that reads late: 64 kB, about
+// 6 s of scan data at 115200 baud. A pty alone holds about 4 kB, which a test machine under
+// load can overrun; that would test the machine, not the protocol.
+constexpr size_t kMaxPendingBytes = 64 * 1024;
 
 }  // namespace
 
@@ -68,6 +72,7 @@ void RplidarEmulatorServer::ServeOnce() {
     const int64_t now = Now();
     if (pending_disconnect_ms_ >= 0) {
       CloseDevice();
+      pending_output_.clear();
       ++stats_.disconnects;
       model_.PowerCycle(now);
       reconnect_at_us_ = now + int64_t{pending_disconnect_ms_} * 1000;
@@ -84,6 +89,7 @@ void RplidarEmulatorServer::ServeOnce() {
     if (reconnect_at_us_ < 0 && tcp_server_) {
       if (auto client = tcp_server_->Accept(0)) {
         tcp_client_ = std::move(client);  // a new host wins over the old connection
+        pending_output_.clear();
         ++stats_.host_connections;
       }
     }
@@ -110,12 +116,22 @@ void RplidarEmulatorServer::ServeOnce() {
     next_dtr_poll_us_ = now + kDtrPollUs;
   }
   const std::vector<uint8_t> out = model_.TakeOutput(now);
-  if (out.empty()) return;
+  pending_output_.insert(pending_output_.end(), out.begin(), out.end());
+  if (pending_output_.size() > kMaxPendingBytes) {
+    // The host has not read for seconds: what the adapter could not hold is lost.
+    const size_t lost = pending_output_.size() - kMaxPendingBytes;
+    pending_output_.erase(pending_output_.begin(),
+                          pending_output_.begin() + static_cast<std::ptrdiff_t>(lost));
+    stats_.overflow_bytes += static_cast<int64_t>(lost);
+  }
+  if (pending_output_.empty()) return;
   try {
-    const size_t sent = link->WriteAvailable(out.data(), out.size());
-    stats_.overflow_bytes += static_cast<int64_t>(out.size() - sent);
+    const size_t sent = link->WriteAvailable(pending_output_.data(), pending_output_.size());
+    pending_output_.erase(pending_output_.begin(),
+                          pending_output_.begin() + static_cast<std::ptrdiff_t>(sent));
   } catch (const LinkError&) {
     if (link == tcp_client_.get()) tcp_client_.reset();
+    pending_output_.clear();
   }
 }
 

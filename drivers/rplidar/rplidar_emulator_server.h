@@ -40,7 +40,7 @@ struct EmulatorServerStats {
   RplidarDeviceStats device;
   int64_t host_connections = 0;  // TCP clients accepted (pty: 0)
   int64_t disconnects = 0;
-  int64_t overflow_bytes = 0;    // transmitted while the host did not read: lost, as on a UART
+  int64_t overflow_bytes = 0;    // beyond 64 kB unread by the host: lost
 };
 
 class RplidarEmulatorServer {
@@ -88,6 +88,7 @@ class RplidarEmulatorServer {
   int64_t reconnect_at_us_ = -1;
   int pending_disconnect_ms_ = -1;
   int64_t next_dtr_poll_us_ = 0;
+  std::vector<uint8_t> pending_output_;  // transmitted, not yet taken by the link
   EmulatorServerStats stats_;
   std::atomic<bool> stop_{false};
   std::thread thread_;

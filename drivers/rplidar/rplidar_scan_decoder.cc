@@ -126,7 +126,14 @@ void ExpressCapsuleDecoder::Reset() {
   buffer_.clear();
   waiting_.reset();
   previous_base_q16_ = -1;
+  previous_span_q6_ = 0;
   in_sync_ = true;
+}
+
+int64_t ExpressCapsuleDecoder::AngleSpanQ6(uint16_t from_q6, uint16_t to_q6) {
+  int64_t span = int64_t{to_q6} - int64_t{from_q6};
+  if (span < 0) span += kFullTurnQ6;
+  return span;
 }
 
 void ExpressCapsuleDecoder::DropWaiting() {
@@ -186,8 +193,22 @@ void ExpressCapsuleDecoder::Feed(const uint8_t* data, size_t size, int64_t arriv
       if (waiting_) ++counters_.resyncs;
       DropWaiting();
       previous_base_q16_ = -1;
+      previous_span_q6_ = 0;
     }
-    if (waiting_) Decode(*waiting_, capsule.start_angle_q6, out);
+    if (waiting_) {
+      const int64_t span_q6 = AngleSpanQ6(waiting_->start_angle_q6, capsule.start_angle_q6);
+      if (previous_span_q6_ > 0 && 2 * span_q6 > 3 * previous_span_q6_) {
+        // A capsule vanished whole (no bad checksum to tell): interpolating across the gap
+        // would stretch 32 angles. The waiting capsule is dropped; the new one starts over.
+        ++counters_.resyncs;
+        DropWaiting();
+        previous_base_q16_ = -1;
+        previous_span_q6_ = 0;
+      } else {
+        Decode(*waiting_, capsule.start_angle_q6, out);
+        previous_span_q6_ = span_q6;
+      }
+    }
     waiting_ = capsule;
     in_sync_ = true;
     pos += kExpressCapsuleSize;

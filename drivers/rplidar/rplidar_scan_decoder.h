@@ -37,6 +37,9 @@
 // #87 leaves it open); distance = field with its 2 low bits cleared, in q2 (1 mm steps). A
 // capsule is decoded only when the next valid capsule has arrived; a bad checksum, lost sync
 // nibbles or a capsule with S set also drop the waiting capsule (its angle span is unknown).
+// Our addition: a span more than 1.5 times the previous one means a capsule vanished whole
+// (nothing else tells: no bytes were corrupt), so the waiting capsule is dropped rather than
+// decoded with 32 stretched angles (the rotation speed changes far less in 8 ms).
 // Capsules carry no quality: like the SDK we report 47 (of 63) for a return, 0 for none.
 // Revolutions are cut per sample when the interpolated angle wraps past 360 degrees (the
 // capsule's S bit is not a revolution mark).
@@ -136,11 +139,13 @@ class ExpressCapsuleDecoder {
   void Decode(const Capsule& capsule, uint16_t next_start_angle_q6, std::vector<ScanSample>* out);
   void Skip(size_t count);
   void DropWaiting();
+  static int64_t AngleSpanQ6(uint16_t from_q6, uint16_t to_q6);
 
   std::vector<uint8_t> buffer_;
   uint64_t buffer_offset_ = 0;
   std::optional<Capsule> waiting_;  // decoded when the next valid capsule arrives
   int64_t previous_base_q16_ = -1;  // interpolated angle of the last sample, for the wrap
+  int64_t previous_span_q6_ = 0;    // angle between the last two decoded capsules, 0: unknown
   bool in_sync_ = true;
   DecoderCounters counters_;
 };

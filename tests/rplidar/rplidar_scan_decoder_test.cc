@@ -286,6 +286,27 @@ TEST(ExpressCapsuleDecoderTest, StartFlagMidStreamResetsTheDecoder) {
   EXPECT_EQ(decoder.counters().dropped_capsules, 1);
 }
 
+TEST(ExpressCapsuleDecoderTest, CapsuleThatVanishedWholeIsNotBridged) {
+  Bytes stream;
+  for (uint16_t start : {1000, 3000, 7000, 9000, 11000}) {  // 5000 never arrived
+    const Bytes capsule = EmptyCapsule(start, false);
+    stream.insert(stream.end(), capsule.begin(), capsule.end());
+  }
+  ExpressCapsuleDecoder decoder;
+  std::vector<ScanSample> out;
+  decoder.Feed(stream.data(), stream.size(), 0, &out);
+  // 1000 decodes with 3000; 3000 -> 7000 spans twice as much: 3000 is dropped, not stretched;
+  // 7000 starts over and decodes with 9000, 9000 with 11000; 11000 waits.
+  ASSERT_EQ(out.size(), 96u);
+  EXPECT_EQ(out[0].angle_q6, 1000);
+  EXPECT_EQ(out[31].angle_q6, 1000 + 31 * 2000 / 32);
+  EXPECT_EQ(out[32].angle_q6, 7000);
+  EXPECT_EQ(out[64].angle_q6, 9000);
+  EXPECT_EQ(decoder.counters().dropped_capsules, 1);
+  EXPECT_EQ(decoder.counters().resyncs, 1);
+  EXPECT_EQ(decoder.counters().checksum_errors, 0);
+}
+
 ScanSample Sample(uint16_t angle_q6, bool start) {
   ScanSample sample;
   sample.angle_q6 = angle_q6;
