@@ -2,7 +2,7 @@
 // separate process, lcm-logger, records the bus while slammtt-world runs in real time (sped up);
 // the recording must hold every message of every channel, in order, and the same messages as
 // the log written as fast as possible (only utime differs: live runs start at the wall clock).
-// Also: lcm-logplayer plays a fast-mode log.
+// Also: lcm-logplayer plays a fast-mode log; SIGINT and SIGTERM end a live run with status 0.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -259,6 +259,53 @@ TEST_F(WorldLcmTest, FollowCommandsDrivesTheRobotAndStopsWhenCommandsStop) {
   EXPECT_GT(travelled, 0.3);
   EXPECT_LT(travelled, 1.0);
   EXPECT_NEAR(last.robot_heading_rad, 0.0, 1e-9);
+}
+
+// Waits up to `seconds` for `pid` to end; its exit status (as WaitProcess), or -1 after killing
+// it when it did not end in time.
+int WaitWithDeadline(pid_t pid, int seconds) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(seconds);
+  while (std::chrono::steady_clock::now() < deadline) {
+    int status = 0;
+    if (waitpid(pid, &status, WNOHANG) == pid) {
+      if (WIFEXITED(status)) return WEXITSTATUS(status);
+      return WIFSIGNALED(status) ? 128 + WTERMSIG(status) : -1;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  kill(pid, SIGKILL);
+  WaitProcess(pid);
+  return -1;
+}
+
+TEST_F(WorldLcmTest, LiveRunStopsCleanlyOnSigintAndSigterm) {
+  // Real time, with and without --follow-commands (which waits in LCM's select: the signal
+  // interrupts it and must read as a shutdown request, not as a failed bus).
+  for (const int signal_number : {SIGINT, SIGTERM}) {
+    for (const bool follow : {false, true}) {
+      SCOPED_TRACE(std::string(signal_number == SIGINT ? "SIGINT" : "SIGTERM") +
+                   (follow ? " --follow-commands" : ""));
+      TruthLog truth;
+      lcm::Subscription* subscription = lcm_->subscribeFunction("GROUND_TRUTH", &OnTruth, &truth);
+      std::vector<std::string> argv = {kWorld, "--scenario", "rplidar-a2", "--duration", "3600",
+                                       "--lcm-url", kUrl};
+      if (follow) argv.push_back("--follow-commands");
+      const pid_t world = StartProcess(argv, Path("world.out"), Path("world.err"));
+      // Running its loop once it publishes.
+      const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+      while (truth.messages.size() < 3 && std::chrono::steady_clock::now() < deadline) {
+        lcm_->handleTimeout(50);
+      }
+      lcm_->unsubscribe(subscription);
+      ASSERT_GE(truth.messages.size(), 3u) << ReadWholeFile(Path("world.err"));
+      kill(world, signal_number);
+      EXPECT_EQ(WaitWithDeadline(world, 10), 0);
+      const std::string err = ReadWholeFile(Path("world.err"));
+      EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+      EXPECT_EQ(err.rfind("slammtt-world: info: rplidar-a2 seed 1: ", 0), 0u) << err;
+      EXPECT_NE(err.find("(interrupted)\n"), std::string::npos) << err;
+    }
+  }
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "tools/world/world_runner.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -107,7 +108,12 @@ WorldRunSummary PublishWorldLive(WorldSimulator* world, lcm::LCM* lcm, const Wor
       if (options.follow_commands) {
         const int wait_ms = static_cast<int>(
             std::max<int64_t>(0, std::chrono::duration_cast<std::chrono::milliseconds>(wait).count()));
-        if (lcm->handleTimeout(wait_ms) < 0) throw std::runtime_error("LCM receive failed");
+        // A signal interrupts the wait (select fails with EINTR): that is the shutdown request
+        // the loop checks next, not a failure of the bus.
+        errno = 0;
+        if (lcm->handleTimeout(wait_ms) < 0 && errno != EINTR && !ShutdownRequested()) {
+          throw std::runtime_error("LCM receive failed");
+        }
       } else {
         std::this_thread::sleep_for(wait);
       }
