@@ -97,6 +97,67 @@ TEST(MoverPathTest, WaypointLoopComesBack) {
   EXPECT_TRUE(path.ExistsAt(59.0));
 }
 
+TEST(MoverPathTest, WaypointLoopRepeatsEveryLapExactly) {
+  MoverSpec spec;
+  spec.kind = MoverKind::kWaypoints;
+  spec.speed_mps = 1.0;
+  spec.appear_s = 2.0;
+  spec.at_end = PathEnd::kLoop;
+  spec.waypoints = {MoverWaypoint{0.0, 0.0, 1.0}, MoverWaypoint{3.0, 0.0, 0.5},
+                    MoverWaypoint{3.0, 4.0, 0.0}};
+  const MoverPath path = Build(spec, 1e6);
+  // Lap from t = 3 (after the first wait): 3 m, 0.5 s wait, 4 m, 5 m back, 1 s wait = 13.5 s.
+  ASSERT_TRUE(path.repeat_from_s().has_value());
+  EXPECT_EQ(*path.repeat_from_s(), 3.0);
+  EXPECT_EQ(path.knots().back().t_s, 16.5);
+  EXPECT_LE(path.knots().size(), 8u);  // one lap, whatever the horizon
+  for (const double t : {3.0, 4.25, 6.2, 9.0, 15.9, 16.2}) {
+    for (const double laps : {1.0, 7.0, 70000.0}) {
+      SCOPED_TRACE(std::to_string(t) + " + " + std::to_string(laps) + " laps");
+      const MoverState first = path.StateAt(t);
+      const MoverState later = path.StateAt(t + laps * 13.5);
+      EXPECT_NEAR(later.x_m, first.x_m, 1e-9);
+      EXPECT_NEAR(later.y_m, first.y_m, 1e-9);
+      EXPECT_NEAR(later.vx_mps, first.vx_mps, 1e-9);
+      EXPECT_NEAR(later.vy_mps, first.vy_mps, 1e-9);
+    }
+  }
+  // Standing at the first waypoint during its wait, at the end of every lap.
+  EXPECT_DOUBLE_EQ(path.StateAt(16.0 + 13.5).x_m, 0.0);
+  EXPECT_DOUBLE_EQ(path.StateAt(16.0 + 13.5).vx_mps, 0.0);
+}
+
+TEST(MoverPathTest, WaypointLoopOfATinyLapCostsOneLapNotMemoryPerLap) {
+  // A lap of 2 ns over a 10^6 s run was 5 * 10^14 knots (out of memory); now it is one lap.
+  MoverSpec spec;
+  spec.kind = MoverKind::kWaypoints;
+  spec.speed_mps = 1.0;
+  spec.at_end = PathEnd::kLoop;
+  spec.waypoints = {MoverWaypoint{0.0, 0.0, 0.0}, MoverWaypoint{0.0, 1e-9, 0.0}};
+  const MoverPath path = Build(spec, 1e6);
+  EXPECT_EQ(path.knots().size(), 3u);
+  const MoverState s = path.StateAt(654321.123);
+  EXPECT_EQ(s.x_m, 0.0);
+  EXPECT_GE(s.y_m, 0.0);
+  EXPECT_LE(s.y_m, 1e-9);
+  EXPECT_NEAR(std::abs(s.vy_mps), 1.0, 1e-6);
+  // Every waypoint at one place and no wait: a lap that takes no time is standing still.
+  spec.waypoints = {MoverWaypoint{2.0, 1.0, 0.0}, MoverWaypoint{2.0, 1.0, 0.0}};
+  const MoverPath standing = Build(spec, 1e6);
+  EXPECT_FALSE(standing.repeat_from_s().has_value());
+  EXPECT_EQ(standing.StateAt(5e5).x_m, 2.0);
+  EXPECT_EQ(standing.StateAt(5e5).vx_mps, 0.0);
+}
+
+TEST(MoverPathTest, LoopMustCloseAtAKnot) {
+  const std::vector<TimedPoint> closed = {TimedPoint{0.0, 0.0, 0.0}, TimedPoint{1.0, 1.0, 0.0},
+                                          TimedPoint{2.0, 0.0, 0.0}};
+  EXPECT_NO_THROW(MoverPath(closed, 0.0, 10.0, 0.0));
+  EXPECT_THROW(MoverPath(closed, 0.0, 10.0, 0.5), std::invalid_argument);  // not a knot
+  EXPECT_THROW(MoverPath(closed, 0.0, 10.0, 1.0), std::invalid_argument);  // elsewhere
+  EXPECT_THROW(MoverPath(closed, 0.0, 10.0, 2.0), std::invalid_argument);  // the last knot
+}
+
 TEST(MoverPathTest, TrajectoryIsInterpolatedAndEntersAndLeaves) {
   MoverSpec spec;
   spec.kind = MoverKind::kTrajectory;

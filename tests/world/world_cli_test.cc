@@ -237,6 +237,17 @@ TEST_F(WorldCliTest, BadTrajectoryFileIsRejectedWithItsLine) {
   EXPECT_TRUE(LeftFiles().empty());
 }
 
+TEST_F(WorldCliTest, WaypointLoopWithATinyLapRuns) {
+  // Used to build one knot per lap up to the horizon: 10^9 knots for 2 s, out of memory.
+  const std::string scenario = Write(
+      "tiny-loop.yaml",
+      "duration_s: 2\nmovers:\n  - {type: waypoints, speed_mps: 1, at_end: loop,\n"
+      "     waypoints: [[1, 0], [1, 0.000000001]]}\n");
+  const ProcessResult run = World({"--scenario", scenario, "--log", Path("loop.lcm")});
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  EXPECT_TRUE(LeftFiles() == std::vector<std::string>{"loop.lcm"});
+}
+
 TEST_F(WorldCliTest, UnknownScenarioAndBadOptions) {
   ProcessResult run = World({"--scenario", "s9-nothing", "--log", Path("out.lcm")});
   EXPECT_EQ(run.exit_code, 1);

@@ -8,12 +8,26 @@
 
 namespace slammtt {
 
-MoverPath::MoverPath(std::vector<TimedPoint> knots, double appear_s, double disappear_s)
-    : knots_(std::move(knots)), appear_s_(appear_s), disappear_s_(disappear_s) {
+MoverPath::MoverPath(std::vector<TimedPoint> knots, double appear_s, double disappear_s,
+                     std::optional<double> repeat_from_s)
+    : knots_(std::move(knots)),
+      appear_s_(appear_s),
+      disappear_s_(disappear_s),
+      repeat_from_s_(repeat_from_s) {
   if (knots_.empty()) throw std::invalid_argument("MoverPath: no knots");
   for (size_t i = 1; i < knots_.size(); ++i) {
     if (!(knots_[i].t_s > knots_[i - 1].t_s)) {
       throw std::invalid_argument("MoverPath: knot times must increase strictly");
+    }
+  }
+  if (repeat_from_s_) {
+    const TimedPoint& last = knots_.back();
+    const auto start = std::find_if(knots_.begin(), knots_.end(), [&](const TimedPoint& k) {
+      return k.t_s == *repeat_from_s_;
+    });
+    if (start == knots_.end() || !(start->t_s < last.t_s) || start->x_m != last.x_m ||
+        start->y_m != last.y_m) {
+      throw std::invalid_argument("MoverPath: a loop must start at a knot where the path ends");
     }
   }
 }
@@ -21,6 +35,10 @@ MoverPath::MoverPath(std::vector<TimedPoint> knots, double appear_s, double disa
 MoverState MoverPath::StateAt(double t_s) const {
   MoverState state;
   if (knots_.empty()) return state;
+  if (repeat_from_s_ && t_s >= knots_.back().t_s) {
+    // Into the lap [repeat_from_s, last knot): fmod is exact, so every lap is the same.
+    t_s = *repeat_from_s_ + std::fmod(t_s - *repeat_from_s_, knots_.back().t_s - *repeat_from_s_);
+  }
   if (t_s < knots_.front().t_s || knots_.size() == 1) {
     state.x_m = knots_.front().x_m;
     state.y_m = knots_.front().y_m;
@@ -66,40 +84,44 @@ MoverPath ConstantVelocityPath(const MoverSpec& spec, double horizon_s) {
   return MoverPath(std::move(knots), spec.appear_s, spec.disappear_s);
 }
 
-MoverPath WaypointPath(const MoverSpec& spec, double horizon_s) {
+// Every waypoint once (stay, leave), or one lap back to the first waypoint and its wait (loop):
+// the number of knots is bounded by the number of waypoints, never by the run's length.
+MoverPath WaypointPath(const MoverSpec& spec) {
   std::vector<TimedPoint> knots;
   const std::vector<MoverWaypoint>& wps = spec.waypoints;
-  const double stop_s = std::min(spec.disappear_s, horizon_s + kHorizonMarginS);
   double t = spec.appear_s;
   double x = wps.front().x_m;
   double y = wps.front().y_m;
   AppendKnot(&knots, t, x, y);
   t += wps.front().wait_s;
   AppendKnot(&knots, t, x, y);
-  size_t next = 1;
-  double lap_start_s = spec.appear_s;
-  while (t < stop_s) {
-    if (next == wps.size()) {
-      if (spec.at_end != PathEnd::kLoop) break;
-      if (!(t > lap_start_s)) break;  // a lap that takes no time would never end
-      lap_start_s = t;
-      next = 0;
-    }
-    const MoverWaypoint& wp = wps[next];
+  const double lap_start_s = knots.back().t_s;
+  const bool loop = spec.at_end == PathEnd::kLoop;
+  for (size_t i = 1; i <= wps.size(); ++i) {
+    if (i == wps.size() && !loop) break;
+    const MoverWaypoint& wp = wps[i % wps.size()];  // the loop closes at the first waypoint
     t += std::hypot(wp.x_m - x, wp.y_m - y) / spec.speed_mps;
     x = wp.x_m;
     y = wp.y_m;
     AppendKnot(&knots, t, x, y);
     t += wp.wait_s;
     AppendKnot(&knots, t, x, y);
-    ++next;
+  }
+  if (loop) {
+    // The lap ends where it started. (Only when the closing walk takes less time than the
+    // resolution of t does the last knot stand elsewhere: it moves by less than speed * ulp(t).)
+    knots.back().x_m = wps.front().x_m;
+    knots.back().y_m = wps.front().y_m;
   }
   double disappear_s = spec.disappear_s;
-  if (spec.at_end == PathEnd::kLeave && next == wps.size()) {
+  if (spec.at_end == PathEnd::kLeave) {
     disappear_s = std::min(disappear_s, t);  // leaves on reaching its last waypoint (and wait)
     if (!(disappear_s > spec.appear_s)) disappear_s = spec.appear_s;
   }
-  return MoverPath(std::move(knots), spec.appear_s, disappear_s);
+  // A lap that takes no time (every waypoint at one place, no wait) is a mover standing still.
+  std::optional<double> repeat_from_s;
+  if (loop && knots.back().t_s > lap_start_s) repeat_from_s = lap_start_s;
+  return MoverPath(std::move(knots), spec.appear_s, disappear_s, repeat_from_s);
 }
 
 MoverPath TrajectoryPath(const MoverSpec& spec) {
@@ -168,7 +190,7 @@ MoverPath BuildMoverPath(const MoverSpec& spec, double horizon_s, std::mt19937_6
     case MoverKind::kConstantVelocity:
       return ConstantVelocityPath(spec, horizon_s);
     case MoverKind::kWaypoints:
-      return WaypointPath(spec, horizon_s);
+      return WaypointPath(spec);
     case MoverKind::kTrajectory:
       return TrajectoryPath(spec);
     case MoverKind::kRandomWalk:

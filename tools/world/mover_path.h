@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -22,14 +23,19 @@ struct MoverState {
 };
 
 // Linear interpolation between knots of strictly increasing time; before the first knot the
-// object stands at it, after the last one at the last one (velocity zero). The object exists in
+// object stands at it, after the last one at the last one (velocity zero), unless the path is a
+// loop: then the knots from `repeat_from_s` to the last one form a closed lap that repeats
+// forever (time folded into the lap with fmod, which is exact), so a looping mover costs one
+// lap of knots however short the lap and however long the run. The object exists in
 // [appear_s, disappear_s).
 class MoverPath {
  public:
   MoverPath() = default;
-  // `knots` non-empty with strictly increasing t_s; CHECK-style std::invalid_argument otherwise
-  // (a programming error: scenarios are validated before paths are built).
-  MoverPath(std::vector<TimedPoint> knots, double appear_s, double disappear_s);
+  // `knots` non-empty with strictly increasing t_s; `repeat_from_s`, when given, the time of a
+  // knot before the last one at the last knot's position. CHECK-style std::invalid_argument
+  // otherwise (a programming error: scenarios are validated before paths are built).
+  MoverPath(std::vector<TimedPoint> knots, double appear_s, double disappear_s,
+            std::optional<double> repeat_from_s = std::nullopt);
 
   bool ExistsAt(double t_s) const { return t_s >= appear_s_ && t_s < disappear_s_; }
   // Position and velocity at t_s (also outside the existence interval: the clamped path).
@@ -39,16 +45,19 @@ class MoverPath {
   const std::vector<TimedPoint>& knots() const { return knots_; }
   double appear_s() const { return appear_s_; }
   double disappear_s() const { return disappear_s_; }
+  // Start of the repeated lap of a loop; nullopt for a path that ends at its last knot.
+  const std::optional<double>& repeat_from_s() const { return repeat_from_s_; }
 
  private:
   std::vector<TimedPoint> knots_;
   double appear_s_ = 0.0;
   double disappear_s_ = std::numeric_limits<double>::infinity();
+  std::optional<double> repeat_from_s_;
 };
 
-// The path of a mover of the scenario over [0, horizon_s]. Random walks draw their legs from
-// `rng` (the caller seeds it per object); the other kinds draw nothing. The spec must be free of
-// FindScenarioProblems() problems.
+// The path of a mover of the scenario over [0, horizon_s] (a waypoint loop: for ever, one lap of
+// knots). Random walks draw their legs from `rng` (the caller seeds it per object); the other
+// kinds draw nothing. The spec must be free of FindScenarioProblems() problems.
 MoverPath BuildMoverPath(const MoverSpec& spec, double horizon_s, std::mt19937_64& rng);
 
 }  // namespace slammtt
