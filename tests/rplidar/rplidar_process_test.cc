@@ -52,6 +52,7 @@ class RplidarProcessTest : public ::testing::Test {
   }
   void TearDown() override {
     unlink((directory_ + "/lidar").c_str());
+    unlink((directory_ + "/endpoint").c_str());
     rmdir(directory_.c_str());
   }
 
