@@ -89,7 +89,9 @@ void Segmenter::CollectBeams(const ScanView& scan) {
     hi = scan.range_max_m;
   }
   if (beams_.capacity() < n) beams_.reserve(n);
+  int32_t unusable_run = 0;  // unusable beams since the last usable one, in input order
   for (size_t i = 0; i < n; ++i) {
+    ++unusable_run;  // undone below for a usable beam
     if (scan.valid != nullptr && scan.valid[i] == 0) {
       ++stats_.beams_flagged_invalid;
       continue;
@@ -105,8 +107,11 @@ void Segmenter::CollectBeams(const ScanView& scan) {
       ++stats_.beams_out_of_range;
       continue;
     }
-    beams_.push_back(Beam{WrapBearing(angle), range, static_cast<int32_t>(i)});
+    beams_.push_back(Beam{WrapBearing(angle), range, static_cast<int32_t>(i), unusable_run - 1});
+    unusable_run = 0;
   }
+  // The scan is a circle: beams after the last usable one precede the first usable one.
+  if (!beams_.empty()) beams_[0].unusable_before += unusable_run;
   if (n < scan.num_beams) stats_.beams_non_finite += static_cast<int64_t>(scan.num_beams - n);
 }
 
@@ -120,6 +125,8 @@ void Segmenter::PutInCircularOrder() {
     if (a.angle_rad != b.angle_rad) return a.angle_rad < b.angle_rad;
     return a.index < b.index;
   });
+  // Input order says nothing about angular neighbours any more: only max_beam_gap applies.
+  for (Beam& beam : beams_) beam.unusable_before = 0;
   stats_.beams_were_sorted = true;
 }
 
@@ -128,7 +135,10 @@ void Segmenter::DropDuplicates() {
   size_t kept = 0;
   for (size_t k = 0; k < beams_.size(); ++k) {
     if (kept > 0 && CcwDelta(beams_[kept - 1].angle_rad, beams_[k].angle_rad) < tolerance) {
+      // The pair keeps the gap in front of its first beam.
+      const int32_t unusable_before = beams_[kept - 1].unusable_before;
       if (beams_[k].range_m < beams_[kept - 1].range_m) beams_[kept - 1] = beams_[k];
+      beams_[kept - 1].unusable_before = unusable_before;
       ++stats_.beams_duplicate;
     } else {
       beams_[kept++] = beams_[k];
@@ -136,7 +146,9 @@ void Segmenter::DropDuplicates() {
   }
   // The last and the first beam are neighbours too.
   while (kept > 1 && CcwDelta(beams_[kept - 1].angle_rad, beams_[0].angle_rad) < tolerance) {
+    const int32_t unusable_before = beams_[kept - 1].unusable_before;
     if (beams_[kept - 1].range_m < beams_[0].range_m) beams_[0] = beams_[kept - 1];
+    beams_[0].unusable_before = unusable_before;
     --kept;
     ++stats_.beams_duplicate;
   }
@@ -157,7 +169,8 @@ void Segmenter::FindClusters() {
   for (size_t k = 0; k < m; ++k) {
     const Beam& a = beams_[k];
     const Beam& b = beams_[k + 1 < m ? k + 1 : 0];
-    const bool split = criterion_.Splits(a.range_m, b.range_m, CcwDelta(a.angle_rad, b.angle_rad));
+    const bool split = b.unusable_before > options_.max_dropped_beams ||
+                       criterion_.Splits(a.range_m, b.range_m, CcwDelta(a.angle_rad, b.angle_rad));
     splits_[k] = split;
     if (split && first_split == m) first_split = k;
   }

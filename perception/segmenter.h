@@ -6,11 +6,13 @@
 //     return), when the angle or the range is NaN or infinite, or when the range is outside
 //     [max(min_range_m, scan min), min(max_range_m, scan max)]. An invalid beam inside an object
 //     does not split it by itself: the criterion is applied between the valid neighbours with
-//     their actual angular distance, which widens the threshold; a gap of more than
-//     max_beam_gap_rad (or lambda) always splits.
+//     their actual angular distance, which widens the threshold. More than max_dropped_beams
+//     unusable beams in a row (counted in input order) always split, and so does a gap of more
+//     than max_beam_gap_rad (or lambda).
 //  2. Angles are wrapped to (-pi, pi]. Beams in circular angle order (sorted, or sorted after a
 //     rotation, as an RPLIDAR revolution that starts anywhere) are used as they are; otherwise
-//     they are sorted by (angle, input index), which is a stable sort. Beams within
+//     they are sorted by (angle, input index), which is a stable sort, and the input order no
+//     longer tells which beams lay between two neighbours (max_dropped_beams cannot apply). Beams within
 //     duplicate_angle_tolerance_rad of the previous one are one direction measured twice: the
 //     nearer return is kept.
 //  3. The breakpoint criterion (breakpoint_criterion.h, paper eq. 15) is evaluated between every
@@ -90,9 +92,10 @@ class Segmenter {
 
  private:
   struct Beam {
-    double angle_rad;  // wrapped to (-pi, pi]
+    double angle_rad;         // wrapped to (-pi, pi]
     double range_m;
-    int32_t index;     // position in the input scan
+    int32_t index;            // position in the input scan
+    int32_t unusable_before;  // unusable input beams right before it (0 after a sort)
   };
   struct Cluster {
     size_t ring_start;  // ring index of the first point

@@ -47,6 +47,7 @@ std::string CheckSegmenterOptions(const SegmenterOptions& o) {
   if (!(o.max_beam_gap_rad > 0.0) || !std::isfinite(o.max_beam_gap_rad)) {
     return Bad("max_beam_gap_rad", "positive and finite", o.max_beam_gap_rad);
   }
+  if (o.max_dropped_beams < 0) return Bad("max_dropped_beams", "at least 0", o.max_dropped_beams);
   if (!(o.duplicate_angle_tolerance_rad >= 0.0 && o.duplicate_angle_tolerance_rad < 0.01)) {
     return Bad("duplicate_angle_tolerance_rad", "in [0, 0.01)", o.duplicate_angle_tolerance_rad);
   }

@@ -54,6 +54,11 @@ SegmenterOptions ReadSegmenterOptions(const Config& section) {
   o.sigma_r_m = PositiveDouble(section, "sigma_r_m", o.sigma_r_m);
   o.max_beam_gap_rad =
       PositiveDouble(section, "max_beam_gap_deg", o.max_beam_gap_rad / kDegToRad) * kDegToRad;
+  const int64_t max_dropped = section.GetInt("max_dropped_beams", o.max_dropped_beams);
+  if (max_dropped < 0 || max_dropped > 100000) {
+    section.FailKey("max_dropped_beams", "must be between 0 and 100000");
+  }
+  o.max_dropped_beams = static_cast<int>(max_dropped);
   const double duplicate_deg = NonNegativeDouble(section, "duplicate_angle_tolerance_deg",
                                                  o.duplicate_angle_tolerance_rad / kDegToRad);
   if (!(duplicate_deg < 0.5)) {

@@ -30,8 +30,9 @@ namespace slammtt {
 
 // Reads the `segmenter:` section of the stack configuration; absent keys keep the defaults of
 // SegmenterOptions. Keys (units in the names):
-//   lambda_deg (20), sigma_r_m (0.03), max_beam_gap_deg (2), duplicate_angle_tolerance_deg
-//   (0.001), min_range_m (0), max_range_m (no limit), min_points (3), max_width_m (1.5),
+//   lambda_deg (20), sigma_r_m (0.03), max_dropped_beams (1), max_beam_gap_deg (5),
+//   duplicate_angle_tolerance_deg (0.001), min_range_m (0), max_range_m (no limit),
+//   min_points (3), max_width_m (1.5),
 //   centre_rule (circle_fit | radius_corrected | middle_point), max_object_radius_m (1.0),
 //   bearing_sigma_deg (0.5), shape_sigma_fraction (0.3).
 // Throws ConfigError naming file, line and key for a wrong type, a bad value or an unknown key

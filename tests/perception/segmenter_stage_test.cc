@@ -208,6 +208,7 @@ TEST(SegmenterStageTest, ReadsOptionsFromTheSegmenterSection) {
       "  lambda_deg: 15\n"
       "  sigma_r_m: 0.05\n"
       "  max_beam_gap_deg: 3\n"
+      "  max_dropped_beams: 2\n"
       "  duplicate_angle_tolerance_deg: 0.01\n"
       "  min_range_m: 0.2\n"
       "  max_range_m: 8\n"
@@ -222,6 +223,7 @@ TEST(SegmenterStageTest, ReadsOptionsFromTheSegmenterSection) {
   EXPECT_DOUBLE_EQ(o.lambda_rad, 15.0 * M_PI / 180.0);
   EXPECT_DOUBLE_EQ(o.sigma_r_m, 0.05);
   EXPECT_DOUBLE_EQ(o.max_beam_gap_rad, 3.0 * M_PI / 180.0);
+  EXPECT_EQ(o.max_dropped_beams, 2);
   EXPECT_DOUBLE_EQ(o.duplicate_angle_tolerance_rad, 0.01 * M_PI / 180.0);
   EXPECT_DOUBLE_EQ(o.min_range_m, 0.2);
   EXPECT_DOUBLE_EQ(o.max_range_m, 8.0);
@@ -258,6 +260,7 @@ TEST(SegmenterStageTest, BadConfigurationNamesTheKey) {
   ExpectConfigError("segmenter:\n  lambda_deg: 95\n", "lambda_deg");
   ExpectConfigError("segmenter:\n  sigma_r_m: -0.03\n", "sigma_r_m");
   ExpectConfigError("segmenter:\n  min_points: 0\n", "min_points");
+  ExpectConfigError("segmenter:\n  max_dropped_beams: -1\n", "max_dropped_beams");
   ExpectConfigError("segmenter:\n  min_points: 2.5\n", "min_points");
   ExpectConfigError("segmenter:\n  centre_rule: centroid\n", "centre_rule");
   ExpectConfigError("segmenter:\n  min_range_m: 5\n  max_range_m: 4\n", "max_range_m");

@@ -133,7 +133,8 @@ TEST(SegmenterTest, InvalidBeamsAreDroppedAndCounted) {
 }
 
 // One dropped beam inside an object does not split it: eq. 15 with the actual angle between
-// the valid neighbours allows the larger gap. A run of drops wider than max_beam_gap does.
+// the valid neighbours allows the larger gap. Two drops in a row (more than max_dropped_beams)
+// do.
 TEST(SegmenterTest, DroppedBeamInsideAnObjectDoesNotSplitIt) {
   const std::vector<Circle> wide = {{1.5, 0.0, 0.3}};  // about 23 beams at 0.9 deg
   const std::vector<double> angles = RplidarAngles();
@@ -156,13 +157,79 @@ TEST(SegmenterTest, DroppedBeamInsideAnObjectDoesNotSplitIt) {
   scan.range_m[middle] = kNaN;
   EXPECT_EQ(segmenter.Segment(scan.View()).size(), 1u);
   EXPECT_EQ(segmenter.stats().beams_non_finite, 1);
-  // Six consecutive drops (a 6.3-degree gap > max_beam_gap 2 deg): two features.
-  for (int k = -3; k <= 2; ++k) {
-    scan.valid[hits[static_cast<size_t>(static_cast<int>(hits.size() / 2) + k)]] = 0;
-  }
+  // Two consecutive drops (more than max_dropped_beams = 1, although the 2.7-degree gap is
+  // within max_beam_gap): two features; allowing two drops joins them again.
+  scan.range_m[middle] = scan.range_m[hits[hits.size() / 2 - 1]];
+  scan.valid[middle] = 0;
+  scan.valid[hits[hits.size() / 2 + 1]] = 0;
   const std::vector<Feature>& split = segmenter.Segment(scan.View());
   EXPECT_EQ(split.size(), 2u);
   ExpectSane(split);
+  SegmenterOptions tolerant;
+  tolerant.max_dropped_beams = 2;
+  Segmenter bridging(tolerant);
+  EXPECT_EQ(bridging.Segment(scan.View()).size(), 1u);
+  // Six consecutive drops (a 6.3-degree gap, beyond max_beam_gap as well): two features.
+  for (int k = -3; k <= 2; ++k) {
+    scan.valid[hits[static_cast<size_t>(static_cast<int>(hits.size() / 2) + k)]] = 0;
+  }
+  EXPECT_EQ(segmenter.Segment(scan.View()).size(), 2u);
+  EXPECT_EQ(bridging.Segment(scan.View()).size(), 2u);
+}
+
+// Drops are counted around the seam of a 360-degree scan: the beams before the first usable
+// one continue the run after the last usable one.
+TEST(SegmenterTest, DroppedBeamsAreCountedAcrossTheSeam) {
+  const std::vector<Circle> post = {{2.0, 0.0, 0.3}};  // straddles angle 0 = the scan's start
+  TestScan scan = CastScan(post, RplidarAngles());
+  ASSERT_TRUE(scan.valid[0] && scan.valid[399] && scan.valid[398] && scan.valid[1]);
+  Segmenter segmenter(SegmenterOptions{});
+  scan.valid[0] = 0;  // one drop, at the start
+  EXPECT_EQ(segmenter.Segment(scan.View()).size(), 1u);
+  scan.valid[0] = 1;
+  scan.valid[399] = 0;  // one drop, at the end
+  EXPECT_EQ(segmenter.Segment(scan.View()).size(), 1u);
+  scan.valid[0] = 0;  // the last and the first beam: a run of two across the seam
+  const std::vector<Feature>& features = segmenter.Segment(scan.View());
+  EXPECT_EQ(features.size(), 2u);
+  ExpectSane(features);
+}
+
+// The RPLIDAR A2 in standard mode gives about 200 beams per revolution (1.8 degrees): objects
+// are still whole, because gaps are counted in beams, not degrees.
+TEST(SegmenterTest, CoarseScansAreNotCutByGapLimits) {
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<double> jitter(-0.3 * kDeg, 0.3 * kDeg);
+  std::vector<double> angles = EvenAngles(0.0, 2.0 * M_PI, 200, true);
+  for (double& a : angles) a += jitter(rng);
+  const std::vector<Circle> near = {{1.5, 0.3, 0.25}, {-1.0, 1.2, 0.2}, {0.2, -1.8, 0.3}};
+  const TestScan scan = CastScan(near, angles, 12.0, 0.01, &rng);
+  Segmenter segmenter(SegmenterOptions{});
+  const std::vector<Feature>& features = segmenter.Segment(scan.View());
+  ExpectOneFeaturePerCircle(features, near, 0.06);
+  for (size_t i = 0; i < near.size(); ++i) {
+    EXPECT_GE(testing_support::BeamsOn(near, i, angles), 8);
+  }
+}
+
+// After a sort the input order says nothing about which beams lay between two neighbours: only
+// the angular bound max_beam_gap applies.
+TEST(SegmenterTest, AfterSortingOnlyTheAngularGapApplies) {
+  const std::vector<Circle> post = {{1.5, 1.5, 0.3}};
+  TestScan scan = CastScan(post, RplidarAngles());
+  std::vector<size_t> hits;
+  for (size_t i = 0; i < scan.size(); ++i) {
+    if (scan.valid[i]) hits.push_back(i);
+  }
+  scan.valid[hits[hits.size() / 2]] = 0;
+  scan.valid[hits[hits.size() / 2 + 1]] = 0;  // two drops: 2.7 degrees
+  Segmenter segmenter(SegmenterOptions{});
+  EXPECT_EQ(segmenter.Segment(scan.View()).size(), 2u);
+  std::reverse(scan.angle_rad.begin(), scan.angle_rad.end());  // clockwise: needs a sort
+  std::reverse(scan.range_m.begin(), scan.range_m.end());
+  std::reverse(scan.valid.begin(), scan.valid.end());
+  EXPECT_EQ(segmenter.Segment(scan.View()).size(), 1u);
+  EXPECT_TRUE(segmenter.stats().beams_were_sorted);
 }
 
 TEST(SegmenterTest, NonFiniteAnglesAndRangesAreDroppedAndCounted) {
@@ -491,6 +558,9 @@ TEST(SegmenterTest, BadOptionsAreRejectedWithTheFieldName) {
   options = SegmenterOptions{};
   options.min_points = 0;
   EXPECT_NE(CheckSegmenterOptions(options).find("min_points"), std::string::npos);
+  options = SegmenterOptions{};
+  options.max_dropped_beams = -1;
+  EXPECT_NE(CheckSegmenterOptions(options).find("max_dropped_beams"), std::string::npos);
   options = SegmenterOptions{};
   options.bearing_sigma_rad = 0.0;
   EXPECT_NE(CheckSegmenterOptions(options).find("bearing_sigma_rad"), std::string::npos);
