@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -45,6 +46,27 @@ int LineOfNode(const YAML::Node& node) {
   if (!node.IsDefined()) return -1;
   const YAML::Mark mark = node.Mark();
   return mark.is_null() ? -1 : mark.line + 1;
+}
+
+// The keys of a mapping in file order. yaml-cpp keeps a key given twice and every lookup finds
+// the first, so the second value would be ignored without a word: that is an error, like an
+// unknown key.
+std::vector<std::string> MappingKeys(const YAML::Node& map, const std::string& source,
+                                     const std::string& path) {
+  std::vector<std::string> keys;
+  std::map<std::string, int> first_line;
+  for (const auto& entry : map) {
+    const std::string key = KeyText(entry.first, source, path);
+    const int line = LineOfNode(entry.first);
+    const auto [it, inserted] = first_line.emplace(key, line);
+    if (!inserted) {
+      throw ConfigError(source + (line > 0 ? ":" + std::to_string(line) : std::string()) + ": " +
+                        (path.empty() ? key : path + "." + key) + ": duplicate key (first at line " +
+                        std::to_string(it->second) + ")");
+    }
+    keys.push_back(key);
+  }
+  return keys;
 }
 
 }  // namespace
@@ -100,12 +122,8 @@ bool Config::IsSequence() const { return impl_->node.IsSequence(); }
 bool Config::IsScalar() const { return impl_->node.IsScalar(); }
 
 std::vector<std::string> Config::Keys() const {
-  std::vector<std::string> keys;
-  if (!impl_->node.IsMap()) return keys;
-  for (const auto& entry : impl_->node) {
-    keys.push_back(KeyText(entry.first, shared_->source, path_));
-  }
-  return keys;
+  if (!impl_->node.IsMap()) return {};
+  return MappingKeys(impl_->node, shared_->source, path_);
 }
 
 size_t Config::Size() const { return impl_->node.IsSequence() ? impl_->node.size() : 0; }
@@ -283,6 +301,7 @@ void Config::CheckKeysAmong(const std::vector<std::string>& allowed) const {
 void Config::CheckUnused() const {
   const YAML::Node& n = impl_->node;
   if (n.IsMap()) {
+    MappingKeys(n, shared_->source, path_);  // a key given twice is an error
     for (const auto& entry : n) {
       const std::string key = KeyText(entry.first, shared_->source, path_);
       const std::string child_path = ChildPath(key);

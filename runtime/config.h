@@ -3,7 +3,8 @@
 // A whole-stack file has one section per process (see config/stack.yaml); scenario files of the
 // synthetic world use the same reader. Reading a key marks it used, and CheckUnused() throws for
 // every key nobody read, so a typo is an error instead of a silently ignored setting (the
-// Cartographer rule). Every error names the file, the line and the key path, in one line:
+// Cartographer rule); so is a key given twice in one mapping (YAML parsers keep the first and
+// drop the second silently). Every error names the file, the line and the key path, in one line:
 //   config/stack.yaml:12: segmenter.lambda_deg: expected a number, got "twenty"
 //
 // Config is a cheap handle: copies share the file and the record of used keys.
@@ -37,7 +38,8 @@ class Config {
   bool IsMap() const;
   bool IsSequence() const;
   bool IsScalar() const;
-  // Keys of a mapping in file order (does not mark them used).
+  // Keys of a mapping in file order (does not mark them used); ConfigError for a key that is
+  // not plain text or that appears twice.
   std::vector<std::string> Keys() const;
   // Number of elements of a sequence (0 for anything else).
   size_t Size() const;
@@ -73,7 +75,8 @@ class Config {
   // Elements of this node when it is itself a sequence.
   std::vector<Config> Elements() const;
 
-  // Throws ConfigError for the first key under this node (recursively) that was never read.
+  // Throws ConfigError for the first key under this node (recursively) that was never read or
+  // that appears twice in its mapping.
   void CheckUnused() const;
   // Throws ConfigError when this mapping has a key outside `allowed` (marks none used).
   void CheckKeysAmong(const std::vector<std::string>& allowed) const;

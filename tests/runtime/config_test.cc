@@ -92,6 +92,40 @@ TEST(ConfigTest, NonTextKeyIsAConfigErrorNamingTheFile) {
   EXPECT_THROW(c.CheckUnused(), ConfigError);
 }
 
+TEST(ConfigTest, KeyGivenTwiceIsAnErrorNamingBothLines) {
+  // yaml-cpp keeps both entries and every lookup finds the first: 180 would win silently.
+  const Config c =
+      Config::FromString("laser:\n  fov_deg: 180\n  rate_hz: 8\n  fov_deg: 360\n", "d.yaml");
+  const Config laser = c.Child("laser");
+  EXPECT_DOUBLE_EQ(laser.GetDouble("fov_deg", 0.0), 180.0);
+  laser.GetDouble("rate_hz", 0.0);
+  try {
+    c.CheckUnused();
+    FAIL() << "expected ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_STREQ(e.what(), "d.yaml:4: laser.fov_deg: duplicate key (first at line 2)");
+  }
+  try {
+    laser.Keys();
+    FAIL() << "expected ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_STREQ(e.what(), "d.yaml:4: laser.fov_deg: duplicate key (first at line 2)");
+  }
+  // A whole section given twice, found by the top-level check of a stack file.
+  const Config stack = Config::FromString("lcm: {}\nsegmenter: {}\nsegmenter: {}\n", "s.yaml");
+  try {
+    stack.CheckKeysAmong({"lcm", "segmenter"});
+    FAIL() << "expected ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_STREQ(e.what(), "s.yaml:3: segmenter: duplicate key (first at line 2)");
+  }
+  // The same key in two different mappings is fine.
+  const Config two = Config::FromString("a: {x: 1}\nb: {x: 2}\n", "t.yaml");
+  two.Child("a").GetDouble("x", 0.0);
+  two.Child("b").GetDouble("x", 0.0);
+  EXPECT_NO_THROW(two.CheckUnused());
+}
+
 TEST(ConfigTest, CheckKeysAmong) {
   const Config c = Config::FromString("lcm: {}\nsegmentr: {}\n", "stack.yaml");
   EXPECT_THROW(c.CheckKeysAmong({"lcm", "segmenter"}), ConfigError);
