@@ -118,6 +118,16 @@ TEST_F(ScenarioLoaderTest, UnknownKeyInsideASectionNamesIt) {
   EXPECT_EQ(error.rfind(BadPath() + ":3: laser.max_range: unknown key", 0), 0u) << error;
 }
 
+TEST_F(ScenarioLoaderTest, KeyGivenTwiceNamesBothLines) {
+  // The second value used to be dropped silently (the YAML library keeps the first).
+  EXPECT_EQ(ErrorOf("laser:\n  fov_deg: 180\n  fov_deg: 360\n"),
+            BadPath() + ":3: laser.fov_deg: duplicate key (first at line 2)");
+  EXPECT_EQ(ErrorOf("duration_s: 5\nstatics:\n  - {x_m: 1, y_m: 2, x_m: 3}\n"),
+            BadPath() + ":3: statics[0].x_m: duplicate key (first at line 3)");
+  EXPECT_EQ(ErrorOf("duration_s: 5\nduration_s: 6\n"),
+            BadPath() + ":2: duration_s: duplicate key (first at line 1)");
+}
+
 TEST_F(ScenarioLoaderTest, WrongTypeNamesFileLineAndKey) {
   const std::string error = ErrorOf("name: x\nduration_s: long\n");
   EXPECT_EQ(error, BadPath() + ":2: duration_s: expected a number, got \"long\"");
