@@ -255,6 +255,22 @@ TEST_F(ScenarioLoaderTest, TrajectoryFileErrorsNameTheirLine) {
   }
   const std::string header = Write("c.tsv", "time,id,x,y\n");
   EXPECT_THROW(ReadRecordedTracks(header), ConfigError);
+  // Ids so large that id_offset + id would overflow (undefined behaviour) are refused.
+  const std::string huge_id = Write("d.tsv", "t_s\tid\tx_m\ty_m\n0.0\t9223372036854775807\t1\t1\n");
+  try {
+    ReadRecordedTracks(huge_id);
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()), huge_id + ":2: person id must be within +-1e15");
+  }
+}
+
+TEST_F(ScenarioLoaderTest, CrowdIdOffsetIsBounded) {
+  Write("people.tsv", "t_s\tid\tx_m\ty_m\n0.0\t1\t1\t1\n0.4\t1\t2\t2\n");
+  EXPECT_EQ(ErrorOf("crowd:\n  file: people.tsv\n  id_offset: 9223372036854775807\n"),
+            BadPath() + ":3: crowd.id_offset: must be within +-1e15 (mover id = id_offset + "
+                        "recorded id)");
+  EXPECT_EQ(ErrorOf("crowd:\n  file: people.tsv\n  id_offset: 1000000000000000\n"), "");
 }
 
 TEST_F(ScenarioLoaderTest, ResolveFindsNamesAndListsShippedScenarios) {

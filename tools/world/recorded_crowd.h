@@ -26,7 +26,7 @@ struct CrowdImportSpec {
   double offset_y_m = 0.0;
   int max_people = 0;           // 0: everyone; else the first people to appear (ties: lower id)
   double radius_m = 0.25;       // body radius of every person
-  int64_t id_offset = 1000;     // mover id = id_offset + recorded id
+  int64_t id_offset = 1000;     // mover id = id_offset + recorded id (both within +-1e15)
 };
 
 // Movers of kind kTrajectory, one per person with at least two samples inside the window, with

@@ -14,6 +14,9 @@ namespace slammtt {
 namespace {
 
 constexpr double kDegToRad = M_PI / 180.0;
+// Bound of recorded person ids and of crowd.id_offset, so that their sum (the mover id) cannot
+// overflow.
+constexpr int64_t kMaxRecordedId = 1000000000000000;
 
 // Remembers where every value came from, so that a problem found after reading (by
 // FindScenarioProblems, which knows nothing of files) is reported at its line.
@@ -320,6 +323,9 @@ class ScenarioReader {
     spec.radius_m = Double(c, "radius_m", spec.radius_m);
     if (!(spec.radius_m > 0.0)) c.FailKey("radius_m", "must be positive");
     spec.id_offset = Int(c, "id_offset", spec.id_offset);
+    if (std::abs(spec.id_offset) > kMaxRecordedId) {
+      c.FailKey("id_offset", "must be within +-1e15 (mover id = id_offset + recorded id)");
+    }
 
     std::vector<RecordedTrack> tracks;
     try {
@@ -359,9 +365,8 @@ bool ParseWhole(const std::string& text, int64_t* value) {
 
 namespace {
 
-// Config reports its own errors as ConfigError; anything else escaping from the YAML library
-// (e.g. a mapping used as a key, which runtime/config.cc converts to text unguarded) still has to
-// name the file.
+// Config reports its own errors as ConfigError; anything else that might still escape from the
+// YAML library or the file system has to name the file too.
 Scenario ReadGuarded(const Config& root, const std::string& base_dir) {
   try {
     return ScenarioReader(root, base_dir).Read();
@@ -420,6 +425,7 @@ std::vector<RecordedTrack> ReadRecordedTracks(const std::string& path) {
         !ParseNumber(fields[2], &point.x_m) || !ParseNumber(fields[3], &point.y_m)) {
       fail("expected four tab-separated numbers t_s, id, x_m, y_m");
     }
+    if (std::abs(id) > kMaxRecordedId) fail("person id must be within +-1e15");
     RecordedTrack& track = by_id[id];
     track.id = id;
     if (!track.points.empty() && !(point.t_s > track.points.back().t_s)) {

@@ -22,8 +22,8 @@ Scenario LoadScenarioFromString(const std::string& yaml_text, const std::string&
                                 const std::string& base_dir);
 
 // Reads a recorded-trajectory file: tab-separated, header line "t_s id x_m y_m", rows sorted by
-// time. ConfigError "PATH:LINE: ..." for a missing file, a malformed row or a person whose times
-// do not increase.
+// time. ConfigError "PATH:LINE: ..." for a missing file, a malformed row, a person id beyond
+// +-1e15 or a person whose times do not increase.
 std::vector<RecordedTrack> ReadRecordedTracks(const std::string& path);
 
 // The scenario file for --scenario: a NAME (no '/' and no ".yaml") is looked up as
