@@ -259,6 +259,11 @@ TEST_F(WorldCliTest, UnknownScenarioAndBadOptions) {
   EXPECT_EQ(run.exit_code, 2);
   run = World({"--scenario", "s1-crossing", "--duration", "0", "--log", Path("out.lcm")});
   EXPECT_EQ(run.exit_code, 2);
+  run = World({"--scenario", "s1-crossing", "--duration", "2e6", "--log", Path("out.lcm")});
+  EXPECT_EQ(run.exit_code, 2);
+  EXPECT_EQ(run.err, "slammtt-world: error: --duration must be within (0, 1e6] seconds\n");
+  run = World({"--scenario", "s1-crossing", "--report", "--log", Path("out.lcm")});
+  EXPECT_EQ(run.exit_code, 2);  // a report writes no log: asking for both is a mistake
   run = World({"--scenario", "s1-crossing", "--rate-factor", "5", "--log", Path("out.lcm")});
   EXPECT_EQ(run.exit_code, 2);
   run = World({"--log", Path("out.lcm")});

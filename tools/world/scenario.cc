@@ -71,7 +71,6 @@ class Problems {
   std::vector<std::string> lines_;
 };
 
-constexpr double kMaxDurationS = 1e6;  // 11.6 days
 constexpr double kMaxMoverSpeedMps = 50.0;
 constexpr double kMaxRadiusM = 1000.0;
 
@@ -84,7 +83,7 @@ std::string Indexed(const std::string& list, size_t i) {
 std::vector<std::string> FindScenarioProblems(const Scenario& s) {
   Problems p;
   p.Positive("duration_s", s.duration_s);
-  if (s.duration_s > kMaxDurationS) p.Add("duration_s", "must not exceed 1e6 s");
+  if (s.duration_s > kMaxScenarioDurationS) p.Add("duration_s", "must not exceed 1e6 s");
   if (s.start_utime < 0 || s.start_utime > 4000000000000000000) {
     p.Add("start_utime", "must be within [0, 4e18] us");
   }
@@ -125,7 +124,7 @@ std::vector<std::string> FindScenarioProblems(const Scenario& s) {
   for (size_t i = 0; i < r.profile.size(); ++i) {
     const std::string path = Indexed("robot.profile", i);
     p.Positive(path + ".duration_s", r.profile[i].duration_s);
-    if (r.profile[i].duration_s > kMaxDurationS) p.Add(path + ".duration_s", "must not exceed 1e6 s");
+    if (r.profile[i].duration_s > kMaxScenarioDurationS) p.Add(path + ".duration_s", "must not exceed 1e6 s");
     p.Between(path + ".linear_mps", r.profile[i].linear_mps, -kMaxRobotSpeedMps, kMaxRobotSpeedMps);
     if (!(std::abs(r.profile[i].angular_radps) <= 100.0)) {
       p.Add(path + ".angular_degps", "must be within +-5729 deg/s (100 rad/s)");
@@ -165,7 +164,7 @@ std::vector<std::string> FindScenarioProblems(const Scenario& s) {
     p.Positive(path + ".radius_m", m.radius_m);
     if (m.radius_m > kMaxRadiusM) p.Add(path + ".radius_m", "must not exceed 1000 m");
     p.NonNegative(path + ".appear_s", m.appear_s);
-    if (m.appear_s > kMaxDurationS) p.Add(path + ".appear_s", "must not exceed 1e6 s");
+    if (m.appear_s > kMaxScenarioDurationS) p.Add(path + ".appear_s", "must not exceed 1e6 s");
     if (!(m.disappear_s > m.appear_s)) p.Add(path + ".disappear_s", "must be after appear_s");
     switch (m.kind) {
       case MoverKind::kConstantVelocity:
@@ -182,7 +181,7 @@ std::vector<std::string> FindScenarioProblems(const Scenario& s) {
           const std::string wp = Indexed(path + ".waypoints", k);
           p.Coordinate(wp, std::max(std::abs(m.waypoints[k].x_m), std::abs(m.waypoints[k].y_m)));
           p.NonNegative(wp + ".wait_s", m.waypoints[k].wait_s);
-          if (m.waypoints[k].wait_s > kMaxDurationS) p.Add(wp + ".wait_s", "must not exceed 1e6 s");
+          if (m.waypoints[k].wait_s > kMaxScenarioDurationS) p.Add(wp + ".wait_s", "must not exceed 1e6 s");
         }
         if (m.at_end == PathEnd::kLoop && m.waypoints.size() < 2) {
           p.Add(path + ".at_end", "loop needs at least two waypoints");

@@ -21,6 +21,8 @@ namespace slammtt {
 inline constexpr double kMaxRobotSpeedMps = 2.0;
 // Every coordinate of a scenario lies within +-kMaxCoordinateM (values beyond are rejected).
 inline constexpr double kMaxCoordinateM = 1e6;
+// Durations and times of a scenario are at most this long (11.6 days).
+inline constexpr double kMaxScenarioDurationS = 1e6;
 
 // Which sensor messages the world produces.
 enum class SensorOutput {

@@ -87,6 +87,10 @@ int Run(int argc, char** argv) {
   if (log_path && (cl.Value("rate-factor") || cl.Flag("follow-commands"))) {
     throw slammtt::UsageError("--rate-factor and --follow-commands are for live mode, not --log");
   }
+  if (cl.Flag("report") && (log_path || cl.Value("rate-factor") || cl.Flag("follow-commands"))) {
+    throw slammtt::UsageError("--report only prints figures: it takes no --log, --rate-factor or "
+                              "--follow-commands");
+  }
 
   // The whole scenario (and any trajectory file) is read and checked before any output exists.
   const std::string path = slammtt::ResolveScenarioPath(*scenario_arg, ScenarioSearchRoots());
@@ -97,8 +101,8 @@ int Run(int argc, char** argv) {
     }
   }
   if (const auto duration = cl.DoubleValue("duration")) {
-    if (!(*duration > 0.0) || *duration > 1e7) {
-      throw slammtt::UsageError("--duration must be a positive number of seconds");
+    if (!(*duration > 0.0) || *duration > slammtt::kMaxScenarioDurationS) {
+      throw slammtt::UsageError("--duration must be within (0, 1e6] seconds");
     }
     scenario.duration_s = *duration;
   }
