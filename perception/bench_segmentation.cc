@@ -2,9 +2,9 @@
 // 20 round objects (people 0.2-0.3 m, posts 0.05-0.15 m) seen from inside, 1 cm range noise,
 // 400 / 800 / 1600 / 8000 beams. items_per_second is beams per second on one core.
 //   build/bin/bench_segmentation --benchmark_repetitions=5 --benchmark_report_aggregates_only
-// Variants: the three centre rules; an RPLIDAR-like revolution (angles jittered by up to +-0.2
-// of a spacing, starting at an arbitrary angle, 1 % dropped beams); the beams shuffled (the
-// sorting path, a worst case: real scans come in circular order).
+// Variants: the three centre rules; an RPLIDAR-like revolution (clockwise, angles jittered by
+// up to +-0.2 of a spacing, starting at an arbitrary angle, 1 % dropped beams); the beams
+// shuffled (the sorting path, a worst case: real scans come in circular order).
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -51,8 +51,10 @@ RoomScan MakeRoomScan(int beams, bool rplidar_like, uint64_t seed) {
   const double start = rplidar_like ? 2.0 * M_PI * unit(rng) : 0.0;
   RoomScan scan;
   for (int i = 0; i < beams; ++i) {
-    double angle = start + spacing * i;
+    // The RPLIDAR turns clockwise seen from above: in our CCW frame its angles decrease.
+    double angle = rplidar_like ? start - spacing * i : spacing * i;
     if (rplidar_like) angle += spacing * 0.4 * (unit(rng) - 0.5);
+    if (angle < 0.0) angle += 2.0 * M_PI;
     angle = std::fmod(angle, 2.0 * M_PI);
     const double ux = std::cos(angle), uy = std::sin(angle);
     double best = 1e9;
@@ -100,6 +102,7 @@ void Run(benchmark::State& state, CentreRule rule, bool rplidar_like, bool shuff
   state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * beams);
   state.counters["features"] = static_cast<double>(features);
   state.counters["sorted"] = segmenter.stats().beams_were_sorted ? 1.0 : 0.0;
+  state.counters["reversed"] = segmenter.stats().beams_were_reversed ? 1.0 : 0.0;
 }
 
 void BM_Segment_CircleFit(benchmark::State& state) { Run(state, CentreRule::kCircleFit, false); }

@@ -118,9 +118,24 @@ void Segmenter::CollectBeams(const ScanView& scan) {
 void Segmenter::PutInCircularOrder() {
   const size_t m = beams_.size();
   size_t descents = 0;
-  for (size_t k = 0; k + 1 < m; ++k) descents += beams_[k + 1].angle_rad < beams_[k].angle_rad;
+  size_t ascents = 0;
+  for (size_t k = 0; k + 1 < m; ++k) {
+    descents += beams_[k + 1].angle_rad < beams_[k].angle_rad;
+    ascents += beams_[k + 1].angle_rad > beams_[k].angle_rad;
+  }
   // Sorted, or sorted after a rotation (one descent, and the end does not pass the start).
   if (descents == 0 || (descents == 1 && beams_[m - 1].angle_rad <= beams_[0].angle_rad)) return;
+  // The same clockwise (the RPLIDAR turns clockwise seen from above): reversed, which keeps the
+  // gap counts. In input order the beams between CCW neighbours k - 1 and k come right before
+  // k - 1, so after the reversal each count moves one place on.
+  if (ascents == 0 || (ascents == 1 && beams_[m - 1].angle_rad >= beams_[0].angle_rad)) {
+    std::reverse(beams_.begin(), beams_.end());
+    const int32_t last = beams_[m - 1].unusable_before;
+    for (size_t k = m - 1; k > 0; --k) beams_[k].unusable_before = beams_[k - 1].unusable_before;
+    beams_[0].unusable_before = last;
+    stats_.beams_were_reversed = true;
+    return;
+  }
   std::sort(beams_.begin(), beams_.end(), [](const Beam& a, const Beam& b) {
     if (a.angle_rad != b.angle_rad) return a.angle_rad < b.angle_rad;
     return a.index < b.index;

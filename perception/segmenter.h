@@ -10,7 +10,8 @@
 //     unusable beams in a row (counted in input order) always split, and so does a gap of more
 //     than max_beam_gap_rad (or lambda).
 //  2. Angles are wrapped to (-pi, pi]. Beams in circular angle order (sorted, or sorted after a
-//     rotation, as an RPLIDAR revolution that starts anywhere) are used as they are; otherwise
+//     rotation, as a revolution that starts anywhere) are used as they are, beams in clockwise
+//     circular order (the RPLIDAR's, in our CCW frame) are reversed; otherwise
 //     they are sorted by (angle, input index), which is a stable sort, and the input order no
 //     longer tells which beams lay between two neighbours (max_dropped_beams cannot apply). Beams within
 //     duplicate_angle_tolerance_rad of the previous one are one direction measured twice: the
@@ -59,7 +60,8 @@ struct SegmentationStats {
   int64_t beams_non_finite = 0;        // flagged valid, but NaN or infinite angle or range
   int64_t beams_out_of_range = 0;      // range outside the limits
   int64_t beams_duplicate = 0;         // same direction as a kept beam (the farther is dropped)
-  bool beams_were_sorted = false;      // true when the input was not in circular angle order
+  bool beams_were_reversed = false;    // true when the input was in clockwise circular order
+  bool beams_were_sorted = false;      // true when the input was in neither circular order
   int64_t clusters = 0;                // clusters found
   int64_t clusters_too_few_points = 0; // fewer than min_points
   int64_t clusters_too_wide = 0;       // wider than max_width_m or spanning pi or more

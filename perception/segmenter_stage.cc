@@ -180,6 +180,7 @@ void SegmenterStage::Handle(const std::string& channel, const void* data, int si
   timer.Count("clusters", stats.clusters);
   timer.Count("features", stats.features);
   timer.Count("circle_fit_fallbacks", stats.circle_fit_fallbacks);
+  timer.Count("reversed", stats.beams_were_reversed ? 1 : 0);
   timer.Count("sorted", stats.beams_were_sorted ? 1 : 0);
   ++counters_.scans_handled;
   counters_.features_published += stats.features;

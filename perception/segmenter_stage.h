@@ -8,8 +8,8 @@
 //  - stage_timing_t on the `stage_timing` channel: stage "segmenter", substages "decode",
 //    "sort" (filter, order, duplicates), "cluster" (eq. 15), "features" (centres, covariance),
 //    "publish"; counters "beams", "beams_used", "beams_dropped" (invalid, non-finite, out of
-//    range), "beams_duplicate", "clusters", "features", "circle_fit_fallbacks", "sorted" (1 when
-//    the beams were not in angle order).
+//    range), "beams_duplicate", "clusters", "features", "circle_fit_fallbacks", "reversed" (1
+//    for a clockwise scan), "sorted" (1 when the beams were in no circular order).
 // A message that is not a laser_scan_t, or whose size does not match its num_beams, is counted
 // (counters().scans_rejected) and reported on stderr (the 1st, 10th, 100th, ... time), and
 // nothing is published for it: there is no trustworthy utime to publish with.

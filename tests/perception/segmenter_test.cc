@@ -212,6 +212,45 @@ TEST(SegmenterTest, CoarseScansAreNotCutByGapLimits) {
   }
 }
 
+// A clockwise scan (the RPLIDAR's order in our CCW frame) is reversed, not sorted: the same
+// features as the CCW scan, and dropped beams are still counted (two in a row split).
+TEST(SegmenterTest, ClockwiseScansAreReversedWithTheirGapCounts) {
+  std::mt19937_64 rng(21);
+  TestScan ccw = CastScan(kScene, RplidarAngles(), 12.0, 0.01, &rng);
+  std::vector<size_t> hits;  // beams on the first object of kScene
+  for (size_t i = 0; i < ccw.size(); ++i) {
+    if (ccw.valid[i] && testing_support::RayCircle(ccw.angle_rad[i], kScene[0]) > 0.0) {
+      hits.push_back(i);
+    }
+  }
+  ASSERT_GT(hits.size(), 8u);
+  ccw.valid[hits[hits.size() / 2]] = 0;  // one dropout: bridged
+  TestScan cw = ccw;
+  std::reverse(cw.angle_rad.begin(), cw.angle_rad.end());
+  std::reverse(cw.range_m.begin(), cw.range_m.end());
+  std::reverse(cw.valid.begin(), cw.valid.end());
+  Segmenter a(SegmenterOptions{});
+  Segmenter b(SegmenterOptions{});
+  const std::vector<Feature>& fa = a.Segment(ccw.View());
+  const std::vector<Feature>& fb = b.Segment(cw.View());
+  EXPECT_FALSE(b.stats().beams_were_sorted);
+  EXPECT_TRUE(b.stats().beams_were_reversed);
+  EXPECT_FALSE(a.stats().beams_were_reversed);
+  ASSERT_EQ(fa.size(), kScene.size());
+  ASSERT_EQ(fb.size(), kScene.size());
+  for (size_t i = 0; i < fa.size(); ++i) {
+    EXPECT_EQ(fa[i].num_points, fb[i].num_points);
+    EXPECT_NEAR(fa[i].range_m, fb[i].range_m, 1e-9);
+    EXPECT_NEAR(fa[i].bearing_rad, fb[i].bearing_rad, 1e-9);
+  }
+  // A second dropout next to the first one: two in a row split the object, CCW and CW alike.
+  const size_t second = hits[hits.size() / 2 + 1];
+  ccw.valid[second] = 0;
+  cw.valid[cw.size() - 1 - second] = 0;
+  EXPECT_EQ(a.Segment(ccw.View()).size(), kScene.size() + 1);
+  EXPECT_EQ(b.Segment(cw.View()).size(), kScene.size() + 1);
+}
+
 // After a sort the input order says nothing about which beams lay between two neighbours: only
 // the angular bound max_beam_gap applies.
 TEST(SegmenterTest, AfterSortingOnlyTheAngularGapApplies) {
@@ -225,9 +264,11 @@ TEST(SegmenterTest, AfterSortingOnlyTheAngularGapApplies) {
   scan.valid[hits[hits.size() / 2 + 1]] = 0;  // two drops: 2.7 degrees
   Segmenter segmenter(SegmenterOptions{});
   EXPECT_EQ(segmenter.Segment(scan.View()).size(), 2u);
-  std::reverse(scan.angle_rad.begin(), scan.angle_rad.end());  // clockwise: needs a sort
-  std::reverse(scan.range_m.begin(), scan.range_m.end());
-  std::reverse(scan.valid.begin(), scan.valid.end());
+  // Two more returns, far from the post, appended clockwise after the CCW scan: the beams are
+  // in no circular order any more (they become small clusters, not features).
+  scan.angle_rad.insert(scan.angle_rad.end(), {-2.0f, -2.5f});
+  scan.range_m.insert(scan.range_m.end(), {5.0f, 5.0f});
+  scan.valid.insert(scan.valid.end(), {1, 1});
   EXPECT_EQ(segmenter.Segment(scan.View()).size(), 1u);
   EXPECT_TRUE(segmenter.stats().beams_were_sorted);
 }
