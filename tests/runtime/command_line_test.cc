@@ -1,8 +1,13 @@
 #include "runtime/command_line.h"
 
 #include <gtest/gtest.h>
+#include <poll.h>
+#include <signal.h>
+
+#include <stdexcept>
 
 #include "runtime/process.h"
+#include "runtime/shutdown.h"
 
 namespace slammtt {
 namespace {
@@ -61,6 +66,52 @@ TEST(ProcessMainTest, MapsErrorsToExitStatus) {
   EXPECT_EQ(ProcessMain(1, argv, "prog",
                         [](int, char**) -> int { throw std::runtime_error("broken"); }),
             1);
+}
+
+// Every error of a process body is one line "<program>: error: <message>" on stderr (a newline
+// inside the message included) and a non-zero status.
+TEST(ProcessMainTest, FatalErrorIsOneLineNamingTheProgram) {
+  char name[] = "prog";
+  char* argv[] = {name, nullptr};
+  testing::internal::CaptureStderr();
+  const int status = ProcessMain(1, argv, "slammtt-test", [](int, char**) -> int {
+    throw std::runtime_error("config.yaml:3: lcm.url: expected a text value,\ngot a list");
+  });
+  EXPECT_EQ(status, 1);
+  EXPECT_EQ(testing::internal::GetCapturedStderr(),
+            "slammtt-test: error: config.yaml:3: lcm.url: expected a text value, got a list\n");
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(ProcessMain(1, argv, "slammtt-test",
+                        [](int, char**) -> int { throw UsageError("unknown option --x"); }),
+            2);
+  EXPECT_EQ(testing::internal::GetCapturedStderr(), "slammtt-test: error: unknown option --x\n");
+}
+
+bool Readable(int fd) {
+  pollfd p{fd, POLLIN, 0};
+  return poll(&p, 1, 0) == 1 && (p.revents & POLLIN) != 0;
+}
+
+// SIGINT and SIGTERM only set the flag that loops poll (and wake poll() loops through the fd):
+// the process lives on to stop its devices and exit normally.
+TEST(ShutdownTest, SignalsSetTheFlagWakeTheFdAndCanBeReset) {
+  InstallShutdownHandlers();
+  for (const int signal_number : {SIGINT, SIGTERM}) {
+    ResetShutdown();
+    EXPECT_FALSE(ShutdownRequested());
+    EXPECT_FALSE(Readable(ShutdownFd()));
+    ASSERT_EQ(raise(signal_number), 0);
+    EXPECT_TRUE(ShutdownRequested());
+    EXPECT_EQ(ShutdownSignal(), signal_number);
+    EXPECT_TRUE(Readable(ShutdownFd()));
+  }
+  ResetShutdown();
+  RequestShutdown();
+  EXPECT_TRUE(ShutdownRequested());
+  EXPECT_EQ(ShutdownSignal(), 0);
+  ResetShutdown();
+  EXPECT_FALSE(ShutdownRequested());
+  EXPECT_FALSE(Readable(ShutdownFd()));
 }
 
 }  // namespace
