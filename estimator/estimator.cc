@@ -156,7 +156,9 @@ std::string CheckEstimatorOptions(const EstimatorOptions& o) {
   if (o.update_group_size < 1) return "update_group_size must be >= 1";
   if (o.tracks.confirm_hits < 1) return "confirm_hits must be >= 1";
   if (!non_negative(o.tracks.prune_unseen_s) || !non_negative(o.tracks.tentative_prune_unseen_s) ||
-      !non_negative(o.tracks.static_prune_unseen_in_view_s)) {
+      !non_negative(o.tracks.static_prune_unseen_in_view_s) ||
+      !non_negative(o.tracks.prune_unseen_visible_s) || !non_negative(o.tracks.shadow_radius_m) ||
+      !non_negative(o.tracks.coast_confirmed_s)) {
     return "prune times must be >= 0";
   }
   const MotionClassifierOptions& c = o.classifier;
@@ -283,7 +285,7 @@ void Estimator::Predict(int64_t utime, bool first_scan, StepCounts* counts) {
 }
 
 std::vector<PointMeasurement> Estimator::ValidateFeatures(
-    const std::vector<FeatureReading>& features, StepCounts* counts) {
+    const std::vector<FeatureReading>& features, StepCounts* counts, std::vector<double>* widths) {
   std::vector<PointMeasurement> measurements;
   measurements.reserve(features.size());
   const double default_range_var = options_.default_range_sigma_m * options_.default_range_sigma_m;
@@ -326,6 +328,7 @@ std::vector<PointMeasurement> Estimator::ValidateFeatures(
       m.covariance << default_range_var, 0.0, 0.0, default_bearing_var;
     }
     measurements.push_back(m);
+    widths->push_back(std::isfinite(f.width_m) && f.width_m > 0.0 ? f.width_m : 0.0);
   }
   if (rejected > 0) {
     counts->features_rejected = rejected;
@@ -355,7 +358,9 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
   const double dt = first_scan ? 0.0 : Seconds(scan.utime - *last_scan_utime_);
 
   // --- predict (line 2)
-  const std::vector<PointMeasurement> measurements = ValidateFeatures(scan.features, &counts);
+  std::vector<double> widths;
+  const std::vector<PointMeasurement> measurements =
+      ValidateFeatures(scan.features, &counts, &widths);
   Predict(scan.utime, first_scan, &counts);
   last_scan_utime_ = scan.utime;
   lap(Substage::kPredict);
@@ -474,15 +479,25 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
   lap(Substage::kLevel23);
 
   // --- track management (lines 11-13)
-  // Hits and misses.
-  const Eigen::Vector3d robot = state_.robot_pose();
+  // Hits and misses; a miss counts towards pruning faster when the object should have been
+  // seen (in view, not behind anything this scan saw).
+  std::vector<Eigen::Vector3d> seen;
+  seen.reserve(measurements.size());
+  for (size_t i = 0; i < measurements.size(); ++i) {
+    seen.emplace_back(measurements[i].range_bearing(0), measurements[i].range_bearing(1),
+                      widths[i]);
+  }
+  const std::vector<ObjectPrediction> after_updates = PredictObservations(state_, options_.sensor);
   for (int j = 0; j < num_objects_before; ++j) {
     ObjectRecord& record = state_.object(j).record;
     if (!assignment.ObjectFree(j)) {
       RecordHit(scan.utime, options_.tracks, &record);
     } else {
-      RecordMiss(dt, InFieldOfView(robot, state_.position(j), options_.sensor,
-                                   options_.max_range_m, options_.field_of_view_rad),
+      const ObjectPrediction& p = after_updates[static_cast<size_t>(j)];
+      RecordMiss(dt,
+                 p.valid && ExpectedVisible(p.range_bearing, seen, options_.max_range_m,
+                                            options_.field_of_view_rad,
+                                            options_.tracks.shadow_radius_m),
                  &record);
     }
   }
@@ -505,7 +520,7 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
         landmark_nis[j] = c.nis;
       }
     }
-    const std::vector<ObjectPrediction> judged = PredictObservations(state_, options_.sensor);
+    const std::vector<ObjectPrediction>& judged = after_updates;
     for (int j = 0; j < num_objects_before; ++j) {
       StateObject& object = state_.object(j);
       ObjectRecord& record = object.record;
@@ -611,7 +626,8 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
     ObjectEstimate e;
     e.id = record.id;
     e.object_class = record.object_class;
-    e.confirmed = record.confirmed;
+    e.confirmed = ReportedConfirmed(record, state_.object(j).has_velocity(), scan.utime,
+                                    options_.tracks);
     e.position = state_.position(j);
     e.velocity = state_.velocity(j);
     e.covariance = state_.ObjectCovariance(j);

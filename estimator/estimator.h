@@ -118,6 +118,7 @@ struct FeatureReading {
   double range_var_m2 = 0.0;   // 0 (with bearing_var 0): use the default noise
   double bearing_var_rad2 = 0.0;
   double range_bearing_cov_m_rad = 0.0;
+  double width_m = 0.0;        // extent of the cluster (0: a point), for occlusion reasoning
 };
 
 struct ScanInput {
@@ -220,8 +221,9 @@ class Estimator {
   };
 
   void Predict(int64_t utime, bool first_scan, StepCounts* counts);
+  // Accepted measurements, and the width of each in `widths`.
   std::vector<PointMeasurement> ValidateFeatures(const std::vector<FeatureReading>& features,
-                                                 StepCounts* counts);
+                                                 StepCounts* counts, std::vector<double>* widths);
   void Event(const std::string& text) { last_event_ = text; }
 
   EstimatorOptions options_;

@@ -126,6 +126,10 @@ EstimatorStageOptions ReadEstimatorOptions(const Config& s) {
       Double(s, "tentative_prune_unseen_s", o.tracks.tentative_prune_unseen_s);
   o.tracks.static_prune_unseen_in_view_s =
       Double(s, "static_prune_unseen_in_view_s", o.tracks.static_prune_unseen_in_view_s);
+  o.tracks.prune_unseen_visible_s =
+      Double(s, "prune_unseen_visible_s", o.tracks.prune_unseen_visible_s);
+  o.tracks.shadow_radius_m = Double(s, "shadow_radius_m", o.tracks.shadow_radius_m);
+  o.tracks.coast_confirmed_s = Double(s, "coast_confirmed_s", o.tracks.coast_confirmed_s);
   MotionClassifierOptions& c = o.classifier;
   c.moving_chi2 = Double(s, "moving_chi2", c.moving_chi2);
   c.moving_min_speed_mps = Double(s, "moving_min_speed_mps", c.moving_min_speed_mps);
@@ -205,6 +209,7 @@ void EstimatorStage::HandleFeatures(const void* data, int size, MessageSink& out
     reading.range_var_m2 = f.range_var_m2;
     reading.bearing_var_rad2 = f.bearing_var_rad2;
     reading.range_bearing_cov_m_rad = f.range_bearing_cov_m_rad;
+    reading.width_m = f.width_m;
     scan.features.push_back(reading);
   }
   TimerObserver observer(&timer);

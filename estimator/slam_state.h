@@ -31,7 +31,7 @@ struct ObjectRecord {
   int hits = 0;                    // scans in which a measurement updated the object
   int64_t first_seen_utime = 0;
   int64_t last_seen_utime = 0;
-  double unseen_in_view_s = 0.0;   // time in the field of view without a measurement
+  double unseen_in_view_s = 0.0;   // time it should have been seen without a measurement
   // Classification evidence (motion_classifier.h).
   int moving_evidence_scans = 0;   // consecutive scans whose velocity says "moving"
   // Where the object's estimate was when the current "still" window opened (at creation, when

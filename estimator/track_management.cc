@@ -1,6 +1,9 @@
 #include "estimator/track_management.h"
 
+#include <algorithm>
 #include <cmath>
+
+#include "estimator/angle.h"
 
 namespace slammtt {
 
@@ -22,17 +25,28 @@ void RecordHit(int64_t utime, const TrackManagementOptions& options, ObjectRecor
   if (record->hits >= options.confirm_hits) record->confirmed = true;
 }
 
-void RecordMiss(double dt_s, bool in_view, ObjectRecord* record) {
-  if (in_view) record->unseen_in_view_s += dt_s;
+void RecordMiss(double dt_s, bool expected_visible, ObjectRecord* record) {
+  if (expected_visible) record->unseen_in_view_s += dt_s;
 }
 
 bool ShouldPrune(const ObjectRecord& record, bool has_velocity, int64_t utime,
                  const TrackManagementOptions& options) {
   const double unseen_s = 1e-6 * static_cast<double>(utime - record.last_seen_utime);
   if (!record.confirmed) return unseen_s > options.tentative_prune_unseen_s;
-  if (has_velocity) return unseen_s > options.prune_unseen_s;
+  if (has_velocity) {
+    return unseen_s > options.prune_unseen_s ||
+           (options.prune_unseen_visible_s > 0.0 &&
+            record.unseen_in_view_s > options.prune_unseen_visible_s);
+  }
   return options.static_prune_unseen_in_view_s > 0.0 &&
          record.unseen_in_view_s > options.static_prune_unseen_in_view_s;
+}
+
+bool ReportedConfirmed(const ObjectRecord& record, bool has_velocity, int64_t utime,
+                       const TrackManagementOptions& options) {
+  if (!record.confirmed) return false;
+  if (!has_velocity || options.coast_confirmed_s <= 0.0) return true;
+  return 1e-6 * static_cast<double>(utime - record.last_seen_utime) <= options.coast_confirmed_s;
 }
 
 bool InFieldOfView(const Eigen::Vector3d& robot_pose, const Eigen::Vector2d& point,
@@ -40,6 +54,22 @@ bool InFieldOfView(const Eigen::Vector3d& robot_pose, const Eigen::Vector2d& poi
   const Eigen::Vector2d z = PredictRangeBearing(robot_pose, point, mount);
   if (!(z(0) <= max_range_m)) return false;
   return std::abs(z(1)) <= 0.5 * field_of_view_rad;
+}
+
+bool ExpectedVisible(const Eigen::Vector2d& predicted,
+                     const std::vector<Eigen::Vector3d>& features_range_bearing_width,
+                     double max_range_m, double field_of_view_rad, double shadow_radius_m) {
+  const double range = predicted(0);
+  if (!(range <= max_range_m) || std::abs(predicted(1)) > 0.5 * field_of_view_rad) return false;
+  constexpr double kObjectRadius_m = 0.3;
+  constexpr double kRangeMargin_m = 1.0;
+  for (const Eigen::Vector3d& f : features_range_bearing_width) {
+    if (f(0) > range + kRangeMargin_m) continue;
+    const double half_width = std::max(0.5 * f(2), shadow_radius_m) + kObjectRadius_m;
+    const double angle = std::atan2(half_width, std::max(f(0), 1e-3));
+    if (std::abs(WrapAngle(predicted(1) - f(1))) < angle) return false;
+  }
+  return true;
 }
 
 }  // namespace slammtt

@@ -6,27 +6,45 @@
 //   - a tentative object is dropped after tentative_prune_unseen_s without a measurement
 //     (a false alarm must not live 3.5 s);
 //   - a confirmed object with velocity states (moving or undecided) is dropped after
-//     prune_unseen_s without a measurement, as in the paper;
+//     prune_unseen_s without a measurement, as in the paper, or sooner, after
+//     prune_unseen_visible_s during which it should have been seen: inside the field of view
+//     and range and not in the shadow of anything the scan saw in front of it (negative
+//     information: a person who turned away from the track's prediction is not occluded, and
+//     the track that kept going straight is a ghost; an occluded person is coasted the full
+//     3.5 s);
 //   - a static landmark is kept while out of view (the paper makes pruning static objects
 //     optional; a map that forgets what the robot cannot see cannot close a loop), and dropped
-//     after static_prune_unseen_in_view_s during which it was inside the sensor's field of
-//     view and range and yet got no measurement (it was removed, or it was a person who
-//     walked away). 0 disables it.
+//     after static_prune_unseen_in_view_s during which it should have been seen (as above) and
+//     got no measurement (it was removed, or it was a person who walked away). 0 disables it.
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "estimator/range_bearing_model.h"
 #include "estimator/slam_state.h"
 
 namespace slammtt {
 
+// Reporting: a confirmed object that has gone unseen for longer than coast_confirmed_s is
+// reported as not confirmed (ObjectEstimate::confirmed) until a measurement supports it again.
+// Its existence is no longer backed by evidence, as a track's existence probability decays with
+// scans without detection in IPDA (Musicki, Evans and Stankovic, IEEE TAC 1994); the track is
+// still kept for re-association until it is pruned. Static landmarks are not affected (the map
+// keeps what the robot cannot see). 0 disables it.
 struct TrackManagementOptions {
   int confirm_hits = 3;                       // T_th
   double prune_unseen_s = 3.5;                // paper section 5.1
   double tentative_prune_unseen_s = 1.0;
   double static_prune_unseen_in_view_s = 3.5;
+  double prune_unseen_visible_s = 1.0;
+  double shadow_radius_m = 0.4;  // angular half-width of what a point feature hides, at its range
+  double coast_confirmed_s = 0.5;
 };
+
+// Whether an object is reported as confirmed at utime (see coast_confirmed_s).
+bool ReportedConfirmed(const ObjectRecord& record, bool has_velocity, int64_t utime,
+                       const TrackManagementOptions& options);
 
 // A fresh record for an object first seen at utime.
 ObjectRecord NewObjectRecord(int64_t id, int64_t utime, ObjectClass object_class);
@@ -34,9 +52,8 @@ ObjectRecord NewObjectRecord(int64_t id, int64_t utime, ObjectClass object_class
 // Marks a scan in which the object got a measurement.
 void RecordHit(int64_t utime, const TrackManagementOptions& options, ObjectRecord* record);
 
-// Accounts a scan of dt_s without a measurement (in_view: the object was inside the sensor's
-// field of view and range).
-void RecordMiss(double dt_s, bool in_view, ObjectRecord* record);
+// Accounts a scan of dt_s without a measurement (expected_visible: see ExpectedVisible).
+void RecordMiss(double dt_s, bool expected_visible, ObjectRecord* record);
 
 // Whether the object should be removed at utime.
 bool ShouldPrune(const ObjectRecord& record, bool has_velocity, int64_t utime,
@@ -46,5 +63,14 @@ bool ShouldPrune(const ObjectRecord& record, bool has_velocity, int64_t utime,
 // field_of_view_rad wide) and within max_range_m.
 bool InFieldOfView(const Eigen::Vector3d& robot_pose, const Eigen::Vector2d& point,
                    const SensorMount& mount, double max_range_m, double field_of_view_rad);
+
+// Whether an object predicted at `predicted` (range, bearing) should have produced a feature:
+// in the field of view and range, and not behind any of the scan's features. A feature at
+// (r, b) of width w hides the bearings within atan((max(w / 2, shadow_radius_m) + object
+// radius) / r) of b beyond range r - 1 m (a person merged with a neighbour into one cluster
+// hides it too).
+bool ExpectedVisible(const Eigen::Vector2d& predicted,
+                     const std::vector<Eigen::Vector3d>& features_range_bearing_width,
+                     double max_range_m, double field_of_view_rad, double shadow_radius_m);
 
 }  // namespace slammtt

@@ -1,0 +1,100 @@
+#include "tests/estimator/pipeline_runner.h"
+
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "runtime/lcm_io.h"
+#include "slammtt_msgs/estimator_status_t.hpp"
+
+namespace slammtt::testing {
+namespace {
+
+std::string Quote(const std::string& text) { return "'" + text + "'"; }
+
+void Execute(const std::string& command) {
+  const int status = std::system(command.c_str());
+  if (status != 0) {
+    throw std::runtime_error("command failed (" + std::to_string(status) + "): " + command);
+  }
+}
+
+}  // namespace
+
+PipelineRunner::PipelineRunner() {
+  const char* tmp = std::getenv("TMPDIR");
+  std::string pattern = std::string(tmp != nullptr ? tmp : "/tmp") + "/slammtt-targets-XXXXXX";
+  if (mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed");
+  directory_ = pattern;
+}
+
+PipelineRunner::~PipelineRunner() {
+  std::error_code ignored;
+  std::filesystem::remove_all(directory_, ignored);
+}
+
+bool PipelineRunner::ScanScenario(const std::string& scenario) {
+  return scenario != "s1-crossing";
+}
+
+std::string PipelineRunner::WorldLog(const std::string& scenario, int seed) {
+  const std::string log = directory_ + "/" + scenario + "-" + std::to_string(seed) + ".lcm";
+  if (!std::filesystem::exists(log)) {
+    Execute(std::string(SLAMMTT_BIN_DIR) + "/slammtt-world --quiet --scenario " + scenario +
+            " --seed " + std::to_string(seed) + " --log " + Quote(log));
+  }
+  return log;
+}
+
+PipelineRun PipelineRunner::Run(const std::string& scenario, int seed, const std::string& mode,
+                                const std::vector<std::string>& extra_yaml) {
+  const std::string input = WorldLog(scenario, seed);
+  const std::string name = scenario + "-" + std::to_string(seed) + "-" + mode;
+  const std::string config = directory_ + "/" + name + ".yaml";
+  {
+    std::ifstream shipped(std::string(SLAMMTT_SOURCE_DIR) + "/estimator/config/" + scenario +
+                          ".yaml");
+    if (!shipped) throw std::runtime_error("no estimator/config/" + scenario + ".yaml");
+    std::stringstream text;
+    text << shipped.rdbuf();
+    std::ofstream out(config);
+    out << text.str() << "  mode: " << mode << "\n";
+    for (const std::string& line : extra_yaml) out << "  " << line << "\n";
+  }
+  PipelineRun run;
+  run.output_log = directory_ + "/" + name + ".out.lcm";
+  const std::string report = directory_ + "/" + name + ".json";
+  std::string stages = " --stage estimator";
+  if (ScanScenario(scenario)) stages = " --stage segmenter" + stages;
+  Execute(std::string(SLAMMTT_BIN_DIR) + "/slammtt-replay --quiet " + Quote(input) + " -o " +
+          Quote(run.output_log) + " --config " + Quote(config) + stages);
+  Execute(std::string(SLAMMTT_BIN_DIR) + "/slammtt-eval --quiet " + Quote(run.output_log) +
+          " --json " + Quote(report) + " > /dev/null");
+  std::ifstream json(report);
+  run.report = nlohmann::json::parse(json);
+  LogReader reader(run.output_log);
+  while (std::optional<LogEvent> event = reader.Next()) {
+    if (event->channel != "ESTIMATOR_STATUS") continue;
+    slammtt_msgs::estimator_status_t status;
+    if (Decode(event->data.data(), static_cast<int>(event->data.size()), &status)) {
+      run.hypotheses = status.hypotheses_generated;
+    }
+  }
+  return run;
+}
+
+std::string Headline(const nlohmann::json& r) {
+  std::ostringstream out;
+  for (const char* key : {"ate_rmse_m", "odometry_ate_rmse_m", "mota", "motp_m", "id_switches",
+                          "fragmentations", "ospa_mean_m", "gospa_mean_m", "movers_in_static_map",
+                          "landmark_rmse_m", "static_recall", "classification_accuracy"}) {
+    out << key << " " << (r.contains(key) ? r[key].dump() : "absent") << "  ";
+  }
+  return out.str();
+}
+
+}  // namespace slammtt::testing

@@ -1,0 +1,45 @@
+// Runs the shipped pipeline on a shipped scenario the way a user does: slammtt-world writes the
+// log, slammtt-replay runs the segmenter (scan scenarios) and the estimator with
+// estimator/config/<scenario>.yaml (plus extra estimator keys), slammtt-eval --json scores it.
+// Used by the target tests; every figure comes from slammtt-eval's report.
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace slammtt::testing {
+
+struct PipelineRun {
+  nlohmann::json report;           // slammtt-eval --json
+  int64_t hypotheses = 0;          // last ESTIMATOR_STATUS.hypotheses_generated
+  std::string output_log;          // slammtt-replay's output
+};
+
+class PipelineRunner {
+ public:
+  // A fresh temporary directory (removed by the destructor).
+  PipelineRunner();
+  ~PipelineRunner();
+  PipelineRunner(const PipelineRunner&) = delete;
+  PipelineRunner& operator=(const PipelineRunner&) = delete;
+
+  // Runs scenario/seed in `mode` (ml_ransac, static_nn, ransac_all_pairs). `extra_yaml` lines go
+  // into the estimator section ("key: value"). Throws std::runtime_error naming the failing
+  // command.
+  PipelineRun Run(const std::string& scenario, int seed, const std::string& mode,
+                  const std::vector<std::string>& extra_yaml = {});
+
+  static bool ScanScenario(const std::string& scenario);
+
+ private:
+  std::string WorldLog(const std::string& scenario, int seed);
+  std::string directory_;
+};
+
+// "name value" lines of the report's headline metrics, for logs and the docs.
+std::string Headline(const nlohmann::json& report);
+
+}  // namespace slammtt::testing
