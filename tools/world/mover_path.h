@@ -43,8 +43,6 @@ class MoverPath {
   MoverState StateAt(double t_s) const;
 
   const std::vector<TimedPoint>& knots() const { return knots_; }
-  double appear_s() const { return appear_s_; }
-  double disappear_s() const { return disappear_s_; }
   // Start of the repeated lap of a loop; nullopt for a path that ends at its last knot.
   const std::optional<double>& repeat_from_s() const { return repeat_from_s_; }
 

@@ -97,7 +97,6 @@ class WorldSimulator {
   const Scenario& scenario() const { return scenario_; }
   int64_t duration_us() const { return duration_us_; }
   const std::vector<double>& beam_angles_rad() const { return beam_angles_rad_; }
-  const std::vector<MoverPath>& mover_paths() const { return mover_paths_; }
   // Ground truth of the robot at the last event's time.
   const RobotTruth& robot() const { return robot_; }
 
