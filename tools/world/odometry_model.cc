@@ -17,7 +17,8 @@ Pose2D IntegrateWheelIncrements(const Pose2D& pose, const WheelIncrements& incre
                                 double wheel_radius_m, double axle_length_m) {
   // Omega_r dt and Omega_d dt of eq. 1.
   const double distance = 0.5 * (increments.right_rad + increments.left_rad) * wheel_radius_m;
-  const double rotation = (increments.right_rad - increments.left_rad) * wheel_radius_m / axle_length_m;
+  const double rotation =
+      (increments.right_rad - increments.left_rad) * wheel_radius_m / axle_length_m;
   const double heading = pose.heading_rad + rotation;
   return Pose2D{pose.x_m + distance * std::cos(heading), pose.y_m + distance * std::sin(heading),
                 WrapAngle(heading)};
@@ -70,7 +71,8 @@ OdometryReading OdometryIntegrator::Update(int64_t time_us, double distance_m, d
     reading.left_wheel_mps = measured.left_rad * spec_.wheel_radius_m / dt;
     reading.right_wheel_mps = measured.right_rad * spec_.wheel_radius_m / dt;
     reading.linear_mps = 0.5 * (reading.left_wheel_mps + reading.right_wheel_mps);
-    reading.angular_radps = (reading.right_wheel_mps - reading.left_wheel_mps) / spec_.axle_length_m;
+    reading.angular_radps =
+        (reading.right_wheel_mps - reading.left_wheel_mps) / spec_.axle_length_m;
   }
   last_time_us_ = time_us;
   return reading;

@@ -13,8 +13,8 @@ double WrapAngle(double angle_rad) {
 Pose2D SensorPoseFromRobot(const Pose2D& robot, double mount_a_m, double mount_b_m) {
   const double c = std::cos(robot.heading_rad);
   const double s = std::sin(robot.heading_rad);
-  return Pose2D{robot.x_m + mount_a_m * c - mount_b_m * s, robot.y_m + mount_a_m * s + mount_b_m * c,
-                robot.heading_rad};
+  return Pose2D{robot.x_m + mount_a_m * c - mount_b_m * s,
+                robot.y_m + mount_a_m * s + mount_b_m * c, robot.heading_rad};
 }
 
 Pose2D MoveUnicycle(const Pose2D& start, double linear_mps, double angular_radps, double dt_s) {
@@ -27,8 +27,9 @@ Pose2D MoveUnicycle(const Pose2D& start, double linear_mps, double angular_radps
     end.y_m = start.y_m + linear_mps * dt_s * std::sin(heading);
   } else {
     const double radius = linear_mps / angular_radps;
-    end.x_m = start.x_m + radius * (std::sin(start.heading_rad + turn) - std::sin(start.heading_rad));
-    end.y_m = start.y_m - radius * (std::cos(start.heading_rad + turn) - std::cos(start.heading_rad));
+    const double end_heading = start.heading_rad + turn;
+    end.x_m = start.x_m + radius * (std::sin(end_heading) - std::sin(start.heading_rad));
+    end.y_m = start.y_m - radius * (std::cos(end_heading) - std::cos(start.heading_rad));
   }
   end.heading_rad = WrapAngle(start.heading_rad + turn);
   return end;

@@ -7,7 +7,8 @@
 
 namespace slammtt {
 
-std::vector<PointFeature> EmitPointFeatures(const Pose2D& sensor, const std::vector<Circle>& circles,
+std::vector<PointFeature> EmitPointFeatures(const Pose2D& sensor,
+                                            const std::vector<Circle>& circles,
                                             const std::vector<int>& beams_on_object,
                                             const LaserSpec& laser, const FeatureSpec& spec,
                                             std::mt19937_64& rng, std::vector<bool>* visible) {

@@ -36,7 +36,8 @@ struct PointFeature {
 // and the detection draw succeeded. Draws: for each object passing rules 1-3, one uniform number
 // when detection_probability < 1, then one normal number each for range and bearing noise when
 // non-zero.
-std::vector<PointFeature> EmitPointFeatures(const Pose2D& sensor, const std::vector<Circle>& circles,
+std::vector<PointFeature> EmitPointFeatures(const Pose2D& sensor,
+                                            const std::vector<Circle>& circles,
                                             const std::vector<int>& beams_on_object,
                                             const LaserSpec& laser, const FeatureSpec& spec,
                                             std::mt19937_64& rng, std::vector<bool>* visible);

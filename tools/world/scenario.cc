@@ -124,7 +124,9 @@ std::vector<std::string> FindScenarioProblems(const Scenario& s) {
   for (size_t i = 0; i < r.profile.size(); ++i) {
     const std::string path = Indexed("robot.profile", i);
     p.Positive(path + ".duration_s", r.profile[i].duration_s);
-    if (r.profile[i].duration_s > kMaxScenarioDurationS) p.Add(path + ".duration_s", "must not exceed 1e6 s");
+    if (r.profile[i].duration_s > kMaxScenarioDurationS) {
+      p.Add(path + ".duration_s", "must not exceed 1e6 s");
+    }
     p.Between(path + ".linear_mps", r.profile[i].linear_mps, -kMaxRobotSpeedMps, kMaxRobotSpeedMps);
     if (!(std::abs(r.profile[i].angular_radps) <= 100.0)) {
       p.Add(path + ".angular_degps", "must be within +-5729 deg/s (100 rad/s)");
@@ -140,7 +142,8 @@ std::vector<std::string> FindScenarioProblems(const Scenario& s) {
     p.Positive("robot.turn_gain_per_s", r.turn_gain_per_s);
     p.Positive("robot.waypoint_tolerance_m", r.waypoint_tolerance_m);
     for (size_t i = 0; i < r.waypoints.size(); ++i) {
-      p.Coordinate(Indexed("robot.waypoints", i), std::max(std::abs(r.waypoints[i].x_m), std::abs(r.waypoints[i].y_m)));
+      p.Coordinate(Indexed("robot.waypoints", i),
+                   std::max(std::abs(r.waypoints[i].x_m), std::abs(r.waypoints[i].y_m)));
     }
   }
 
@@ -181,7 +184,9 @@ std::vector<std::string> FindScenarioProblems(const Scenario& s) {
           const std::string wp = Indexed(path + ".waypoints", k);
           p.Coordinate(wp, std::max(std::abs(m.waypoints[k].x_m), std::abs(m.waypoints[k].y_m)));
           p.NonNegative(wp + ".wait_s", m.waypoints[k].wait_s);
-          if (m.waypoints[k].wait_s > kMaxScenarioDurationS) p.Add(wp + ".wait_s", "must not exceed 1e6 s");
+          if (m.waypoints[k].wait_s > kMaxScenarioDurationS) {
+            p.Add(wp + ".wait_s", "must not exceed 1e6 s");
+          }
         }
         if (m.at_end == PathEnd::kLoop && m.waypoints.size() < 2) {
           p.Add(path + ".at_end", "loop needs at least two waypoints");
@@ -208,12 +213,13 @@ std::vector<std::string> FindScenarioProblems(const Scenario& s) {
         p.Positive(path + ".mean_leg_s", w.mean_leg_s);
         p.Between(path + ".max_turn_deg", w.max_turn_rad * 180.0 / M_PI, 0.0, 180.0 + 1e-9);
         p.Between(path + ".reverse_probability", w.reverse_probability, 0.0, 1.0);
+        const double area_extent_m =
+            std::max({std::abs(w.area_min_x_m), std::abs(w.area_min_y_m),
+                      std::abs(w.area_max_x_m), std::abs(w.area_max_y_m)});
         if (!(w.area_max_x_m > w.area_min_x_m && w.area_max_y_m > w.area_min_y_m)) {
           p.Add(path + ".area", "needs min_x < max_x and min_y < max_y");
-        } else if (std::max({std::abs(w.area_min_x_m), std::abs(w.area_min_y_m),
-                             std::abs(w.area_max_x_m), std::abs(w.area_max_y_m)}) > kMaxCoordinateM) {
-          p.Coordinate(path + ".area", std::max({std::abs(w.area_min_x_m), std::abs(w.area_min_y_m),
-                                                 std::abs(w.area_max_x_m), std::abs(w.area_max_y_m)}));
+        } else if (!(area_extent_m <= kMaxCoordinateM)) {
+          p.Coordinate(path + ".area", area_extent_m);
         } else if (!(m.start_x_m >= w.area_min_x_m && m.start_x_m <= w.area_max_x_m &&
                      m.start_y_m >= w.area_min_y_m && m.start_y_m <= w.area_max_y_m)) {
           p.Add(path + ".start", "must lie inside the area");

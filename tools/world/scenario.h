@@ -195,8 +195,8 @@ struct Scenario {
 // Every problem of a scenario built in code, one line each ("movers[2].radius_m: must be
 // positive, got -1"); empty when the scenario can be simulated. Besides signs and orders it
 // bounds magnitudes so that nothing overflows: durations and times up to 1e6 s, coordinates
-// within +-kMaxCoordinateM, mover speeds up to 50 m/s, radii up to 1000 m. The YAML loader reports the same
-// problems with file and line; WorldSimulator refuses a scenario with any.
+// within +-kMaxCoordinateM, mover speeds up to 50 m/s, radii up to 1000 m. The YAML loader
+// reports the same problems with file and line; WorldSimulator refuses a scenario with any.
 std::vector<std::string> FindScenarioProblems(const Scenario& scenario);
 
 }  // namespace slammtt

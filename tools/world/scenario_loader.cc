@@ -180,7 +180,8 @@ class ScenarioReader {
       r->waypoints.push_back(PlanarPoint{xy[0], xy[1]});
     }
     r->speed_mps = Double(c, "speed_mps", r->speed_mps);
-    r->max_angular_radps = Double(c, "max_angular_degps", r->max_angular_radps / kDegToRad) * kDegToRad;
+    r->max_angular_radps =
+        Double(c, "max_angular_degps", r->max_angular_radps / kDegToRad) * kDegToRad;
     r->turn_gain_per_s = Double(c, "turn_gain_per_s", r->turn_gain_per_s);
     r->waypoint_tolerance_m = Double(c, "waypoint_tolerance_m", r->waypoint_tolerance_m);
     r->loop = c.GetBool("loop", r->loop);
@@ -207,7 +208,9 @@ class ScenarioReader {
     if (!c.IsMap()) c.Fail("expected a mapping with type: ...");
     locations_.Add(c.Path(), c, "");
     MoverSpec m;
-    if (!c.Has("type")) c.FailKey("type", "missing key (constant_velocity, waypoints, trajectory or random_walk)");
+    if (!c.Has("type")) {
+      c.FailKey("type", "missing key (constant_velocity, waypoints, trajectory or random_walk)");
+    }
     const std::string type = c.GetString("type", "");
     std::vector<std::string> keys = {"id", "type", "radius_m", "appear_s", "disappear_s"};
     if (type == "constant_velocity") {
@@ -318,7 +321,9 @@ class ScenarioReader {
       spec.offset_y_m = offset[1];
     }
     const int64_t max_people = Int(c, "max_people", 0);
-    if (max_people < 0 || max_people > 100000) c.FailKey("max_people", "must be within [0, 100000]");
+    if (max_people < 0 || max_people > 100000) {
+      c.FailKey("max_people", "must be within [0, 100000]");
+    }
     spec.max_people = static_cast<int>(max_people);
     spec.radius_m = Double(c, "radius_m", spec.radius_m);
     if (!(spec.radius_m > 0.0)) c.FailKey("radius_m", "must be positive");

@@ -28,11 +28,13 @@ void ScenarioReporter::AddScan(const SensorFrame& frame) {
   ++report_.scans;
   const Pose2D& robot = truth.robot.pose;
   if (have_previous_) {
-    report_.robot_path_m += std::hypot(robot.x_m - previous_pose_.x_m, robot.y_m - previous_pose_.y_m);
+    report_.robot_path_m +=
+        std::hypot(robot.x_m - previous_pose_.x_m, robot.y_m - previous_pose_.y_m);
   }
   have_previous_ = true;
   previous_pose_ = robot;
-  report_.robot_max_speed_mps = std::max(report_.robot_max_speed_mps, std::abs(truth.robot.linear_mps));
+  report_.robot_max_speed_mps =
+      std::max(report_.robot_max_speed_mps, std::abs(truth.robot.linear_mps));
 
   const Pose2D& sensor = truth.robot.sensor_pose;
   const bool full_circle = laser_.fov_deg >= 360.0 - 1e-9;
@@ -44,7 +46,8 @@ void ScenarioReporter::AddScan(const SensorFrame& frame) {
   for (size_t i = 0; i < truth.objects.size(); ++i) {
     const ObjectTruth& o = truth.objects[i];
     Closer(o.is_static ? &report_.robot_static : &report_.robot_mover,
-           std::hypot(o.x_m - robot.x_m, o.y_m - robot.y_m) - o.radius_m - robot_radius_m_, -1, o.id, t);
+           std::hypot(o.x_m - robot.x_m, o.y_m - robot.y_m) - o.radius_m - robot_radius_m_, -1,
+           o.id, t);
     for (size_t j = i + 1; j < truth.objects.size(); ++j) {
       const ObjectTruth& p = truth.objects[j];
       if (o.is_static && p.is_static) continue;
@@ -61,9 +64,10 @@ void ScenarioReporter::AddScan(const SensorFrame& frame) {
     m.report.id = o.id;
     m.report.exists_s += period_s_;
     const double range = std::hypot(o.x_m - sensor.x_m, o.y_m - sensor.y_m);
-    const double bearing = WrapAngle(std::atan2(o.y_m - sensor.y_m, o.x_m - sensor.x_m) - sensor.heading_rad);
-    const bool in_view = (full_circle || std::abs(bearing) <= half_fov) && range >= laser_.min_range_m &&
-                         range <= laser_.max_range_m;
+    const double bearing =
+        WrapAngle(std::atan2(o.y_m - sensor.y_m, o.x_m - sensor.x_m) - sensor.heading_rad);
+    const bool in_view = (full_circle || std::abs(bearing) <= half_fov) &&
+                         range >= laser_.min_range_m && range <= laser_.max_range_m;
     if (in_view) m.report.in_view_s += period_s_;
     if (o.visible) {
       ++movers_visible;
@@ -144,17 +148,19 @@ std::string FormatScenarioReport(const ScenarioReport& r) {
   out << "static objects visible per scan: min " << r.min_statics_visible << " (first at "
       << r.min_statics_visible_time_s << " s), mean " << r.mean_statics_visible
       << ", scans with fewer than 3: " << r.scans_with_fewer_than_3_statics << "\n";
-  out << "movers visible per scan: min " << r.min_movers_visible << ", mean " << r.mean_movers_visible
-      << "\n";
+  out << "movers visible per scan: min " << r.min_movers_visible << ", mean "
+      << r.mean_movers_visible << "\n";
   if (r.mover_mover.gap_m < 1e299) approach("mover-mover", r.mover_mover);
   if (r.mover_static.gap_m < 1e299) approach("mover-static", r.mover_static);
   if (r.robot_static.gap_m < 1e299) approach("robot-static (robot radius 0.26 m)", r.robot_static);
   if (r.robot_mover.gap_m < 1e299) approach("robot-mover (robot radius 0.26 m)", r.robot_mover);
   out << "movers: " << r.movers.size()
-      << " (id: exists / in view / visible s, occlusions, longest occlusion s, longest visible s)\n";
+      << " (id: exists / in view / visible s, occlusions, longest occlusion s, "
+      << "longest visible s)\n";
   for (const MoverReport& m : r.movers) {
-    out << "  " << m.id << ": " << m.exists_s << " / " << m.in_view_s << " / " << m.visible_s << ", "
-        << m.occlusions << ", " << m.longest_occlusion_s << ", " << m.longest_visible_s << "\n";
+    out << "  " << m.id << ": " << m.exists_s << " / " << m.in_view_s << " / " << m.visible_s
+        << ", " << m.occlusions << ", " << m.longest_occlusion_s << ", " << m.longest_visible_s
+        << "\n";
   }
   out << "occlusions: " << r.occlusions.size() << " (mover hidden by occluder, from - to s)\n";
   for (const OcclusionEpisode& e : r.occlusions) {

@@ -32,7 +32,8 @@ std::vector<std::string> ScenarioSearchRoots() {
   std::vector<std::string> roots;
   for (const std::filesystem::path& candidate : candidates) {
     const std::string root = candidate.lexically_normal().string();
-    const std::string trimmed = root.size() > 1 && root.back() == '/' ? root.substr(0, root.size() - 1) : root;
+    const std::string trimmed =
+        root.size() > 1 && root.back() == '/' ? root.substr(0, root.size() - 1) : root;
     if (std::find(roots.begin(), roots.end(), trimmed) == roots.end()) roots.push_back(trimmed);
   }
   return roots;

@@ -18,7 +18,8 @@ slammtt_msgs::odometry_t ToOdometryMessage(const OdometryReading& reading, int64
   return msg;
 }
 
-slammtt_msgs::ground_truth_t ToGroundTruthMessage(const TruthSnapshot& truth, int64_t utime_offset) {
+slammtt_msgs::ground_truth_t ToGroundTruthMessage(const TruthSnapshot& truth,
+                                                  int64_t utime_offset) {
   slammtt_msgs::ground_truth_t msg{};
   msg.utime = utime_offset + truth.time_us;
   msg.robot_x_m = truth.robot.pose.x_m;
@@ -92,7 +93,8 @@ std::vector<EncodedMessage> EncodeWorldEvent(const WorldEvent& event, const Lase
   std::vector<EncodedMessage> out;
   const int64_t utime = utime_offset + event.time_us;
   if (event.kind == WorldEvent::Kind::kOdometry) {
-    out.push_back({utime, channels.odometry, Encode(ToOdometryMessage(event.odometry, utime_offset))});
+    out.push_back(
+        {utime, channels.odometry, Encode(ToOdometryMessage(event.odometry, utime_offset))});
     return out;
   }
   const SensorFrame& frame = event.sensor;

@@ -70,7 +70,8 @@ void OnVelocityCommand(const lcm::ReceiveBuffer* rbuf, const std::string& /*chan
   if (!Decode(rbuf->data, static_cast<int>(rbuf->data_size), &msg) ||
       !std::isfinite(msg.linear_mps) || !std::isfinite(msg.angular_radps)) {
     ++listener->bad_messages;
-    LogWarning() << "ignored a malformed VELOCITY_COMMAND (" << listener->bad_messages << " so far)";
+    LogWarning() << "ignored a malformed VELOCITY_COMMAND (" << listener->bad_messages
+                 << " so far)";
     return;
   }
   listener->have_command = true;
@@ -80,8 +81,8 @@ void OnVelocityCommand(const lcm::ReceiveBuffer* rbuf, const std::string& /*chan
 
 }  // namespace
 
-WorldRunSummary PublishWorldLive(WorldSimulator* world, lcm::LCM* lcm, const WorldChannels& channels,
-                                 const LiveOptions& options) {
+WorldRunSummary PublishWorldLive(WorldSimulator* world, lcm::LCM* lcm,
+                                 const WorldChannels& channels, const LiveOptions& options) {
   if (!(options.rate_factor > 0.0) || !std::isfinite(options.rate_factor)) {
     throw std::invalid_argument("rate factor must be a positive number");
   }
@@ -100,14 +101,15 @@ WorldRunSummary PublishWorldLive(WorldSimulator* world, lcm::LCM* lcm, const Wor
   WorldRunSummary summary;
   while (!world->Done()) {
     const auto due = start + std::chrono::microseconds(std::llround(
-                                 static_cast<double>(world->NextEventTimeUs()) / options.rate_factor));
+                                 static_cast<double>(world->NextEventTimeUs()) /
+                                 options.rate_factor));
     while (!ShutdownRequested()) {
       const auto now = SteadyClock::now();
       if (now >= due) break;
       const auto wait = std::min<SteadyClock::duration>(due - now, std::chrono::milliseconds(50));
       if (options.follow_commands) {
-        const int wait_ms = static_cast<int>(
-            std::max<int64_t>(0, std::chrono::duration_cast<std::chrono::milliseconds>(wait).count()));
+        const int wait_ms = static_cast<int>(std::max<int64_t>(
+            0, std::chrono::duration_cast<std::chrono::milliseconds>(wait).count()));
         // A signal interrupts the wait (select fails with EINTR): that is the shutdown request
         // the loop checks next, not a failure of the bus.
         errno = 0;

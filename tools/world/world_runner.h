@@ -41,7 +41,7 @@ struct LiveOptions {
 
 // Publishes every event on `lcm` at its simulated time divided by rate_factor after the start.
 // Returns at the end or when shutdown is requested.
-WorldRunSummary PublishWorldLive(WorldSimulator* world, lcm::LCM* lcm, const WorldChannels& channels,
-                                 const LiveOptions& options);
+WorldRunSummary PublishWorldLive(WorldSimulator* world, lcm::LCM* lcm,
+                                 const WorldChannels& channels, const LiveOptions& options);
 
 }  // namespace slammtt

@@ -69,7 +69,8 @@ void WorldSimulator::SetCommandOverride(const std::optional<VelocityCommand>& co
 void WorldSimulator::AdvanceRobotTo(int64_t time_us) {
   auto control_tick = [&] {
     if (robot_time_us_ != next_control_us_) return;
-    command_ = command_override_ ? *command_override_ : driver_.CommandAt(robot_time_us_, robot_.pose);
+    command_ =
+        command_override_ ? *command_override_ : driver_.CommandAt(robot_time_us_, robot_.pose);
     next_control_us_ += kRobotControlPeriodUs;
   };
   while (robot_time_us_ < time_us) {
@@ -160,7 +161,8 @@ SensorFrame WorldSimulator::MakeSensorFrame(int64_t time_us) {
   // needs the beam counts, and the scans of "both" equal those of "scans".
   const std::vector<BeamHit> hits =
       CastBeams(robot_.sensor_pose, beam_angles_rad_, circles, scenario_.laser.max_range_m);
-  std::vector<SimulatedBeam> beams = MeasureScan(scenario_.laser, beam_angles_rad_, hits, laser_rng_);
+  std::vector<SimulatedBeam> beams =
+      MeasureScan(scenario_.laser, beam_angles_rad_, hits, laser_rng_);
   const std::vector<int> counts = CountBeamsPerObject(beams, num_objects);
   for (int i = 0; i < num_objects; ++i) {
     frame.truth.objects[static_cast<size_t>(i)].beams_on_object = counts[static_cast<size_t>(i)];

@@ -6,7 +6,7 @@
 //   WorldSimulator world(scenario, /*seed=*/7, scenario.output);
 //   while (!world.Done()) {
 //     const WorldEvent event = world.Next();
-//     if (event.kind == WorldEvent::Kind::kSensor) { ... event.sensor.scan, event.sensor.truth ... }
+//     if (event.kind == WorldEvent::Kind::kSensor) { ... event.sensor.scan ... }
 //   }
 //
 // Time: integer microseconds since the scenario start. Odometry reading j is at
@@ -63,7 +63,8 @@ struct SensorFrame {
   int64_t sequence = 0;  // 0, 1, 2, ...
   TruthSnapshot truth;
   bool has_scan = false;
-  std::vector<SimulatedBeam> scan;  // beam i at LaserBeamAngles()[i]; object = index in truth.objects
+  // Beam i at LaserBeamAngles()[i]; a beam's object is an index into truth.objects.
+  std::vector<SimulatedBeam> scan;
   bool has_features = false;
   std::vector<PointFeature> features;  // object = index in truth.objects
 };
