@@ -10,7 +10,10 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
+
+#include "runtime/message_checks.h"
 
 namespace slammtt {
 
@@ -35,10 +38,30 @@ std::vector<uint8_t> Encode(const Msg& message) {
   return bytes;
 }
 
-// Decodes any lcm-gen type; false (and the message untouched or partly filled) on bad bytes.
+// Decodes any lcm-gen type from untrusted bytes (the bus, a log). True only when `data` holds
+// exactly one whole message of type Msg in exactly `size` bytes; then *message is replaced.
+// False for anything else (wrong type, truncated, trailing bytes, a corrupt array count or
+// string length), and *message is left untouched. Never throws.
+//
+// The type's structural check (runtime/message_checks.h) runs first, because LCM 1.3.1's
+// generated decoder allocates whatever array counts the bytes claim before checking them; the
+// decoder itself then runs inside try/catch as a second line. Decoding goes into a fresh message,
+// because the generated decoder leaves an array untouched when its count is 0: decoding into a
+// reused message would keep the previous message's elements.
 template <class Msg>
 bool Decode(const void* data, int size, Msg* message) {
-  return size >= 0 && message->decode(data, 0, size) == size;
+  if (data == nullptr || size < 0 ||
+      !PlausibleEncoding(static_cast<const Msg*>(nullptr), data, size)) {
+    return false;
+  }
+  try {
+    Msg decoded{};
+    if (decoded.decode(data, 0, size) != size) return false;
+    *message = std::move(decoded);
+    return true;
+  } catch (...) {  // std::length_error, std::bad_alloc: bad input is a false, never a throw
+    return false;
+  }
 }
 
 // Where a stage's outputs go: LCM in a live process, the output log in replay.

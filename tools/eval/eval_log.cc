@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "runtime/lcm_io.h"
-#include "tools/replay/message_checks.h"
 #include "slammtt_msgs/ground_truth_t.hpp"
 #include "slammtt_msgs/map_t.hpp"
 #include "slammtt_msgs/odometry_t.hpp"
@@ -67,7 +66,7 @@ EvalInput ReadEvalInput(const std::string& path, const Channels& channels, LogRe
   *read = ForEachLogEvent(path, [&](const LogEventView& e) {
     if (e.channel == truth_channel) {
       slammtt_msgs::ground_truth_t msg{};
-      if (!DecodeChecked(e.data, e.size, &msg)) {
+      if (!Decode(e.data, e.size, &msg)) {
         ++input.rejected["ground_truth"];
         return;
       }
@@ -96,7 +95,7 @@ EvalInput ReadEvalInput(const std::string& path, const Channels& channels, LogRe
       input.truth.push_back(std::move(scan));
     } else if (e.channel == odometry_channel) {
       slammtt_msgs::odometry_t msg{};
-      if (!DecodeChecked(e.data, e.size, &msg) || !ValidUtime(msg.utime) ||
+      if (!Decode(e.data, e.size, &msg) || !ValidUtime(msg.utime) ||
           !Finite({msg.x_m, msg.y_m, msg.heading_rad})) {
         ++input.rejected["odometry"];
         return;
@@ -104,7 +103,7 @@ EvalInput ReadEvalInput(const std::string& path, const Channels& channels, LogRe
       input.odometry.push_back({msg.utime, Pose2{msg.x_m, msg.y_m, WrapAngle(msg.heading_rad)}});
     } else if (e.channel == pose_channel) {
       slammtt_msgs::pose_t msg{};
-      if (!DecodeChecked(e.data, e.size, &msg) || !ValidUtime(msg.utime) ||
+      if (!Decode(e.data, e.size, &msg) || !ValidUtime(msg.utime) ||
           !Finite({msg.x_m, msg.y_m, msg.heading_rad})) {
         ++input.rejected["pose"];
         return;
@@ -112,7 +111,7 @@ EvalInput ReadEvalInput(const std::string& path, const Channels& channels, LogRe
       input.estimate.push_back({msg.utime, Pose2{msg.x_m, msg.y_m, WrapAngle(msg.heading_rad)}});
     } else if (e.channel == tracks_channel) {
       slammtt_msgs::tracks_t msg{};
-      if (!DecodeChecked(e.data, e.size, &msg)) {
+      if (!Decode(e.data, e.size, &msg)) {
         ++input.rejected["tracks"];
         return;
       }
@@ -144,7 +143,7 @@ EvalInput ReadEvalInput(const std::string& path, const Channels& channels, LogRe
       input.tracks.push_back(std::move(scan));
     } else if (e.channel == map_channel) {
       slammtt_msgs::map_t msg{};
-      if (!DecodeChecked(e.data, e.size, &msg)) {
+      if (!Decode(e.data, e.size, &msg)) {
         ++input.rejected["map"];
         return;
       }

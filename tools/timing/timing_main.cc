@@ -15,7 +15,6 @@
 #include "runtime/process.h"
 #include "slammtt_msgs/stage_timing_t.hpp"
 #include "tools/replay/log_events.h"
-#include "tools/replay/message_checks.h"
 #include "tools/timing/timing_table.h"
 
 namespace slammtt {
@@ -94,7 +93,7 @@ int Run(int argc, char** argv) {
   const LogReadResult read = ForEachLogEvent(path, [&](const LogEventView& e) {
     if (e.channel != channel) return;
     slammtt_msgs::stage_timing_t msg;
-    if (!DecodeChecked(e.data, e.size, &msg) ||
+    if (!Decode(e.data, e.size, &msg) ||
         static_cast<size_t>(msg.num_substages) != msg.substage.size() ||
         static_cast<size_t>(msg.num_counters) != msg.counter_name.size()) {
       ++undecodable;
