@@ -1,11 +1,11 @@
 // The one configuration format of the stack: YAML files read through Config.
 //
-// A whole-stack file has one section per process (see config/stack.yaml); scenario files of the
+// A whole-stack file has one section per process (see config/robot.yaml); scenario files of the
 // synthetic world use the same reader. Reading a key marks it used, and CheckUnused() throws for
 // every key nobody read, so a typo is an error instead of a silently ignored setting (the
 // Cartographer rule); so is a key given twice in one mapping (YAML parsers keep the first and
 // drop the second silently). Every error names the file, the line and the key path, in one line:
-//   config/stack.yaml:12: segmenter.lambda_deg: expected a number, got "twenty"
+//   config/robot.yaml:12: segmenter.lambda_deg: expected a number, got "twenty"
 //
 // Config is a cheap handle: copies share the file and the record of used keys.
 #pragma once

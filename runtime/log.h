@@ -1,6 +1,6 @@
 // One logging style for every process of the stack: one line per event on stderr,
 //   slammtt-world: warning: scenario has no static object
-// The program name is set once by ProcessMain (process_main.h). Lines from several threads never
+// The program name is set once by ProcessMain (process.h). Lines from several threads never
 // interleave. Logging is for people: nothing a stage computes depends on it.
 #pragma once
 

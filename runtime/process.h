@@ -6,7 +6,7 @@
 //       slammtt::CommandLine cl("slammtt-segmenter", "[options]", "Splits scans into features.");
 //       slammtt::AddStandardOptions(&cl);
 //       if (!cl.Parse(c, v)) return 0;
-//       slammtt::ProcessSettings settings = slammtt::LoadProcessSettings(cl, {"segmenter"});
+//       slammtt::ProcessSettings settings = slammtt::LoadProcessSettings(cl);
 //       ...
 //     });
 //   }
