@@ -212,7 +212,9 @@ TEST(MoverPathTest, RandomWalkIsTheSameForTheSameSeedAndDiffersForAnother) {
     EXPECT_EQ(a.knots()[i].y_m, b.knots()[i].y_m);
   }
   bool differs = a.knots().size() != c.knots().size();
-  for (size_t i = 0; !differs && i < a.knots().size(); ++i) differs = a.knots()[i].x_m != c.knots()[i].x_m;
+  for (size_t i = 0; !differs && i < a.knots().size(); ++i) {
+    differs = a.knots()[i].x_m != c.knots()[i].x_m;
+  }
   EXPECT_TRUE(differs);
 }
 

@@ -23,8 +23,8 @@ TEST(OdometryModelTest, WheelIncrementsOfAStraightLineAndATurnInPlace) {
 
 TEST(OdometryModelTest, NoiseFreeStraightLineEqualsEq1Exactly) {
   const Pose2D start{1.0, 2.0, 0.0};
-  const Pose2D end =
-      IntegrateWheelIncrements(start, WheelIncrementsForMotion(1.5, 0.0, 0.0975, 0.33), 0.0975, 0.33);
+  const Pose2D end = IntegrateWheelIncrements(
+      start, WheelIncrementsForMotion(1.5, 0.0, 0.0975, 0.33), 0.0975, 0.33);
   EXPECT_DOUBLE_EQ(end.x_m, 2.5);
   EXPECT_DOUBLE_EQ(end.y_m, 2.0);
   EXPECT_DOUBLE_EQ(end.heading_rad, 0.0);
@@ -32,8 +32,8 @@ TEST(OdometryModelTest, NoiseFreeStraightLineEqualsEq1Exactly) {
 
 TEST(OdometryModelTest, NoiseFreeTurnInPlaceEqualsEq1Exactly) {
   const Pose2D start{1.0, 2.0, 0.25};
-  const Pose2D end =
-      IntegrateWheelIncrements(start, WheelIncrementsForMotion(0.0, 1.0, 0.0975, 0.33), 0.0975, 0.33);
+  const Pose2D end = IntegrateWheelIncrements(
+      start, WheelIncrementsForMotion(0.0, 1.0, 0.0975, 0.33), 0.0975, 0.33);
   EXPECT_NEAR(end.x_m, 1.0, 1e-15);
   EXPECT_NEAR(end.y_m, 2.0, 1e-15);
   EXPECT_NEAR(end.heading_rad, 1.25, 1e-15);

@@ -42,10 +42,13 @@ std::string Mutate(const std::string& text, std::mt19937_64& rng) {
   const size_t pos = static_cast<size_t>(UniformUnit(rng) * static_cast<double>(out.size()));
   const int kind = static_cast<int>(UniformUnit(rng) * 6.0);
   if (kind == 0) {  // replace the number or word at pos by a token
+    auto in_token = [](char c) {
+      return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-';
+    };
     size_t begin = pos;
-    while (begin > 0 && (std::isalnum(static_cast<unsigned char>(out[begin - 1])) || out[begin - 1] == '.' || out[begin - 1] == '-')) --begin;
+    while (begin > 0 && in_token(out[begin - 1])) --begin;
     size_t end = pos;
-    while (end < out.size() && (std::isalnum(static_cast<unsigned char>(out[end])) || out[end] == '.' || out[end] == '-')) ++end;
+    while (end < out.size() && in_token(out[end])) ++end;
     out.replace(begin, end - begin, tokens[static_cast<size_t>(UniformUnit(rng) * tokens.size())]);
   } else if (kind == 1 && !out.empty()) {
     out.erase(pos, 1);
@@ -112,7 +115,8 @@ TEST(ScenarioFuzzTest, DamagedScenariosLoadOrFailCleanlyAndSimulate) {
         ASSERT_TRUE(std::isfinite(f.range_m) && std::isfinite(f.bearing_rad)) << source;
       }
       for (const ObjectTruth& o : e.sensor.truth.objects) {
-        ASSERT_TRUE(std::isfinite(o.x_m) && std::isfinite(o.y_m) && std::isfinite(o.vx_mps)) << source;
+        ASSERT_TRUE(std::isfinite(o.x_m) && std::isfinite(o.y_m) && std::isfinite(o.vx_mps))
+            << source;
       }
     }
     EXPECT_TRUE(world.Done()) << source;

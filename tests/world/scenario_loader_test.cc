@@ -131,7 +131,8 @@ TEST_F(ScenarioLoaderTest, KeyGivenTwiceNamesBothLines) {
 TEST_F(ScenarioLoaderTest, WrongTypeNamesFileLineAndKey) {
   const std::string error = ErrorOf("name: x\nduration_s: long\n");
   EXPECT_EQ(error, BadPath() + ":2: duration_s: expected a number, got \"long\"");
-  const std::string list_error = ErrorOf("movers:\n  - {type: constant_velocity, start: 3, velocity_mps: [1, 0]}\n");
+  const std::string list_error =
+      ErrorOf("movers:\n  - {type: constant_velocity, start: 3, velocity_mps: [1, 0]}\n");
   EXPECT_NE(list_error.find(BadPath() + ":2: movers[0].start: expected a list of numbers"),
             std::string::npos)
       << list_error;
@@ -188,7 +189,8 @@ TEST_F(ScenarioLoaderTest, OtherValueChecksNameTheirKeys) {
   EXPECT_EQ(ErrorOf("duration_s: 1e300\n"), BadPath() + ":1: duration_s: must not exceed 1e6 s");
   EXPECT_EQ(ErrorOf("statics:\n  - {x_m: 1e200, y_m: 0}\n"),
             BadPath() + ":2: statics[0].x_m: must be within +-1e+06 m, got 1e+200");
-  EXPECT_EQ(ErrorOf("movers:\n  - {type: constant_velocity, start: [0, 0], velocity_mps: [1e9, 0]}\n"),
+  EXPECT_EQ(
+      ErrorOf("movers:\n  - {type: constant_velocity, start: [0, 0], velocity_mps: [1e9, 0]}\n"),
             BadPath() + ":2: movers[0].velocity_mps: speed must not exceed 50 m/s");
 }
 
@@ -215,8 +217,8 @@ TEST_F(ScenarioLoaderTest, MissingTrajectoryFileNamesTheScenarioKeyAndThePath) {
 TEST_F(ScenarioLoaderTest, CrowdFileIsReadRelativeToTheScenarioAndTransformed) {
   fs::create_directories(dir_ / "data");
   Write("data/people.tsv",
-        "t_s\tid\tx_m\ty_m\n0.0\t1\t1.0\t0.0\n0.0\t2\t5.0\t5.0\n0.4\t1\t2.0\t0.0\n0.4\t2\t5.0\t6.0\n"
-        "0.8\t1\t3.0\t0.0\n");
+        "t_s\tid\tx_m\ty_m\n0.0\t1\t1.0\t0.0\n0.0\t2\t5.0\t5.0\n0.4\t1\t2.0\t0.0\n"
+        "0.4\t2\t5.0\t6.0\n0.8\t1\t3.0\t0.0\n");
   const Scenario s = LoadScenario(Write("crowd.yaml", R"(duration_s: 5
 crowd:
   file: data/people.tsv
@@ -236,7 +238,8 @@ crowd:
 }
 
 TEST_F(ScenarioLoaderTest, TrajectoryFileErrorsNameTheirLine) {
-  const std::string bad_row = Write("a.tsv", "t_s\tid\tx_m\ty_m\n0.0\t1\t1.0\t0.0\n0.4\t1\tx\t0.0\n");
+  const std::string bad_row =
+      Write("a.tsv", "t_s\tid\tx_m\ty_m\n0.0\t1\t1.0\t0.0\n0.4\t1\tx\t0.0\n");
   try {
     ReadRecordedTracks(bad_row);
     FAIL();
@@ -256,7 +259,8 @@ TEST_F(ScenarioLoaderTest, TrajectoryFileErrorsNameTheirLine) {
   const std::string header = Write("c.tsv", "time,id,x,y\n");
   EXPECT_THROW(ReadRecordedTracks(header), ConfigError);
   // Ids so large that id_offset + id would overflow (undefined behaviour) are refused.
-  const std::string huge_id = Write("d.tsv", "t_s\tid\tx_m\ty_m\n0.0\t9223372036854775807\t1\t1\n");
+  const std::string huge_id =
+      Write("d.tsv", "t_s\tid\tx_m\ty_m\n0.0\t9223372036854775807\t1\t1\n");
   try {
     ReadRecordedTracks(huge_id);
     FAIL();

@@ -39,7 +39,8 @@ TEST(ShippedScenariosTest, EveryScenarioLoadsStartsWithItsDescriptionAndRunsInEv
     EXPECT_EQ(scenario.name, name);
     EXPECT_TRUE(FindScenarioProblems(scenario).empty());
     scenario.duration_s = 3.0;
-    for (SensorOutput output : {SensorOutput::kFeatures, SensorOutput::kScans, SensorOutput::kBoth}) {
+    for (SensorOutput output :
+         {SensorOutput::kFeatures, SensorOutput::kScans, SensorOutput::kBoth}) {
       WorldSimulator world(scenario, 1, output);
       int sensor_frames = 0;
       int odometry = 0;
@@ -67,7 +68,8 @@ void ExpectNoOverlaps(const ScenarioReport& r, double min_gap_m) {
   EXPECT_GE(r.mover_static.gap_m, min_gap_m)
       << r.mover_static.id_a << " and " << r.mover_static.id_b << " at " << r.mover_static.time_s;
   EXPECT_GE(r.robot_mover.gap_m, min_gap_m) << r.robot_mover.id_b << " at " << r.robot_mover.time_s;
-  EXPECT_GE(r.robot_static.gap_m, min_gap_m) << r.robot_static.id_b << " at " << r.robot_static.time_s;
+  EXPECT_GE(r.robot_static.gap_m, min_gap_m)
+      << r.robot_static.id_b << " at " << r.robot_static.time_s;
 }
 
 TEST(ShippedScenariosTest, S1CrossingIsThePapersFirstSimulation) {
@@ -189,7 +191,9 @@ TEST(ShippedScenariosTest, RplidarA2IsTheRealRobotsSetting) {
     EXPECT_GE(r.min_statics_visible, 3);
     EXPECT_GE(r.min_movers_visible, 2);
     int behind_person = 0;
-    for (const OcclusionEpisode& e : r.occlusions) behind_person += !e.occluder_is_static && e.occluder_id >= 0;
+    for (const OcclusionEpisode& e : r.occlusions) {
+      behind_person += !e.occluder_is_static && e.occluder_id >= 0;
+    }
     EXPECT_GE(behind_person, 3);
   }
 }

@@ -68,9 +68,14 @@ class WorldCliTest : public ::testing::Test {
 TEST_F(WorldCliTest, SameSeedGivesIdenticalBytesAndAnotherSeedDoesNot) {
   for (const std::string output : {"features", "scans"}) {
     SCOPED_TRACE(output);
-    ASSERT_EQ(World({"--scenario", "s1-crossing", "--seed", "7", "--output", output, "--log", Path("a.lcm")}).exit_code, 0);
-    ASSERT_EQ(World({"--scenario", "s1-crossing", "--seed", "7", "--output", output, "--log", Path("b.lcm")}).exit_code, 0);
-    ASSERT_EQ(World({"--scenario", "s1-crossing", "--seed", "8", "--output", output, "--log", Path("c.lcm")}).exit_code, 0);
+    auto run = [&](const std::string& seed, const std::string& log) {
+      return World({"--scenario", "s1-crossing", "--seed", seed, "--output", output, "--log",
+                    Path(log)})
+          .exit_code;
+    };
+    ASSERT_EQ(run("7", "a.lcm"), 0);
+    ASSERT_EQ(run("7", "b.lcm"), 0);
+    ASSERT_EQ(run("8", "c.lcm"), 0);
     const std::string a = ReadWholeFile(Path("a.lcm"));
     EXPECT_GT(a.size(), 100000u);
     EXPECT_TRUE(a == ReadWholeFile(Path("b.lcm")));
@@ -81,7 +86,8 @@ TEST_F(WorldCliTest, SameSeedGivesIdenticalBytesAndAnotherSeedDoesNot) {
 }
 
 TEST_F(WorldCliTest, S1LogFollowsTheChannelContract) {
-  const ProcessResult run = World({"--scenario", "s1-crossing", "--seed", "7", "--log", Path("s1.lcm")});
+  const ProcessResult run =
+      World({"--scenario", "s1-crossing", "--seed", "7", "--log", Path("s1.lcm")});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   // One summary line.
   EXPECT_NE(run.err.find("slammtt-world: info: s1-crossing seed 7: 4323 messages (FEATURES 961, "
@@ -197,11 +203,10 @@ TEST_F(WorldCliTest, ScansBothOutputsDurationAndChannelNames) {
 
 // Runs a bad scenario file; expects exit status 1, one error line starting with `expected`, and
 // nothing left behind.
-void ExpectRejected(WorldCliTest* test, const ProcessResult& run, const std::string& expected) {
+void ExpectRejected(const ProcessResult& run, const std::string& expected) {
   EXPECT_EQ(run.exit_code, 1);
   EXPECT_EQ(run.err.rfind("slammtt-world: error: " + expected, 0), 0u) << run.err;
   EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
-  (void)test;
 }
 
 TEST_F(WorldCliTest, BadScenariosAreRejectedWithFileLineAndKeyAndLeaveNoLog) {
@@ -223,7 +228,7 @@ TEST_F(WorldCliTest, BadScenariosAreRejectedWithFileLineAndKeyAndLeaveNoLog) {
   for (size_t i = 0; i < cases.size(); ++i) {
     SCOPED_TRACE(cases[i].yaml);
     const std::string scenario = Write("bad" + std::to_string(i) + ".yaml", cases[i].yaml);
-    ExpectRejected(this, World({"--scenario", scenario, "--log", Path("out.lcm")}),
+    ExpectRejected(World({"--scenario", scenario, "--log", Path("out.lcm")}),
                    scenario + cases[i].expected);
     EXPECT_TRUE(LeftFiles().empty());
   }
@@ -232,7 +237,7 @@ TEST_F(WorldCliTest, BadScenariosAreRejectedWithFileLineAndKeyAndLeaveNoLog) {
 TEST_F(WorldCliTest, BadTrajectoryFileIsRejectedWithItsLine) {
   Write("people.tsv", "t_s\tid\tx_m\ty_m\n0.0\t1\t1.0\t1.0\n0.4\t1\t2.0\n");
   const std::string scenario = Write("crowd.yaml", "crowd:\n  file: people.tsv\n");
-  ExpectRejected(this, World({"--scenario", scenario, "--log", Path("out.lcm")}),
+  ExpectRejected(World({"--scenario", scenario, "--log", Path("out.lcm")}),
                  scenario + ":2: crowd.file: " + Path("people.tsv") + ":3: expected four");
   EXPECT_TRUE(LeftFiles().empty());
 }

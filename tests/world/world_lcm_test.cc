@@ -30,7 +30,8 @@ const std::string kUrl = "udpm://239.255.76.67:7667?ttl=0";
 constexpr int64_t kEpoch = 1700000000000000;
 
 // The events of one channel group of a log, in log order.
-std::vector<LogEvent> ReadEvents(const std::string& path, const std::vector<std::string>& channels) {
+std::vector<LogEvent> ReadEvents(const std::string& path,
+                                 const std::vector<std::string>& channels) {
   std::vector<LogEvent> events;
   LogReader log(path);
   while (std::optional<LogEvent> e = log.Next()) {
@@ -106,8 +107,9 @@ class WorldLcmTest : public ::testing::Test {
 
   // Starts lcm-logger on the bus and waits until it records (a PROBE message reaches its file).
   void StartLogger(const std::string& path) {
-    logger_ = StartProcess({"lcm-logger", "-q", "-f", "--flush-interval=20", "--lcm-url=" + kUrl, path},
-                           Path("logger.out"), Path("logger.err"));
+    logger_ = StartProcess(
+        {"lcm-logger", "-q", "-f", "--flush-interval=20", "--lcm-url=" + kUrl, path},
+        Path("logger.out"), Path("logger.err"));
     WaitForMarker(path, "PROBE_START");
   }
   // Publishes `channel` until the logger's file has it (at most 20 s).
@@ -115,8 +117,8 @@ class WorldLcmTest : public ::testing::Test {
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
     slammtt_msgs::velocity_command_t probe{};
     while (!LogHasChannel(path, channel)) {
-      ASSERT_LT(std::chrono::steady_clock::now(), deadline) << "lcm-logger never recorded " << channel
-                                                            << ": " << ReadWholeFile(Path("logger.err"));
+      ASSERT_LT(std::chrono::steady_clock::now(), deadline)
+          << "lcm-logger never recorded " << channel << ": " << ReadWholeFile(Path("logger.err"));
       lcm_->publish(channel, &probe);
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
     }
@@ -184,11 +186,12 @@ TEST_F(WorldLcmTest, LoggerInAnotherProcessReceivesEveryMessageInOrder) {
 
 TEST_F(WorldLcmTest, LogplayerPlaysAFastModeLog) {
   const ProcessResult made = RunProcess(
-      {kWorld, "--scenario", "rplidar-a2", "--duration", "3", "--log", Path("fast.lcm")}, dir_.string());
+      {kWorld, "--scenario", "rplidar-a2", "--duration", "3", "--log", Path("fast.lcm")},
+      dir_.string());
   ASSERT_EQ(made.exit_code, 0) << made.err;
   StartLogger(Path("bus.lcm"));
-  const ProcessResult played =
-      RunProcess({"lcm-logplayer", "--speed=5", "--lcm-url=" + kUrl, Path("fast.lcm")}, dir_.string());
+  const ProcessResult played = RunProcess(
+      {"lcm-logplayer", "--speed=5", "--lcm-url=" + kUrl, Path("fast.lcm")}, dir_.string());
   ASSERT_EQ(played.exit_code, 0) << played.err;
   StopLogger(Path("bus.lcm"));
   const std::vector<std::string> channels = {"ODOMETRY", "GROUND_TRUTH", "LASER_SCAN"};
@@ -220,7 +223,9 @@ TEST_F(WorldLcmTest, FollowCommandsDrivesTheRobotAndStopsWhenCommandsStop) {
                                     "--follow-commands", "--lcm-url", kUrl},
                                    Path("world.out"), Path("world.err"));
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
-  while (truth.messages.empty() && std::chrono::steady_clock::now() < deadline) lcm_->handleTimeout(50);
+  while (truth.messages.empty() && std::chrono::steady_clock::now() < deadline) {
+    lcm_->handleTimeout(50);
+  }
   ASSERT_FALSE(truth.messages.empty()) << ReadWholeFile(Path("world.err"));
   slammtt_msgs::velocity_command_t command{};
   command.linear_mps = 0.5;
@@ -236,7 +241,8 @@ TEST_F(WorldLcmTest, FollowCommandsDrivesTheRobotAndStopsWhenCommandsStop) {
     int status = 0;
     if (waitpid(world, &status, WNOHANG) == world) {
       exited = true;
-      EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << ReadWholeFile(Path("world.err"));
+      EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0)
+          << ReadWholeFile(Path("world.err"));
     }
   }
   if (!exited) {
@@ -255,7 +261,8 @@ TEST_F(WorldLcmTest, FollowCommandsDrivesTheRobotAndStopsWhenCommandsStop) {
   EXPECT_EQ(last.robot_linear_mps, 0.0);  // stopped after the commands stopped
   // About 1 s of commands plus up to the 0.5 s timeout at 0.5 m/s; the scenario's own waypoint
   // motion (0.25 m/s) would not reach this.
-  const double travelled = std::hypot(last.robot_x_m - first.robot_x_m, last.robot_y_m - first.robot_y_m);
+  const double travelled =
+      std::hypot(last.robot_x_m - first.robot_x_m, last.robot_y_m - first.robot_y_m);
   EXPECT_GT(travelled, 0.3);
   EXPECT_LT(travelled, 1.0);
   EXPECT_NEAR(last.robot_heading_rad, 0.0, 1e-9);

@@ -83,7 +83,8 @@ TEST(WorldSimulatorTest, InvalidScenarioIsRefusedWithEveryProblem) {
     FAIL() << "accepted";
   } catch (const std::invalid_argument& e) {
     const std::string what = e.what();
-    EXPECT_NE(what.find("statics[0].radius_m: must be positive, got -1"), std::string::npos) << what;
+    EXPECT_NE(what.find("statics[0].radius_m: must be positive, got -1"), std::string::npos)
+        << what;
     EXPECT_NE(what.find("robot.profile[0].linear_mps"), std::string::npos) << what;
   }
 }
@@ -245,8 +246,9 @@ TEST(WorldSimulatorTest, WaypointRobotVisitsEveryWaypointAndStops) {
   while (!world.Done()) {
     world.Next();
     for (size_t i = 0; i < 3; ++i) {
-      closest[i] = std::min(closest[i], std::hypot(world.robot().pose.x_m - s.robot.waypoints[i].x_m,
-                                                   world.robot().pose.y_m - s.robot.waypoints[i].y_m));
+      const Pose2D& pose = world.robot().pose;
+      closest[i] = std::min(closest[i], std::hypot(pose.x_m - s.robot.waypoints[i].x_m,
+                                                   pose.y_m - s.robot.waypoints[i].y_m));
     }
     fastest = std::max(fastest, std::abs(world.robot().linear_mps));
   }
