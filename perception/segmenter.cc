@@ -11,6 +11,8 @@ namespace slammtt {
 namespace {
 
 constexpr double kTwoPi = 2.0 * M_PI;
+// Beam::unusable_before of a beam without a usable return, before CountGapsAndDropDuplicates().
+constexpr int32_t kMarker = -1;
 
 // CCW angle from a to b, in [0, 2 pi), for angles already in (-pi, pi].
 double CcwDelta(double a_rad, double b_rad) {
@@ -26,8 +28,7 @@ const SegmenterOptions& Checked(const SegmenterOptions& options) {
 
 }  // namespace
 
-double Segmenter::WrapBearing(double angle_rad) {
-  if (angle_rad > -M_PI && angle_rad <= M_PI) return angle_rad;
+double Segmenter::WrapBearingSlow(double angle_rad) {
   double a = angle_rad;
   if (a > M_PI && a <= 3.0 * M_PI) {
     a -= kTwoPi;
@@ -58,7 +59,7 @@ void Segmenter::PrepareBeams(const ScanView& scan) {
   CollectBeams(scan);
   if (!beams_.empty()) {
     PutInCircularOrder();
-    DropDuplicates();
+    CountGapsAndDropDuplicates();
   }
   stats_.beams_used = static_cast<int64_t>(beams_.size());
 }
@@ -89,29 +90,26 @@ void Segmenter::CollectBeams(const ScanView& scan) {
     hi = scan.range_max_m;
   }
   if (beams_.capacity() < n) beams_.reserve(n);
-  int32_t unusable_run = 0;  // unusable beams since the last usable one, in input order
   for (size_t i = 0; i < n; ++i) {
-    ++unusable_run;  // undone below for a usable beam
-    if (scan.valid != nullptr && scan.valid[i] == 0) {
-      ++stats_.beams_flagged_invalid;
-      continue;
-    }
     const double angle = scan.angle_rad[i];
     const double range = scan.range_m[i];
-    if (!std::isfinite(angle) || !std::isfinite(range)) {
+    const int32_t index = static_cast<int32_t>(i);
+    // A beam without a usable return stays in the ring as a marker (when its direction is
+    // known), so that the gap it leaves can be counted whatever order the beams come in.
+    bool usable = false;
+    if (scan.valid != nullptr && scan.valid[i] == 0) {
+      ++stats_.beams_flagged_invalid;
+    } else if (!std::isfinite(angle) || !std::isfinite(range)) {
       ++stats_.beams_non_finite;
-      continue;
-    }
-    // A range of 0 is the sensor itself (RPLIDAR's "no return"), never a point of the world.
-    if (!(range > 0.0 && range >= lo && range <= hi)) {
+    } else if (!(range > 0.0 && range >= lo && range <= hi)) {
+      // A range of 0 is the sensor itself (RPLIDAR's "no return"), never a point of the world.
       ++stats_.beams_out_of_range;
-      continue;
+    } else {
+      usable = true;
     }
-    beams_.push_back(Beam{WrapBearing(angle), range, static_cast<int32_t>(i), unusable_run - 1});
-    unusable_run = 0;
+    if (!std::isfinite(angle)) continue;
+    beams_.push_back(Beam{WrapBearing(angle), usable ? range : 0.0, index, usable ? 0 : kMarker});
   }
-  // The scan is a circle: beams after the last usable one precede the first usable one.
-  if (!beams_.empty()) beams_[0].unusable_before += unusable_run;
   if (n < scan.num_beams) stats_.beams_non_finite += static_cast<int64_t>(scan.num_beams - n);
 }
 
@@ -123,47 +121,80 @@ void Segmenter::PutInCircularOrder() {
     descents += beams_[k + 1].angle_rad < beams_[k].angle_rad;
     ascents += beams_[k + 1].angle_rad > beams_[k].angle_rad;
   }
+  // Mostly clockwise (the RPLIDAR turns clockwise seen from above): reverse first.
+  if (descents > ascents) {
+    std::reverse(beams_.begin(), beams_.end());
+    std::swap(descents, ascents);
+    stats_.beams_were_reversed = true;
+  }
   // Sorted, or sorted after a rotation (one descent, and the end does not pass the start).
   if (descents == 0 || (descents == 1 && beams_[m - 1].angle_rad <= beams_[0].angle_rad)) return;
-  // The same clockwise (the RPLIDAR turns clockwise seen from above): reversed, which keeps the
-  // gap counts. In input order the beams between CCW neighbours k - 1 and k come right before
-  // k - 1, so after the reversal each count moves one place on.
-  if (ascents == 0 || (ascents == 1 && beams_[m - 1].angle_rad >= beams_[0].angle_rad)) {
-    std::reverse(beams_.begin(), beams_.end());
-    const int32_t last = beams_[m - 1].unusable_before;
-    for (size_t k = m - 1; k > 0; --k) beams_[k].unusable_before = beams_[k - 1].unusable_before;
-    beams_[0].unusable_before = last;
-    stats_.beams_were_reversed = true;
-    return;
-  }
-  std::sort(beams_.begin(), beams_.end(), [](const Beam& a, const Beam& b) {
-    if (a.angle_rad != b.angle_rad) return a.angle_rad < b.angle_rad;
-    return a.index < b.index;
-  });
-  // Input order says nothing about angular neighbours any more: only max_beam_gap applies.
-  for (Beam& beam : beams_) beam.unusable_before = 0;
   stats_.beams_were_sorted = true;
-}
-
-void Segmenter::DropDuplicates() {
-  const double tolerance = options_.duplicate_angle_tolerance_rad;
-  size_t kept = 0;
-  for (size_t k = 0; k < beams_.size(); ++k) {
-    if (kept > 0 && CcwDelta(beams_[kept - 1].angle_rad, beams_[k].angle_rad) < tolerance) {
-      // The pair keeps the gap in front of its first beam.
-      const int32_t unusable_before = beams_[kept - 1].unusable_before;
-      if (beams_[k].range_m < beams_[kept - 1].range_m) beams_[kept - 1] = beams_[k];
-      beams_[kept - 1].unusable_before = unusable_before;
-      ++stats_.beams_duplicate;
-    } else {
-      beams_[kept++] = beams_[k];
+  // Nearly sorted (RPLIDAR express mode: each sample's angle is corrected by up to 2 degrees,
+  // so neighbours swap): start at the wrap, the largest drop, and insertion-sort, which costs
+  // O(n + swaps). Anything far from sorted falls back to std::sort. Both give the one order of
+  // the key (angle, input index).
+  size_t wrap = 0;
+  double largest_drop = 0.0;
+  for (size_t k = 0; k + 1 < m; ++k) {
+    const double drop = beams_[k].angle_rad - beams_[k + 1].angle_rad;
+    if (drop > largest_drop) {
+      largest_drop = drop;
+      wrap = k + 1;
     }
   }
-  // The last and the first beam are neighbours too.
+  std::rotate(beams_.begin(), beams_.begin() + static_cast<std::ptrdiff_t>(wrap), beams_.end());
+  const auto before = [](const Beam& a, const Beam& b) {
+    if (a.angle_rad != b.angle_rad) return a.angle_rad < b.angle_rad;
+    return a.index < b.index;
+  };
+  const size_t max_moves = 4 * m;
+  size_t moves = 0;
+  for (size_t k = 1; k < m && moves <= max_moves; ++k) {
+    const Beam beam = beams_[k];
+    size_t j = k;
+    while (j > 0 && before(beam, beams_[j - 1]) && moves <= max_moves) {
+      beams_[j] = beams_[j - 1];
+      --j;
+      ++moves;
+    }
+    beams_[j] = beam;
+  }
+  if (moves > max_moves) std::sort(beams_.begin(), beams_.end(), before);
+}
+
+void Segmenter::CountGapsAndDropDuplicates() {
+  const double tolerance = options_.duplicate_angle_tolerance_rad;
+  size_t kept = 0;
+  int32_t run = 0;  // markers since the last usable beam
+  for (size_t k = 0; k < beams_.size(); ++k) {
+    if (beams_[k].unusable_before == kMarker) {
+      ++run;
+      continue;
+    }
+    Beam beam = beams_[k];
+    beam.unusable_before = run;
+    run = 0;
+    if (kept > 0 && CcwDelta(beams_[kept - 1].angle_rad, beam.angle_rad) < tolerance) {
+      // The same direction twice: the nearer return stays, with the gap in front of the pair;
+      // markers between the two (if any) count towards the next gap.
+      const int32_t gap = beams_[kept - 1].unusable_before;
+      if (beam.range_m < beams_[kept - 1].range_m) beams_[kept - 1] = beam;
+      beams_[kept - 1].unusable_before = gap;
+      run = beam.unusable_before;
+      ++stats_.beams_duplicate;
+    } else {
+      beams_[kept++] = beam;
+    }
+  }
+  // The ring is a circle: markers after the last usable beam lie before the first one...
+  if (kept > 0) beams_[0].unusable_before += run;
+  // ...and the last and the first beam are neighbours.
   while (kept > 1 && CcwDelta(beams_[kept - 1].angle_rad, beams_[0].angle_rad) < tolerance) {
-    const int32_t unusable_before = beams_[kept - 1].unusable_before;
-    if (beams_[kept - 1].range_m < beams_[0].range_m) beams_[0] = beams_[kept - 1];
-    beams_[0].unusable_before = unusable_before;
+    const Beam last = beams_[kept - 1];
+    const int32_t gap = last.unusable_before + beams_[0].unusable_before;
+    if (last.range_m < beams_[0].range_m) beams_[0] = last;
+    beams_[0].unusable_before = gap;
     --kept;
     ++stats_.beams_duplicate;
   }

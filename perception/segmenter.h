@@ -4,23 +4,26 @@
 // Per scan:
 //  1. Beams are dropped, and counted, when flagged invalid (RPLIDAR reports distance 0 for no
 //     return), when the angle or the range is NaN or infinite, or when the range is outside
-//     [max(min_range_m, scan min), min(max_range_m, scan max)]. An invalid beam inside an object
-//     does not split it by itself: the criterion is applied between the valid neighbours with
-//     their actual angular distance, which widens the threshold. More than max_dropped_beams
-//     unusable beams in a row (counted in input order) always split, and so does a gap of more
-//     than max_beam_gap_rad (or lambda).
+//     [max(min_range_m, scan min), min(max_range_m, scan max)]. A dropped beam whose angle is
+//     known stays in the ring as a marker until step 2 has counted the gap it leaves.
 //  2. Angles are wrapped to (-pi, pi]. Beams in circular angle order (sorted, or sorted after a
-//     rotation, as a revolution that starts anywhere) are used as they are, beams in clockwise
-//     circular order (the RPLIDAR's, in our CCW frame) are reversed; otherwise
-//     they are sorted by (angle, input index), which is a stable sort, and the input order no
-//     longer tells which beams lay between two neighbours (max_dropped_beams cannot apply). Beams within
-//     duplicate_angle_tolerance_rad of the previous one are one direction measured twice: the
-//     nearer return is kept.
+//     rotation, as a revolution that starts anywhere) are used as they are; mostly clockwise
+//     beams (the RPLIDAR's order in our CCW frame) are reversed first; what is still out of
+//     order (RPLIDAR express mode swaps neighbours) is sorted by (angle, input index), a total
+//     order, so the result does not depend on the algorithm (insertion sort from the wrap when
+//     nearly sorted, std::sort otherwise). Then each usable beam records how many markers lie
+//     between it and the previous usable beam (around the circle), and the markers go. Beams
+//     within duplicate_angle_tolerance_rad of the previous one are one direction measured
+//     twice: the nearer return is kept.
 //  3. The breakpoint criterion (breakpoint_criterion.h, paper eq. 15) is evaluated between every
 //     pair of angular neighbours, including the last and the first beam. On a 360-degree scan
 //     that pair is one beam spacing apart and is tested like any other, so an object across the
 //     seam is ONE cluster; on a 180-degree scan the pair is 180 degrees apart and always splits.
 //     No scan-coverage flag is needed. If no pair splits, the points surround the sensor.
+//     An invalid beam inside an object does not split it by itself: the criterion is applied
+//     between its valid neighbours with their actual angular distance, which widens the
+//     threshold. More than max_dropped_beams markers between two neighbours always split, and
+//     so does a gap of more than max_beam_gap_rad (or lambda).
 //  4. A cluster becomes a feature when it has at least min_points points, the distance between
 //     its first and last point is at most max_width_m and it spans less than pi (a cluster that
 //     surrounds the sensor has no centre). Its centre follows options.centre_rule
@@ -42,6 +45,7 @@
 // Nothing here allocates once the buffers have grown to the largest scan seen.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -60,8 +64,8 @@ struct SegmentationStats {
   int64_t beams_non_finite = 0;        // flagged valid, but NaN or infinite angle or range
   int64_t beams_out_of_range = 0;      // range outside the limits
   int64_t beams_duplicate = 0;         // same direction as a kept beam (the farther is dropped)
-  bool beams_were_reversed = false;    // true when the input was in clockwise circular order
-  bool beams_were_sorted = false;      // true when the input was in neither circular order
+  bool beams_were_reversed = false;    // true when the input was mostly clockwise
+  bool beams_were_sorted = false;      // true when (after any reversal) it needed sorting
   int64_t clusters = 0;                // clusters found
   int64_t clusters_too_few_points = 0; // fewer than min_points
   int64_t clusters_too_wide = 0;       // wider than max_width_m or spanning pi or more
@@ -89,7 +93,9 @@ class Segmenter {
   const SegmentationStats& stats() const { return stats_; }
   // An angle wrapped to (-pi, pi] (a member, so that it cannot clash with the other modules'
   // free WrapAngle functions in namespace slammtt).
-  static double WrapBearing(double angle_rad);
+  static double WrapBearing(double angle_rad) {
+    return angle_rad > -M_PI && angle_rad <= M_PI ? angle_rad : WrapBearingSlow(angle_rad);
+  }
   const SegmenterOptions& options() const { return options_; }
 
  private:
@@ -97,15 +103,17 @@ class Segmenter {
     double angle_rad;         // wrapped to (-pi, pi]
     double range_m;
     int32_t index;            // position in the input scan
-    int32_t unusable_before;  // unusable input beams right before it (0 after a sort)
+    int32_t unusable_before;  // beams without a usable return between it and the previous
+                              // usable beam, in angle order; -1 marks such a beam itself
   };
+  static double WrapBearingSlow(double angle_rad);
   struct Cluster {
     size_t ring_start;  // ring index of the first point
     size_t count;
   };
   void CollectBeams(const ScanView& scan);
   void PutInCircularOrder();
-  void DropDuplicates();
+  void CountGapsAndDropDuplicates();
   void MakeFeature(const Cluster& cluster);
 
   SegmenterOptions options_;

@@ -40,17 +40,17 @@ struct SegmenterOptions {
   double lambda_rad = 20.0 * M_PI / 180.0;  // paper: 20 degrees
   double sigma_r_m = 0.03;                  // paper: 0.03 m; also the range noise of one beam
 
-  // More than this many beams without a usable return in a row between two valid beams always
-  // split (counted in the scan's own order, so it means the same at any angular resolution and
-  // in either RPLIDAR mode, 1.8 or 0.9 degrees). A real RPLIDAR drops single beams on dark or
-  // shiny surfaces: the default bridges one, so such a dropout does not cut a person in two.
+  // More than this many beams without a usable return between two valid neighbours always
+  // split (counted in angle order, so it means the same at any angular resolution and in either
+  // RPLIDAR mode, 1.8 or 0.9 degrees). A real RPLIDAR drops single beams on dark or shiny
+  // surfaces: the default bridges one, so such a dropout does not cut a person in two.
   // The price: two objects with exactly one no-return beam between them stay one cluster
   // (crowd-zara02 recall 0.93 with 1, 0.96 with 0; docs/perception.md).
   int max_dropped_beams = 1;
   // Two valid beams further apart than this always split, whatever eq. 15 says: the bound for
-  // scans whose gaps cannot be counted (beams that had to be sorted, drivers that leave no-return
-  // beams out). Eq. 15 alone joins points across any gap below lambda, and its threshold grows
-  // fast with the gap (at 27 m a 3-degree gap allows 4.9 m).
+  // drivers that leave no-return beams out of the scan, where gaps cannot be counted. Eq. 15
+  // alone joins points across any gap below lambda, and its threshold grows fast with the gap
+  // (at 27 m a 3-degree gap allows 4.9 m).
   double max_beam_gap_rad = 5.0 * M_PI / 180.0;
 
   // Beams whose angles differ by less than this are one direction measured twice; the nearer

@@ -251,9 +251,9 @@ TEST(SegmenterTest, ClockwiseScansAreReversedWithTheirGapCounts) {
   EXPECT_EQ(b.Segment(cw.View()).size(), kScene.size() + 1);
 }
 
-// After a sort the input order says nothing about which beams lay between two neighbours: only
-// the angular bound max_beam_gap applies.
-TEST(SegmenterTest, AfterSortingOnlyTheAngularGapApplies) {
+// Beams out of order are sorted, and the gaps are still counted in angle order: two drops in a
+// row split the post whether or not the scan needed sorting.
+TEST(SegmenterTest, SortedScansKeepTheirGapCounts) {
   const std::vector<Circle> post = {{1.5, 1.5, 0.3}};
   TestScan scan = CastScan(post, RplidarAngles());
   std::vector<size_t> hits;
@@ -264,13 +264,50 @@ TEST(SegmenterTest, AfterSortingOnlyTheAngularGapApplies) {
   scan.valid[hits[hits.size() / 2 + 1]] = 0;  // two drops: 2.7 degrees
   Segmenter segmenter(SegmenterOptions{});
   EXPECT_EQ(segmenter.Segment(scan.View()).size(), 2u);
-  // Two more returns, far from the post, appended clockwise after the CCW scan: the beams are
-  // in no circular order any more (they become small clusters, not features).
-  scan.angle_rad.insert(scan.angle_rad.end(), {-2.0f, -2.5f});
-  scan.range_m.insert(scan.range_m.end(), {5.0f, 5.0f});
-  scan.valid.insert(scan.valid.end(), {1, 1});
-  EXPECT_EQ(segmenter.Segment(scan.View()).size(), 1u);
+  EXPECT_FALSE(segmenter.stats().beams_were_sorted);
+  // Shuffle everything.
+  std::mt19937_64 rng(8);
+  for (size_t i = scan.size(); i > 1; --i) {
+    const size_t j = static_cast<size_t>(rng() % i);
+    std::swap(scan.angle_rad[i - 1], scan.angle_rad[j]);
+    std::swap(scan.range_m[i - 1], scan.range_m[j]);
+    std::swap(scan.valid[i - 1], scan.valid[j]);
+  }
+  EXPECT_EQ(segmenter.Segment(scan.View()).size(), 2u);
   EXPECT_TRUE(segmenter.stats().beams_were_sorted);
+}
+
+// RPLIDAR express mode in our frame: clockwise, and each sample's angle corrected by up to 2
+// degrees, so that neighbours often swap. The features equal those of the clean CCW scan; one
+// dropout inside an object is bridged, two split it.
+TEST(SegmenterTest, ExpressModeLikeScansAreReorderedKeepingGaps) {
+  std::mt19937_64 rng(31);
+  std::uniform_real_distribution<double> correction(0.0, 2.0 * kDeg);
+  const std::vector<double> clean = RplidarAngles();
+  std::vector<double> angles;
+  for (size_t i = 0; i < clean.size(); ++i) {
+    angles.push_back(-clean[i] + correction(rng));  // clockwise from 0, then corrected
+  }
+  TestScan scan = CastScan(kScene, angles, 12.0, 0.01, &rng);
+  Segmenter segmenter(SegmenterOptions{});
+  const std::vector<Feature> features = segmenter.Segment(scan.View());
+  EXPECT_TRUE(segmenter.stats().beams_were_reversed);
+  EXPECT_TRUE(segmenter.stats().beams_were_sorted);
+  ExpectOneFeaturePerCircle(features, kScene, 0.05);
+  // Drop beams on the first object, in angle order.
+  std::vector<size_t> on_first;
+  for (size_t i = 0; i < scan.size(); ++i) {
+    if (scan.valid[i] && testing_support::RayCircle(angles[i], kScene[0]) > 0.0) {
+      on_first.push_back(i);
+    }
+  }
+  std::sort(on_first.begin(), on_first.end(),
+            [&](size_t a, size_t b) { return angles[a] < angles[b]; });
+  ASSERT_GT(on_first.size(), 8u);
+  scan.valid[on_first[on_first.size() / 2]] = 0;
+  EXPECT_EQ(segmenter.Segment(scan.View()).size(), kScene.size());
+  scan.valid[on_first[on_first.size() / 2 + 1]] = 0;
+  EXPECT_EQ(segmenter.Segment(scan.View()).size(), kScene.size() + 1);
 }
 
 TEST(SegmenterTest, NonFiniteAnglesAndRangesAreDroppedAndCounted) {
