@@ -22,9 +22,9 @@ enum class CentreRule {
   // that bound the visible extent, fitted to the central points along the beams; i.e. the near
   // range pushed back by a radius estimated from the extent (see centre_estimation.h).
   kRadiusCorrected,
-  // Geometric least-squares circle fit of the cluster's points, started from kRadiusCorrected
-  // and falling back to it when the fit is not trustworthy (too few points, radius out of
-  // bounds, centre outside the visible cone or in front of the points).
+  // Least-squares circle fit of the cluster's points and of the two tangent rays that bound it
+  // (an edge hidden by a nearer object is left out), one Gauss-Newton step from
+  // kRadiusCorrected; kRadiusCorrected is used when the fit cannot be made.
   kCircleFit,
 };
 
@@ -71,8 +71,8 @@ struct SegmenterOptions {
   double max_width_m = 1.5;
 
   CentreRule centre_rule = CentreRule::kCircleFit;
-  // Upper bound of an object radius for kRadiusCorrected and kCircleFit: a larger estimate is
-  // clamped (kRadiusCorrected) or rejected in favour of kRadiusCorrected (kCircleFit).
+  // Upper bound of an object radius for kRadiusCorrected and kCircleFit: larger estimates are
+  // clamped to it.
   double max_object_radius_m = 1.0;
 
   // Measurement covariance of the feature (see Segmenter in segmenter.h for the model):
