@@ -1,5 +1,8 @@
 #include "runtime/lcm_io.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <cstdio>
 #include <cstdlib>
 
@@ -14,8 +17,31 @@ std::string ResolveLcmUrl(const std::optional<std::string>& from_command_line,
   return kDefaultLcmUrl;
 }
 
-std::unique_ptr<lcm::LCM> OpenLcm(const std::string& url) {
+namespace {
+
+// LCM 1.3.1 prints a dozen lines of its own to stderr when it cannot start (no multicast route,
+// a bad URL). Our error says what is wrong and how to fix it in one line, so LCM's lines are
+// kept off stderr while the bus is being opened. Every process opens its bus before it starts
+// any thread, so redirecting the process's stderr for this moment disturbs nobody.
+std::unique_ptr<lcm::LCM> ConstructQuietly(const std::string& url) {
+  std::fflush(stderr);
+  const int saved = dup(STDERR_FILENO);
+  const int null_fd = open("/dev/null", O_WRONLY | O_CLOEXEC);
+  if (saved >= 0 && null_fd >= 0) dup2(null_fd, STDERR_FILENO);
   auto lcm = std::make_unique<lcm::LCM>(url);
+  std::fflush(stderr);
+  if (saved >= 0) {
+    dup2(saved, STDERR_FILENO);
+    close(saved);
+  }
+  if (null_fd >= 0) close(null_fd);
+  return lcm;
+}
+
+}  // namespace
+
+std::unique_ptr<lcm::LCM> OpenLcm(const std::string& url) {
+  auto lcm = ConstructQuietly(url);
   if (!lcm->good()) {
     std::string message = "cannot open LCM at '" + url + "'";
     if (url.rfind("udpm://", 0) == 0) {
@@ -34,7 +60,10 @@ void LcmSink::Publish(const std::string& channel, const void* data, int size) {
   }
 }
 
-LogWriter::LogWriter(const std::string& path) : path_(path), partial_path_(path + ".partial") {
+// The partial file carries the process id, so two processes given the same path by mistake
+// cannot write into one partial file (the last to finish wins the rename, whole).
+LogWriter::LogWriter(const std::string& path)
+    : path_(path), partial_path_(path + ".partial." + std::to_string(getpid())) {
   file_ = std::make_unique<lcm::LogFile>(partial_path_, "w");
   if (!file_->good()) {
     file_.reset();
@@ -68,7 +97,10 @@ void LogWriter::Publish(const std::string& channel, const void* data, int size) 
 
 void LogWriter::Commit() {
   if (committed_) return;
-  if (std::fflush(file_->getFilePtr()) != 0) throw std::runtime_error(path_ + ": flush failed");
+  FILE* stream = file_->getFilePtr();
+  if (std::fflush(stream) != 0 || std::ferror(stream) != 0 || fsync(fileno(stream)) != 0) {
+    throw std::runtime_error(path_ + ": write failed (disk full?)");
+  }
   file_.reset();
   if (std::rename(partial_path_.c_str(), path_.c_str()) != 0) {
     throw std::runtime_error(path_ + ": cannot move the finished log into place");

@@ -88,7 +88,7 @@ class LcmSink : public MessageSink {
 };
 
 // Writes an LCM event log (lcm-logger's format, playable by lcm-logplayer). The log is written
-// to "<path>.partial" and renamed to <path> by Commit(); destroying an uncommitted writer removes
+// to "<path>.partial.<pid>" and renamed to <path> by Commit(); destroying an uncommitted writer removes
 // the partial file, so a failed run leaves nothing that looks like a finished log.
 class LogWriter : public MessageSink {
  public:

@@ -1,5 +1,6 @@
 #include "runtime/stage.h"
 
+#include <cerrno>
 #include <exception>
 
 #include "runtime/log.h"
@@ -75,9 +76,10 @@ void LiveStageRunner::Add(Stage* stage) {
 
 void LiveStageRunner::Run(int poll_ms) {
   while (!ShutdownRequested()) {
+    errno = 0;
     const int status = lcm_->handleTimeout(poll_ms);
-    if (status < 0) {
-      if (ShutdownRequested()) break;
+    // A signal interrupts the wait (EINTR): not an error, whether or not it asks for shutdown.
+    if (status < 0 && errno != EINTR && !ShutdownRequested()) {
       throw std::runtime_error("LCM receive failed");
     }
   }

@@ -1,6 +1,7 @@
 #!/bin/sh
 # The README's test command: installs missing packages, builds with warnings as errors and runs
-# every default test (labels unit, integration, target). Long soak and fuzz runs are opt-in:
+# every test (labels unit, integration, target; fuzz and soak in their short version). The long
+# soak and fuzz runs are opt-in:
 #   SLAMMTT_LONG_TESTS=1 scripts/run-tests.sh
 set -eu
 cd "$(dirname "$0")/.."

@@ -1,7 +1,9 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <filesystem>
 #include <fstream>
+#include <vector>
 
 #include "runtime/lcm_io.h"
 #include "slammtt_msgs/velocity_command_t.hpp"
@@ -15,6 +17,17 @@ std::string TempPath(const std::string& name) {
 
 bool Exists(const std::string& path) { return access(path.c_str(), F_OK) == 0; }
 
+// Files in the directory of `path` whose names start with the name of `path`.
+std::vector<std::string> FilesStartingWith(const std::string& path) {
+  const std::filesystem::path p(path);
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(p.parent_path())) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind(p.filename().string(), 0) == 0) names.push_back(name);
+  }
+  return names;
+}
+
 TEST(LogWriterTest, CommittedLogReadsBackInOrder) {
   const std::string path = TempPath("committed");
   {
@@ -26,9 +39,11 @@ TEST(LogWriterTest, CommittedLogReadsBackInOrder) {
       writer.WriteMessage(cmd.utime, "VELOCITY_COMMAND", cmd);
     }
     EXPECT_FALSE(Exists(path));  // not in place before Commit()
+    EXPECT_EQ(FilesStartingWith(path).size(), 1u);  // the partial file
     writer.Commit();
   }
   ASSERT_TRUE(Exists(path));
+  EXPECT_EQ(FilesStartingWith(path), std::vector<std::string>{std::filesystem::path(path).filename().string()});
   LogReader reader(path);
   for (int i = 0; i < 3; ++i) {
     auto event = reader.Next();
@@ -50,8 +65,7 @@ TEST(LogWriterTest, UncommittedLogLeavesNothingBehind) {
     const char bytes[4] = {1, 2, 3, 4};
     writer.Write(1, "X", bytes, 4);
   }
-  EXPECT_FALSE(Exists(path));
-  EXPECT_FALSE(Exists(path + ".partial"));
+  EXPECT_TRUE(FilesStartingWith(path).empty());
 }
 
 TEST(LogWriterTest, UnwritableDirectoryIsAnError) {

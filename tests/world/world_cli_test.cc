@@ -287,8 +287,10 @@ TEST_F(WorldCliTest, InterruptedLogRunLeavesNothing) {
   kill(pid, SIGINT);
   EXPECT_EQ(testing_world::WaitProcess(pid), 1);
   EXPECT_EQ(ReadWholeFile(Path("long.err")), "slammtt-world: error: interrupted: no log written\n");
-  EXPECT_FALSE(fs::exists(Path("long.lcm")));
-  EXPECT_FALSE(fs::exists(Path("long.lcm.partial")));
+  // Only the process's own output files remain: no log, no partial log (whatever its suffix).
+  std::vector<std::string> left = LeftFiles();
+  std::sort(left.begin(), left.end());
+  EXPECT_EQ(left, (std::vector<std::string>{"long.err", "long.out"}));
 }
 
 TEST_F(WorldCliTest, ReportPrintsTheScenarioFigures) {
