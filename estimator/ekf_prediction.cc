@@ -19,12 +19,16 @@ void ApplyRobotPrediction(const Eigen::Vector3d& new_pose, const Eigen::Matrix3d
   state->mean().head<3>() = new_pose;
 }
 
-void PredictMovers(double dt_s, double sigma_q_mps2, SlamState* state) {
+void PredictMovers(double dt_s, double sigma_q_moving_mps2, double sigma_q_undecided_mps2,
+                   SlamState* state) {
   auto mean = state->mean();
   auto cov = state->covariance();
-  const Eigen::Matrix4d q = ConstantVelocityProcessNoise(dt_s, sigma_q_mps2);
+  const Eigen::Matrix4d q_moving = ConstantVelocityProcessNoise(dt_s, sigma_q_moving_mps2);
+  const Eigen::Matrix4d q_undecided = ConstantVelocityProcessNoise(dt_s, sigma_q_undecided_mps2);
   for (const StateObject& o : state->objects()) {
     if (!o.has_velocity()) continue;
+    const Eigen::Matrix4d& q =
+        o.record.object_class == ObjectClass::kMoving ? q_moving : q_undecided;
     const int p = o.position_index;
     const int v = o.velocity_index;
     mean.segment<2>(p) += dt_s * mean.segment<2>(v);

@@ -122,6 +122,7 @@ std::string CheckEstimatorOptions(const EstimatorOptions& o) {
   if (!non_negative(o.min_range_m) || !positive(o.max_range_m) || o.max_range_m <= o.min_range_m) {
     return "need 0 <= min_range_m < max_range_m";
   }
+  if (!non_negative(o.detection_range_m)) return "detection_range_m must be >= 0";
   if (!positive(o.field_of_view_rad) || o.field_of_view_rad > 2.0 * M_PI + 1e-9) {
     return "field_of_view_deg must be in (0, 360]";
   }
@@ -131,7 +132,10 @@ std::string CheckEstimatorOptions(const EstimatorOptions& o) {
       !non_negative(n.rotation_var_per_s)) {
     return "odometry noise variances must be >= 0";
   }
-  if (!non_negative(o.mover_acceleration_sigma_mps2)) return "acceleration_sigma must be >= 0";
+  if (!non_negative(o.mover_acceleration_sigma_mps2) ||
+      !non_negative(o.undecided_acceleration_sigma_mps2)) {
+    return "acceleration sigmas must be >= 0";
+  }
   if (!positive(o.new_object_velocity_sigma_mps)) return "new_object_velocity_sigma must be > 0";
   if (!non_negative(o.manoeuvre_velocity_sigma_mps)) return "manoeuvre_velocity_sigma must be >= 0";
   if (!positive(o.max_time_gap_s)) return "max_time_gap_s must be > 0";
@@ -158,7 +162,8 @@ std::string CheckEstimatorOptions(const EstimatorOptions& o) {
   if (!non_negative(o.tracks.prune_unseen_s) || !non_negative(o.tracks.tentative_prune_unseen_s) ||
       !non_negative(o.tracks.static_prune_unseen_in_view_s) ||
       !non_negative(o.tracks.prune_unseen_visible_s) || !non_negative(o.tracks.shadow_radius_m) ||
-      !non_negative(o.tracks.coast_confirmed_s)) {
+      !non_negative(o.tracks.coast_confirmed_s) || !non_negative(o.tracks.coast_unseen_s) ||
+      !non_negative(o.tracks.prune_out_of_view_s) || !positive(o.tracks.max_coast_sigma_m)) {
     return "prune times must be >= 0";
   }
   const MotionClassifierOptions& c = o.classifier;
@@ -281,7 +286,10 @@ void Estimator::Predict(int64_t utime, bool first_scan, StepCounts* counts) {
   // The map frame is the robot's pose at the first message, so the motion between the first
   // odometry reading and the first scan counts too.
   ApplyRobotPrediction(motion.pose(), motion.jacobian(), motion.noise(), &state_);
-  if (dt > 0.0) PredictMovers(dt, options_.mover_acceleration_sigma_mps2, &state_);
+  if (dt > 0.0) {
+    PredictMovers(dt, options_.mover_acceleration_sigma_mps2,
+                  options_.undecided_acceleration_sigma_mps2, &state_);
+  }
 }
 
 std::vector<PointMeasurement> Estimator::ValidateFeatures(
@@ -488,6 +496,8 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
                       widths[i]);
   }
   const std::vector<ObjectPrediction> after_updates = PredictObservations(state_, options_.sensor);
+  const double detection_range =
+      options_.detection_range_m > 0.0 ? options_.detection_range_m : options_.max_range_m;
   for (int j = 0; j < num_objects_before; ++j) {
     ObjectRecord& record = state_.object(j).record;
     if (!assignment.ObjectFree(j)) {
@@ -495,7 +505,7 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
     } else {
       const ObjectPrediction& p = after_updates[static_cast<size_t>(j)];
       RecordMiss(dt,
-                 p.valid && ExpectedVisible(p.range_bearing, seen, options_.max_range_m,
+                 p.valid && ExpectedVisible(p.range_bearing, seen, detection_range,
                                             options_.field_of_view_rad,
                                             options_.tracks.shadow_radius_m),
                  &record);
@@ -570,7 +580,15 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
   std::vector<int> prune;
   for (int j = 0; j < num_objects_before; ++j) {
     const StateObject& object = state_.object(j);
-    if (ShouldPrune(object.record, object.has_velocity(), scan.utime, options_.tracks)) {
+    const ObjectPrediction& p = after_updates[static_cast<size_t>(j)];
+    // Outside the sensor's geometry (not merely too far for the segmenter to see a person).
+    const bool out_of_view = !p.valid || p.range_bearing(0) > options_.max_range_m ||
+                             std::abs(p.range_bearing(1)) > 0.5 * options_.field_of_view_rad;
+    const Eigen::Matrix2d position_cov =
+        state_.covariance().block<2, 2>(object.position_index, object.position_index);
+    const double position_sigma = std::sqrt(std::max(position_cov(0, 0), position_cov(1, 1)));
+    if (ShouldPrune(object.record, object.has_velocity(), scan.utime, out_of_view,
+                    position_sigma, options_.tracks)) {
       prune.push_back(j);
     }
   }

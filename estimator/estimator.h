@@ -66,10 +66,19 @@ struct EstimatorOptions {
   double min_range_m = 0.01;                     // features outside are rejected
   double max_range_m = 30.0;                     // paper 5.1: 30 m
   double field_of_view_rad = 2.0 * M_PI;         // for "in view" (static landmark pruning)
+  // Range up to which a person-sized object is expected to produce a feature (0: max_range_m).
+  // With raw scans the segmenter needs a few beams on an object, so a 0.5 m person is detected
+  // up to about 0.5 m / (min_points * resolution): 19 m at 0.5 degrees and 3 points.
+  double detection_range_m = 0.0;
 
   // Motion models.
   OdometryNoiseOptions odometry_noise;
-  double mover_acceleration_sigma_mps2 = 0.5;    // sigma_Q of eq. 8
+  // sigma_Q of eq. 8. A MOVING object walks at a steady velocity between turns (its turns are
+  // manoeuvres, below); an UNDECIDED one gets a more forgiving model while its velocity is
+  // judged, so that its velocity covariance does not become overconfident about a static
+  // object seen from a drifting robot.
+  double mover_acceleration_sigma_mps2 = 0.02;
+  double undecided_acceleration_sigma_mps2 = 0.5;
   double new_object_velocity_sigma_mps = 1.0;    // prior of a new object's velocity
   // Manoeuvres: a MOVING object with no measurement after level 2 while an
   // unassigned measurement lies inside its gate dn gets a velocity jump of this standard

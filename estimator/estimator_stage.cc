@@ -88,6 +88,7 @@ EstimatorStageOptions ReadEstimatorOptions(const Config& s) {
   o.min_range_m = Double(s, "min_range_m", o.min_range_m);
   o.max_range_m = Double(s, "max_range_m", o.max_range_m);
   o.field_of_view_rad = Degrees(s, "field_of_view_deg", o.field_of_view_rad);
+  o.detection_range_m = Double(s, "detection_range_m", o.detection_range_m);
   OdometryNoiseOptions& n = o.odometry_noise;
   n.distance_var_per_m = Double(s, "odometry_distance_var_per_m", n.distance_var_per_m);
   n.rotation_var_per_rad = Double(s, "odometry_rotation_var_per_rad", n.rotation_var_per_rad);
@@ -95,7 +96,9 @@ EstimatorStageOptions ReadEstimatorOptions(const Config& s) {
   n.distance_var_per_s = Double(s, "odometry_distance_var_per_s", n.distance_var_per_s);
   n.rotation_var_per_s = Double(s, "odometry_rotation_var_per_s", n.rotation_var_per_s);
   o.mover_acceleration_sigma_mps2 =
-      Double(s, "acceleration_sigma_mps2", o.mover_acceleration_sigma_mps2);
+      Double(s, "moving_acceleration_sigma_mps2", o.mover_acceleration_sigma_mps2);
+  o.undecided_acceleration_sigma_mps2 =
+      Double(s, "undecided_acceleration_sigma_mps2", o.undecided_acceleration_sigma_mps2);
   o.new_object_velocity_sigma_mps =
       Double(s, "new_object_velocity_sigma_mps", o.new_object_velocity_sigma_mps);
   o.manoeuvre_velocity_sigma_mps =
@@ -130,6 +133,9 @@ EstimatorStageOptions ReadEstimatorOptions(const Config& s) {
       Double(s, "prune_unseen_visible_s", o.tracks.prune_unseen_visible_s);
   o.tracks.shadow_radius_m = Double(s, "shadow_radius_m", o.tracks.shadow_radius_m);
   o.tracks.coast_confirmed_s = Double(s, "coast_confirmed_s", o.tracks.coast_confirmed_s);
+  o.tracks.coast_unseen_s = Double(s, "coast_unseen_s", o.tracks.coast_unseen_s);
+  o.tracks.prune_out_of_view_s = Double(s, "prune_out_of_view_s", o.tracks.prune_out_of_view_s);
+  o.tracks.max_coast_sigma_m = Double(s, "max_coast_sigma_m", o.tracks.max_coast_sigma_m);
   MotionClassifierOptions& c = o.classifier;
   c.moving_chi2 = Double(s, "moving_chi2", c.moving_chi2);
   c.moving_min_speed_mps = Double(s, "moving_min_speed_mps", c.moving_min_speed_mps);

@@ -26,17 +26,24 @@ void RecordHit(int64_t utime, const TrackManagementOptions& options, ObjectRecor
 }
 
 void RecordMiss(double dt_s, bool expected_visible, ObjectRecord* record) {
-  if (expected_visible) record->unseen_in_view_s += dt_s;
+  // One scan is one chance to see the object, whatever the time since the previous one (after
+  // a time gap nobody was looking in between): at most kMaxMissPerScan_s per scan.
+  if (expected_visible) record->unseen_in_view_s += std::min(dt_s, kMaxMissPerScan_s);
 }
 
-bool ShouldPrune(const ObjectRecord& record, bool has_velocity, int64_t utime,
-                 const TrackManagementOptions& options) {
+bool ShouldPrune(const ObjectRecord& record, bool has_velocity, int64_t utime, bool out_of_view,
+                 double position_sigma_m, const TrackManagementOptions& options) {
   const double unseen_s = 1e-6 * static_cast<double>(utime - record.last_seen_utime);
   if (!record.confirmed) return unseen_s > options.tentative_prune_unseen_s;
   if (has_velocity) {
-    return unseen_s > options.prune_unseen_s ||
-           (options.prune_unseen_visible_s > 0.0 &&
-            record.unseen_in_view_s > options.prune_unseen_visible_s);
+    if (options.prune_unseen_visible_s > 0.0 &&
+        record.unseen_in_view_s > options.prune_unseen_visible_s) {
+      return true;
+    }
+    if (out_of_view && record.object_class == ObjectClass::kMoving) {
+      return unseen_s > options.prune_out_of_view_s || position_sigma_m > options.max_coast_sigma_m;
+    }
+    return unseen_s > options.prune_unseen_s;
   }
   return options.static_prune_unseen_in_view_s > 0.0 &&
          record.unseen_in_view_s > options.static_prune_unseen_in_view_s;
@@ -45,8 +52,12 @@ bool ShouldPrune(const ObjectRecord& record, bool has_velocity, int64_t utime,
 bool ReportedConfirmed(const ObjectRecord& record, bool has_velocity, int64_t utime,
                        const TrackManagementOptions& options) {
   if (!record.confirmed) return false;
-  if (!has_velocity || options.coast_confirmed_s <= 0.0) return true;
-  return 1e-6 * static_cast<double>(utime - record.last_seen_utime) <= options.coast_confirmed_s;
+  if (!has_velocity) return true;
+  if (options.coast_confirmed_s > 0.0 && record.unseen_in_view_s > options.coast_confirmed_s) {
+    return false;
+  }
+  const double unseen_s = 1e-6 * static_cast<double>(utime - record.last_seen_utime);
+  return options.coast_unseen_s <= 0.0 || unseen_s <= options.coast_unseen_s;
 }
 
 bool InFieldOfView(const Eigen::Vector3d& robot_pose, const Eigen::Vector2d& point,

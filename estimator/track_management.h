@@ -6,7 +6,12 @@
 //   - a tentative object is dropped after tentative_prune_unseen_s without a measurement
 //     (a false alarm must not live 3.5 s);
 //   - a confirmed object with velocity states (moving or undecided) is dropped after
-//     prune_unseen_s without a measurement, as in the paper, or sooner, after
+//     prune_unseen_s without a measurement, as in the paper, except a confirmed MOVING object
+//     whose prediction lies outside the field of view or the sensor's range: it cannot be seen,
+//     so it is kept until prune_out_of_view_s or until its position standard deviation
+//     exceeds max_coast_sigma_m, to be re-associated when it comes back into view (a person
+//     who walked out of a 180-degree view and returns keeps its identity). It is dropped sooner,
+//     after
 //     prune_unseen_visible_s during which it should have been seen: inside the field of view
 //     and range and not in the shadow of anything the scan saw in front of it (negative
 //     information: a person who turned away from the track's prediction is not occluded, and
@@ -26,12 +31,14 @@
 
 namespace slammtt {
 
-// Reporting: a confirmed object that has gone unseen for longer than coast_confirmed_s is
-// reported as not confirmed (ObjectEstimate::confirmed) until a measurement supports it again.
-// Its existence is no longer backed by evidence, as a track's existence probability decays with
-// scans without detection in IPDA (Musicki, Evans and Stankovic, IEEE TAC 1994); the track is
-// still kept for re-association until it is pruned. Static landmarks are not affected (the map
-// keeps what the robot cannot see). 0 disables it.
+// Reporting: a confirmed object with velocity states that should have been seen (see
+// ExpectedVisible) for longer than coast_confirmed_s without a measurement, or that has gone
+// unseen for longer than coast_unseen_s whatever the reason, is reported as not confirmed
+// (ObjectEstimate::confirmed) until a measurement supports it again. Its existence is no longer
+// backed by evidence, as a track's existence probability decays with the scans in which it
+// could have been detected and was not in IPDA (Musicki, Evans and Stankovic, IEEE TAC 1994);
+// the track is still kept for re-association until it is pruned. Static landmarks are not
+// affected (the map keeps what the robot cannot see). 0 disables either rule.
 struct TrackManagementOptions {
   int confirm_hits = 3;                       // T_th
   double prune_unseen_s = 3.5;                // paper section 5.1
@@ -40,6 +47,9 @@ struct TrackManagementOptions {
   double prune_unseen_visible_s = 1.0;
   double shadow_radius_m = 0.4;  // angular half-width of what a point feature hides, at its range
   double coast_confirmed_s = 0.5;
+  double coast_unseen_s = 0.75;
+  double prune_out_of_view_s = 30.0;
+  double max_coast_sigma_m = 1.5;
 };
 
 // Whether an object is reported as confirmed at utime (see coast_confirmed_s).
@@ -52,12 +62,16 @@ ObjectRecord NewObjectRecord(int64_t id, int64_t utime, ObjectClass object_class
 // Marks a scan in which the object got a measurement.
 void RecordHit(int64_t utime, const TrackManagementOptions& options, ObjectRecord* record);
 
-// Accounts a scan of dt_s without a measurement (expected_visible: see ExpectedVisible).
+// Accounts a scan of dt_s without a measurement (expected_visible: see ExpectedVisible). A scan
+// counts for at most kMaxMissPerScan_s (the period of a 5 Hz sensor).
+inline constexpr double kMaxMissPerScan_s = 0.2;
 void RecordMiss(double dt_s, bool expected_visible, ObjectRecord* record);
 
-// Whether the object should be removed at utime.
-bool ShouldPrune(const ObjectRecord& record, bool has_velocity, int64_t utime,
-                 const TrackManagementOptions& options);
+// Whether the object should be removed at utime. `out_of_view`: its prediction lies outside the
+// field of view or the sensor's range; `position_sigma_m`: the largest standard deviation of its
+// position estimate.
+bool ShouldPrune(const ObjectRecord& record, bool has_velocity, int64_t utime, bool out_of_view,
+                 double position_sigma_m, const TrackManagementOptions& options);
 
 // Whether a map point lies inside the sensor's field of view (centred on the sensor's x axis,
 // field_of_view_rad wide) and within max_range_m.

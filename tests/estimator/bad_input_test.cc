@@ -144,6 +144,8 @@ TEST_F(BadInputTest, TimeGapInflatesInsteadOfTrustingTheLongPrediction) {
   // The robot's uncertainty after the gap is larger than the odometry alone would say, and the
   // movers' velocity uncertainty is larger too.
   EXPECT_GT(gap.state().robot_covariance()(0, 0), normal.state().robot_covariance()(0, 0) + 1.0);
+  ASSERT_GT(gap.state().num_objects(), 0);
+  ASSERT_GT(normal.state().num_objects(), 0);
   const StateObject& mover = gap.state().object(0);
   ASSERT_TRUE(mover.has_velocity());
   const double velocity_var =
