@@ -32,6 +32,12 @@ class ByteStream {
   virtual void SetDtr(bool asserted) = 0;
   // "serial:/dev/ttyUSB0@115200" or "tcp://host:port", for messages and status.
   virtual std::string Describe() const = 0;
+  // A descriptor that polls readable (POLLIN, or POLLHUP/POLLERR) whenever Read() would return
+  // data or fail at once, so an owner can wait on the link together with its other inputs (the
+  // LCM bus, ShutdownFd()) in one poll() and then call Read() with a timeout of 0. -1 when the
+  // link has none (a test double): the owner then waits in Read() with a short timeout instead.
+  // Valid until the stream is destroyed; never read it directly.
+  virtual int PollDescriptor() const { return -1; }
 };
 
 // Checks the form of an endpoint without opening it: "tcp://HOST:PORT" with a port 1..65535,

@@ -29,6 +29,8 @@ class FdByteStream : public ByteStream {
   // No modem lines on a socket or a pty master.
   void SetDtr(bool asserted) override;
   std::string Describe() const override { return description_; }
+  // The socket or pty master itself: Read() only ever returns what poll() reported.
+  int PollDescriptor() const override { return fd_; }
 
   // For device emulators: writes what the peer's buffer accepts right now and returns how many
   // bytes that was, never waiting. A device's UART transmits whether or not the host reads, so

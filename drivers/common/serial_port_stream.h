@@ -36,6 +36,10 @@ class SerialPortStream : public ByteStream {
   void SetDtr(bool asserted) override;
   // "serial:/dev/ttyUSB0@115200", or "serial:/dev/rplidar=/dev/ttyUSB0@115200" for an alias.
   std::string Describe() const override { return description_; }
+  // The port's descriptor (sp_get_port_handle): libserialport 0.1.1 buffers nothing of its
+  // own, so the descriptor is readable exactly when Read() has data, and a hangup or an I/O
+  // error of an unplugged adapter wakes poll() too.
+  int PollDescriptor() const override { return fd_; }
 
  private:
   SerialPortStream(sp_port* port, std::string description);

@@ -98,12 +98,26 @@ void BM_CommandLatency(benchmark::State& state) {
     state.SkipWithError("cannot start slammtt-p3dx");
     return;
   }
-  // Wait for the session (ENABLE received).
+  // Wait for the running session: ENABLE received and a second SIP sent, so the driver has had
+  // the first one (until then it is "opening" and holds commands back: the first measurement
+  // would be the session start, up to one SIP cycle).
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
-  while (!emulator.WithModel([](P3dxRobotModel& m) { return m.motors_enabled(); }) &&
-         std::chrono::steady_clock::now() < deadline) {
+  auto running = [&] {
+    return emulator.WithModel(
+        [](P3dxRobotModel& m) { return m.motors_enabled() && m.sips_sent() >= 2; });
+  };
+  while (!running() && std::chrono::steady_clock::now() < deadline) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
+  if (!running()) {
+    kill(pid, SIGTERM);
+    waitpid(pid, nullptr, 0);
+    stop = true;
+    serve.join();
+    state.SkipWithError("slammtt-p3dx did not open a session within 10 s");
+    return;
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
   int value_mmps = 100;
   std::vector<double> latencies_ms;
   for (auto _ : state) {

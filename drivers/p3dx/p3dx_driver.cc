@@ -67,10 +67,12 @@ void P3dxDriver::SetState(State state) {
   PublishStatus();
 }
 
-int P3dxDriver::MillisecondsUntilNextAttempt() const {
-  if (link_ || state_ == State::kStopped) return 0;
-  const int64_t wait_us = next_attempt_us_ - clock_->NowMonotonicUs();
-  return wait_us <= 0 ? 0 : static_cast<int>((wait_us + 999) / 1000);
+int P3dxDriver::MillisecondsUntilDue() const {
+  if (state_ == State::kStopped) return 0;
+  const int64_t due_us = link_ ? NextTimerUs() : std::min(next_attempt_us_, next_status_us_);
+  const int64_t wait_us = due_us - clock_->NowMonotonicUs();
+  if (wait_us <= 0) return 0;
+  return static_cast<int>(std::min<int64_t>((wait_us + 999) / 1000, std::numeric_limits<int>::max()));
 }
 
 void P3dxDriver::Poll(int max_wait_ms) {

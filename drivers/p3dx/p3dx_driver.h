@@ -1,8 +1,10 @@
 // The P3-DX base driver: one session with the robot's microcontroller over a ByteStream, from
 // the SYNC handshake to CLOSE, and what it publishes. Single-threaded: the owner calls Poll()
-// in its loop (it waits in the link's Read for at most the time it is given) and hands
-// VELOCITY_COMMAND messages to HandleVelocityCommand(). The link factory and the clock are
-// injected, so tests run the whole session against an emulated robot in simulated time.
+// in its loop and hands VELOCITY_COMMAND messages to HandleVelocityCommand(). A process waits
+// in one poll() on the link's LinkPollDescriptor(), the bus and its shutdown descriptor for at
+// most MillisecondsUntilDue(), then calls Poll(0); a test may instead let Poll() wait in the
+// link's Read. The link factory and the clock are injected, so tests run the whole session
+// against an emulated robot in simulated time.
 //
 // Session (Pioneer 3 Operations Manual 2006, ARCOS "Client-Server Communication"; ARIA
 // ArRobot::asyncConnectHandler; ../shared/design/protocols/p3dx.md):
@@ -78,18 +80,21 @@ class P3dxDriver {
   P3dxDriver& operator=(const P3dxDriver&) = delete;
 
   // Does what is due: opens the link when its backoff expired, runs the timers, reads the link
-  // for at most `max_wait_ms` (less when a timer is due sooner) and handles what came. Never
-  // throws for link trouble (that is reported and retried). Returns without waiting when there
-  // is no link.
+  // for at most `max_wait_ms` (less when a timer is due sooner; 0 reads only what is there) and
+  // handles what came. Never throws for link trouble (that is reported and retried). Returns
+  // without waiting when there is no link.
   void Poll(int max_wait_ms);
   // A VELOCITY_COMMAND from the bus (sent at once when connected).
   void HandleVelocityCommand(const slammtt_msgs::velocity_command_t& command);
   // Stops the robot and ends the session (VEL 0, RVEL 0, CLOSE); publishes the final status.
   void Shutdown();
 
-  // Milliseconds until the next link attempt when disconnected (0 when connected or due), so
-  // an owner without a link to wait on can sleep on its other descriptors meanwhile.
-  int MillisecondsUntilNextAttempt() const;
+  // Milliseconds until Poll() has something to do that no input announces: the next link
+  // attempt, SYNC re-send, SIP timeout, PULSE, command timeout, status or the deadline of a
+  // partial packet. 0 when one is due now (and after Shutdown(), when Poll() does nothing).
+  int MillisecondsUntilDue() const;
+  // The open link's ByteStream::PollDescriptor(): -1 without a link or when the link has none.
+  int LinkPollDescriptor() const { return link_ ? link_->PollDescriptor() : -1; }
   bool link_open() const { return link_ != nullptr; }
   State state() const { return state_; }
   static const char* StateName(State state);
@@ -128,8 +133,8 @@ class P3dxDriver {
   State state_ = State::kDisconnected;
   ReconnectBackoff backoff_;
   int64_t next_attempt_us_ = 0;
-  bool had_session_ = false;
-  bool shutting_down_ = false;  // a session reached kRunning before: the next one is a reconnect
+  bool had_session_ = false;     // a session reached kRunning before: the next one is a reconnect
+  bool shutting_down_ = false;  // Shutdown() runs: a lost link is not reopened
 
   P3dxPacketDecoder decoder_;
   int64_t last_byte_us_ = 0;

@@ -1,7 +1,12 @@
 // slammtt-p3dx: the Pioneer P3-DX base driver (see p3dx_driver.h and docs/p3dx.md).
 #include <poll.h>
 
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <memory>
+#include <stdexcept>
+#include <string>
 
 #include "drivers/common/byte_stream.h"
 #include "drivers/common/driver_clock.h"
@@ -15,9 +20,11 @@
 
 namespace {
 
-// The longest the loop waits in the link's Read: the latency of a VELOCITY_COMMAND, since the
-// link (a ByteStream) offers no descriptor to wait on together with the bus.
-constexpr int kLinkWaitMs = 10;
+// The loop wakes at the latest this often even when no timer is due (a safety net: every timer
+// of the driver is announced by MillisecondsUntilDue()).
+constexpr int kMaxWaitMs = 1000;
+// A link without a poll descriptor (none of ours) is read with this bounded wait instead.
+constexpr int kLinkWithoutDescriptorWaitMs = 10;
 
 int Main(int argc, char** argv) {
   using namespace slammtt;
@@ -65,12 +72,25 @@ int Main(int argc, char** argv) {
             << options.max_angular_radps << " rad/s, command timeout "
             << options.command_timeout_s << " s)";
 
-  pollfd fds[2] = {{lcm->getFileno(), POLLIN, 0}, {ShutdownFd(), POLLIN, 0}};
+  // One wait for everything: the bus (VELOCITY_COMMAND is sent the moment it arrives), the link
+  // (a SIP is handled the moment its bytes arrive), the shutdown request, and the driver's next
+  // timer. Then Poll(0) does what is due and reads only what is there.
   while (!ShutdownRequested()) {
-    driver.Poll(kLinkWaitMs);
-    // Without a link there is nothing to wait in: wait on the bus until the next attempt.
-    const int wait_ms = driver.link_open() ? 0 : std::min(driver.MillisecondsUntilNextAttempt(), 100);
-    if (poll(fds, 2, wait_ms) > 0 && (fds[0].revents & POLLIN) != 0) {
+    driver.Poll(0);
+    pollfd fds[3] = {{lcm->getFileno(), POLLIN, 0}, {ShutdownFd(), POLLIN, 0}, {-1, POLLIN, 0}};
+    nfds_t count = 2;
+    int wait_ms = std::min(driver.MillisecondsUntilDue(), kMaxWaitMs);
+    if (const int link_fd = driver.LinkPollDescriptor(); link_fd >= 0) {
+      fds[2].fd = link_fd;
+      count = 3;
+    } else if (driver.link_open()) {
+      wait_ms = std::min(wait_ms, kLinkWithoutDescriptorWaitMs);
+    }
+    const int ready = poll(fds, count, wait_ms);
+    if (ready < 0 && errno != EINTR) {
+      throw std::runtime_error(std::string("poll failed: ") + std::strerror(errno));
+    }
+    if (ready > 0 && (fds[0].revents & POLLIN) != 0) {
       // Everything that is waiting, without blocking.
       do {
         if (lcm->handle() != 0) throw std::runtime_error("LCM failed while receiving");

@@ -1,6 +1,7 @@
 #include "drivers/common/fd_byte_stream.h"
 
 #include <gtest/gtest.h>
+#include <poll.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
@@ -84,6 +85,41 @@ TEST(FdByteStreamTest, FlushInputDropsWhatArrived) {
   const uint8_t fresh = 7;
   pair.b->Write(&fresh, 1);
   EXPECT_EQ(ReadExactly(*pair.a, 1), std::vector<uint8_t>({7}));
+}
+
+// True when poll() reports the descriptor readable or failed within `timeout_ms`.
+bool PollsReady(int fd, int timeout_ms) {
+  struct pollfd entry = {fd, POLLIN, 0};
+  return poll(&entry, 1, timeout_ms) == 1 && entry.revents != 0;
+}
+
+TEST(FdByteStreamTest, PollDescriptorIsReadyExactlyWhenReadHasSomethingToSay) {
+  Pair pair = MakePair();
+  const int fd = pair.a->PollDescriptor();
+  ASSERT_GE(fd, 0);
+  EXPECT_FALSE(PollsReady(fd, 0));
+  const uint8_t bytes[2] = {4, 2};
+  pair.b->Write(bytes, 2);
+  EXPECT_TRUE(PollsReady(fd, 1000));
+  uint8_t buffer[8];
+  EXPECT_EQ(pair.a->Read(buffer, sizeof buffer, 0), 2u);  // no wait: poll() said so
+  EXPECT_FALSE(PollsReady(fd, 0));
+  pair.b.reset();  // the peer goes away: ready again, and Read() fails at once
+  EXPECT_TRUE(PollsReady(fd, 1000));
+  EXPECT_THROW(pair.a->Read(buffer, sizeof buffer, 0), LinkError);
+}
+
+TEST(FdByteStreamTest, AByteStreamWithoutADescriptorSaysSo) {
+  // The interface's default, for test doubles: owners then wait in Read() instead.
+  class NoDescriptor : public ByteStream {
+   public:
+    void Write(const uint8_t*, size_t, int) override {}
+    size_t Read(uint8_t*, size_t, int) override { return 0; }
+    void FlushInput() override {}
+    void SetDtr(bool) override {}
+    std::string Describe() const override { return "none"; }
+  };
+  EXPECT_EQ(NoDescriptor().PollDescriptor(), -1);
 }
 
 TEST(FdByteStreamTest, WriteAvailableNeverBlocksAndWriteTimesOutWhenNobodyReads) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <stdlib.h>
 #include <fcntl.h>
+#include <poll.h>
 #include <termios.h>
 #include <unistd.h>
 
@@ -44,6 +45,29 @@ TEST_F(SerialPtyTest, LibserialportOpensThePtyAndCarriesEveryByte) {
   EXPECT_EQ(ReadExactly(device.stream(), 256), all);
   device.stream().Write(all.data(), all.size());
   EXPECT_EQ(ReadExactly(*host, 256), all);
+}
+
+// True when poll() reports the descriptor readable or failed within `timeout_ms`.
+bool PollsReady(int fd, int timeout_ms) {
+  struct pollfd entry = {fd, POLLIN, 0};
+  return poll(&entry, 1, timeout_ms) == 1 && entry.revents != 0;
+}
+
+TEST_F(SerialPtyTest, PollDescriptorWakesForBytesAndForAnUnpluggedDevice) {
+  auto device = std::make_unique<PtyDevice>();
+  auto host = OpenByteStream(device->slave_path(), 9600);
+  const int fd = host->PollDescriptor();
+  ASSERT_GE(fd, 0);
+  EXPECT_FALSE(PollsReady(fd, 0));
+  const uint8_t bytes[3] = {0xFA, 0xFB, 0x03};
+  device->stream().Write(bytes, 3);
+  ASSERT_TRUE(PollsReady(fd, 1000));
+  EXPECT_EQ(ReadExactly(*host, 3), std::vector<uint8_t>({0xFA, 0xFB, 0x03}));
+  EXPECT_FALSE(PollsReady(fd, 0));
+  device.reset();  // the "USB adapter" is pulled: the wait ends, and Read() fails at once
+  ASSERT_TRUE(PollsReady(fd, 1000));
+  uint8_t buffer[8];
+  EXPECT_THROW(host->Read(buffer, sizeof buffer, 0), LinkError);
 }
 
 TEST_F(SerialPtyTest, DeviceSideSeesTheDtrLineTheHostSets) {

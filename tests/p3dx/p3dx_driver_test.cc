@@ -43,6 +43,39 @@ class DriverBench {
     }
   }
 
+  // Runs the driver as slammtt-p3dx does: Poll(0), then one wait until the driver's next timer
+  // (MillisecondsUntilDue) or, while a link is open, until bytes reach it (the robot's next
+  // event stands in for the link's poll descriptor becoming readable). Returns how many waits
+  // moved the clock.
+  int64_t RunAsProcessFor(double seconds, const std::function<void()>& each = {}) {
+    const int64_t end = clock_.now_us + static_cast<int64_t>(seconds * 1e6);
+    int64_t wakeups = 0;
+    int turns_without_time = 0;
+    while (clock_.now_us < end) {
+      driver_->Poll(0);
+      if (each) each();
+      robot_->Sync();
+      const int64_t due_us = clock_.now_us + int64_t{driver_->MillisecondsUntilDue()} * 1000;
+      const int64_t input_us =
+          driver_->link_open() ? robot_->NextEventUs() : std::numeric_limits<int64_t>::max();
+      const int64_t wake_us = std::min({due_us, input_us, end});
+      if (wake_us <= clock_.now_us) {
+        // Due now (or bytes waiting beyond one read): the next Poll(0) must deal with it; a
+        // timer it leaves due would spin the process.
+        if (++turns_without_time > 20) {
+          ADD_FAILURE() << "the loop spins at t = " << clock_.now_us << " us in state "
+                        << P3dxDriver::StateName(driver_->state());
+          return wakeups;
+        }
+        continue;
+      }
+      turns_without_time = 0;
+      clock_.now_us = wake_us;
+      ++wakeups;
+    }
+    return wakeups;
+  }
+
   // Sends a velocity command every 100 ms of simulated time while running.
   std::function<void()> CommandsAt10Hz(double linear_mps, double angular_radps) {
     auto next = std::make_shared<int64_t>(clock_.now_us);
@@ -218,7 +251,7 @@ TEST_F(P3dxDriverTest, StopsWhenCommandsStopArriving) {
     if (stopped_at < 0 && !robot_->model().moving()) stopped_at = clock_.now_us;
   });
   ASSERT_GE(stopped_at, 0);
-  // The robot sees velocity 0 within the configured time (plus one 10 ms poll).
+  // The robot sees velocity 0 within the configured time (plus one 10 ms wait in Read).
   EXPECT_LE(stopped_at - last_command, 500000 + 10000);
   EXPECT_GE(stopped_at - last_command, 500000);
   const auto received = Received();
@@ -561,6 +594,93 @@ TEST_F(P3dxDriverTest, ShutdownStopsTheRobotAndClosesTheSession) {
   EXPECT_EQ(driver_->state(), P3dxDriver::State::kStopped);
   EXPECT_EQ(sink_.status.back().state, "stopped");
   EXPECT_FALSE(sink_.status.back().connected);
+}
+
+// The process's loop (p3dx_main.cc) waits only for the driver's timers and the link: every
+// timer must be announced by MillisecondsUntilDue() and the link's bytes must be read at once.
+TEST_F(P3dxDriverTest, ProcessLoopKeepsAnIdleSessionWithAFewWakeupsASecond) {
+  Start(P3dxRobotModelOptions{}, /*bytes_per_second=*/0.0);  // each packet arrives whole
+  RunAsProcessFor(1.0);
+  ASSERT_EQ(driver_->state(), P3dxDriver::State::kRunning);
+  const size_t first = Received().size();
+  const int64_t sips_before = robot_->model().sips_sent();
+  const size_t odometry_before = sink_.odometry.size();
+  const int64_t wakeups = RunAsProcessFor(10.0);
+  RecordProperty("wakeups_in_10_s", static_cast<int>(wakeups));
+  // 10 SIPs, 2 PULSEs and 1 BASE_STATUS a second (the robot's own SIP schedule adds up to 10
+  // more here); a loop that polled the link every 10 ms would wake 1000 times.
+  EXPECT_LE(wakeups, 10 * 23);
+  EXPECT_GE(wakeups, 10 * 10);
+  EXPECT_EQ(driver_->state(), P3dxDriver::State::kRunning);
+  EXPECT_EQ(static_cast<int64_t>(sink_.odometry.size() - odometry_before),
+            robot_->model().sips_sent() - sips_before);
+  // Every SIP is published the moment it arrives.
+  const auto received = Received();
+  ASSERT_GT(received.size(), first + 15);
+  int64_t previous = received[first - 1].time_us;
+  for (size_t i = first; i < received.size(); ++i) {
+    EXPECT_TRUE(Is(received[i], cmd::kPulse, true));
+    EXPECT_LE(received[i].time_us - previous, 501000);  // pulse_interval_s + 1 ms rounding
+    previous = received[i].time_us;
+  }
+  EXPECT_EQ(robot_->model().watchdog_stops(), 0);
+}
+
+TEST_F(P3dxDriverTest, ProcessLoopStopsTheRobotOnTimeWhenCommandsStop) {
+  options_.command_timeout_s = 0.5;
+  Start();
+  RunAsProcessFor(1.0);
+  RunAsProcessFor(1.0, CommandsAt10Hz(0.3, 0.0));
+  ASSERT_TRUE(robot_->model().moving());
+  const int64_t last_command = last_command_us_;
+  int64_t stopped_at = -1;
+  RunAsProcessFor(1.0, [&] {
+    if (stopped_at < 0 && !robot_->model().moving()) stopped_at = clock_.now_us;
+  });
+  ASSERT_GE(stopped_at, 0);
+  EXPECT_GE(stopped_at - last_command, 500000);
+  EXPECT_LE(stopped_at - last_command, 501000);  // the timer, rounded up to a millisecond
+  EXPECT_TRUE(driver_->Status().command_timeout_stop);
+}
+
+TEST_F(P3dxDriverTest, ProcessLoopReopensAnUnpluggedLinkOnItsBackoffAndNoSooner) {
+  Start();
+  RunAsProcessFor(1.0);
+  ASSERT_EQ(driver_->state(), P3dxDriver::State::kRunning);
+  robot_->Unplug();
+  std::vector<int64_t> attempts;
+  int opens = robot_->opens();
+  const int64_t wakeups = RunAsProcessFor(8.0, [&] {
+    if (robot_->opens() != opens) {
+      opens = robot_->opens();
+      attempts.push_back(clock_.now_us);
+    }
+  });
+  // The loss is seen at the next write or SIP timeout; then attempts 0.5, 1, 2, 4 s apart.
+  ASSERT_GE(attempts.size(), 4u);
+  const int64_t gaps[] = {1000000, 2000000, 4000000};
+  for (size_t i = 0; i < 3; ++i) {
+    EXPECT_GE(attempts[i + 1] - attempts[i], gaps[i]) << i;
+    EXPECT_LE(attempts[i + 1] - attempts[i], gaps[i] + 1000) << i;
+  }
+  // Without a link the loop wakes for the attempts and the once-a-second status only.
+  RecordProperty("wakeups_in_8_s_unplugged", static_cast<int>(wakeups));
+  EXPECT_LE(wakeups, 30);
+  robot_->Plug();
+  RunAsProcessFor(10.0);
+  EXPECT_EQ(driver_->state(), P3dxDriver::State::kRunning);
+  EXPECT_EQ(driver_->Status().reconnects, 1);
+}
+
+TEST_F(P3dxDriverTest, NothingIsDueAfterShutdown) {
+  Start();
+  RunAsProcessFor(1.0);
+  driver_->Shutdown();
+  EXPECT_EQ(driver_->MillisecondsUntilDue(), 0);
+  EXPECT_EQ(driver_->LinkPollDescriptor(), -1);
+  const size_t published = sink_.status.size() + sink_.odometry.size();
+  driver_->Poll(0);
+  EXPECT_EQ(sink_.status.size() + sink_.odometry.size(), published);
 }
 
 TEST_F(P3dxDriverTest, SameRunTwiceGivesTheSameOdometry) {
