@@ -4,10 +4,12 @@
 // Why: LCM 1.3.1's generated C++ decoders (`_decodeNoHash` in the headers lcm-gen writes from
 // lcmtypes/*.lcm) resize every variable-length array to the count the message CLAIMS before they
 // check that the bytes are there, and a string of claimed length L is assigned L - 1 characters.
-// A corrupt count or length from the bus therefore throws std::length_error (negative) or
+// A corrupt count or length from the bus therefore throws std::length_error (negative),
 // allocates and zeroes gigabytes (large: one corrupt FEATURES count cost the estimator 7.7 s and
-// 2.7 GB in replay). Bus input is untrusted; these checks make the decoder's allocations bounded
-// by the message's own size.
+// 2.7 GB in replay), or, when 4 * count overflows int (float and int32 arrays), passes the
+// decoder's own bound check and reads past the buffer (seen: SIGSEGV in __int32_t_decode_array
+// on a damaged laser_scan_t). Bus input is untrusted; these checks keep the decoder's reads
+// inside the message and its allocations bounded by the message's own size.
 //
 // The encoding walked here (LCM type specification,
 // https://lcm-proj.github.io/lcm/content/lcm-type-ref.html, and /usr/include/lcm/lcm_coretypes.h):
