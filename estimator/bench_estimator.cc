@@ -4,13 +4,18 @@
 //   BM_Crowded          300 static landmarks and 30 movers all in view (360 degrees, 30 m).
 //   BM_UpdateBatch      one EKF update with every object observed, by update group size.
 // Each scan benchmark first runs the world until the objects are classified (warm-up, not
-// timed), then times consecutive scans of the same run; besides the mean it reports the
-// per-scan median, p99 and maximum (counters p50_ms, p99_ms, max_ms), measured with the
-// steady clock around ProcessScan only (the world's frames are generated beforehand).
+// timed), then times consecutive scans of the same run; besides the mean it reports per-scan
+// percentiles around ProcessScan only (the world's frames are generated beforehand):
+// p50_ms, p99_ms, max_ms of the wall-clock time (steady clock) and cpu_p50_ms, cpu_p99_ms,
+// cpu_max_ms of the thread's CPU time (CLOCK_THREAD_CPUTIME_ID), which a busy machine's
+// preemptions do not inflate. Nearest-rank percentiles.
 #include <benchmark/benchmark.h>
+
+#include <time.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <random>
 #include <vector>
 
@@ -26,6 +31,18 @@ using testing::PointWorldOptions;
 using testing::WorldFrame;
 using testing::WorldObject;
 
+double ThreadCpuMs() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
+}
+
+// Nearest-rank percentile of sorted values.
+double Rank(const std::vector<double>& sorted, double q) {
+  const size_t index = static_cast<size_t>(std::ceil(q * static_cast<double>(sorted.size()))) - 1;
+  return sorted[std::min(index, sorted.size() - 1)];
+}
+
 void RunScans(benchmark::State& state, const PointWorldOptions& world_options,
               const testing::RobotCommand& command, const std::vector<WorldObject>& objects,
               int warmup_scans, int timed_scans, const EstimatorOptions& options) {
@@ -33,6 +50,7 @@ void RunScans(benchmark::State& state, const PointWorldOptions& world_options,
   std::vector<WorldFrame> frames;
   for (int k = 0; k < warmup_scans + timed_scans; ++k) frames.push_back(world.Next());
   std::vector<double> durations_ms;
+  std::vector<double> cpu_ms;
   size_t objects_total = 0;
   for (auto _ : state) {
     state.PauseTiming();
@@ -45,26 +63,28 @@ void RunScans(benchmark::State& state, const PointWorldOptions& world_options,
     state.ResumeTiming();
     for (int k = warmup_scans; k < warmup_scans + timed_scans; ++k) {
       const WorldFrame& frame = frames[static_cast<size_t>(k)];
+      const double cpu_start = ThreadCpuMs();
       const auto start = std::chrono::steady_clock::now();
       for (const OdometryReading& r : frame.odometry) estimator.AddOdometry(r);
       const ScanResult result = estimator.ProcessScan(frame.scan, &rng);
       const auto end = std::chrono::steady_clock::now();
+      cpu_ms.push_back(ThreadCpuMs() - cpu_start);
       durations_ms.push_back(std::chrono::duration<double, std::milli>(end - start).count());
       objects_total += result.objects.size();
       benchmark::DoNotOptimize(result.pose);
     }
   }
   std::sort(durations_ms.begin(), durations_ms.end());
-  auto rank = [&](double q) {
-    const size_t index = static_cast<size_t>(std::ceil(q * static_cast<double>(durations_ms.size()))) - 1;
-    return durations_ms[std::min(index, durations_ms.size() - 1)];
-  };
+  std::sort(cpu_ms.begin(), cpu_ms.end());
   state.counters["scans"] = static_cast<double>(durations_ms.size());
   state.counters["objects"] =
       static_cast<double>(objects_total) / static_cast<double>(durations_ms.size());
-  state.counters["p50_ms"] = rank(0.5);
-  state.counters["p99_ms"] = rank(0.99);
+  state.counters["p50_ms"] = Rank(durations_ms, 0.5);
+  state.counters["p99_ms"] = Rank(durations_ms, 0.99);
   state.counters["max_ms"] = durations_ms.back();
+  state.counters["cpu_p50_ms"] = Rank(cpu_ms, 0.5);
+  state.counters["cpu_p99_ms"] = Rank(cpu_ms, 0.99);
+  state.counters["cpu_max_ms"] = cpu_ms.back();
   state.SetItemsProcessed(static_cast<int64_t>(durations_ms.size()));
 }
 
@@ -100,12 +120,12 @@ void BM_Crowded(benchmark::State& state) {
   options.field_of_view_rad = world_options.field_of_view_rad;
   options.max_objects = 1000;
   options.update_group_size = static_cast<int>(state.range(2));
-  RunScans(state, world_options, [](double) { return Eigen::Vector2d(0.25, 0.05); }, objects, 40,
-           100, options);
+  // 150 scans (15 s) of warm-up: the landmarks are static and the movers moving by then.
+  RunScans(state, world_options, [](double) { return Eigen::Vector2d(0.25, 0.05); }, objects,
+           150, 100, options);
 }
 BENCHMARK(BM_Crowded)
     ->Args({300, 30, 32})
-    ->Args({300, 30, 8})
     ->Args({300, 30, 128})
     ->Args({100, 10, 32})
     ->ArgNames({"landmarks", "movers", "group"})
@@ -147,7 +167,6 @@ BENCHMARK(BM_UpdateBatch)
     ->Args({330, 8})
     ->Args({330, 32})
     ->Args({330, 128})
-    ->Args({330, 330})
     ->ArgNames({"objects", "group"})
     ->Unit(benchmark::kMillisecond);
 
