@@ -7,26 +7,13 @@
 # slammtt_pty_test() takes the arguments of slammtt_test() and runs every test of the program
 # under tests/support/pty/pty-run with the modem-line shim (and under netns-run first with
 # NETNS), so the program and every process it starts can open /dev/pts/N with libserialport.
-# Inside, SLAMMTT_IN_PTY_NS=1 and SLAMMTT_PTY_STATE_DIR are set (see pty-run).
-
-if(NOT TARGET slammtt_pty_shim)
-  add_library(slammtt_pty_shim MODULE ${PROJECT_SOURCE_DIR}/tests/support/pty/modem_lines_shim.c)
-  set_target_properties(slammtt_pty_shim PROPERTIES
-    PREFIX "lib"
-    LIBRARY_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/lib)
-  target_link_libraries(slammtt_pty_shim PRIVATE ${CMAKE_DL_LIBS})
-  target_compile_options(slammtt_pty_shim PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wformat=2)
-  if(SLAMMTT_WERROR)
-    target_compile_options(slammtt_pty_shim PRIVATE -Werror)
-  endif()
-endif()
-
-set(SLAMMTT_PTY_SHIM_PATH ${CMAKE_BINARY_DIR}/lib/libslammtt_pty_shim.so)
-set(SLAMMTT_PTY_RUN ${PROJECT_SOURCE_DIR}/tests/support/pty/pty-run)
+# Inside, SLAMMTT_IN_PTY_NS=1 and SLAMMTT_PTY_STATE_DIR are set (see pty-run). The shim's
+# target, slammtt_pty_shim, is defined in tests/support/CMakeLists.txt.
 
 function(slammtt_pty_test name)
   cmake_parse_arguments(ARG "NETNS" "" "" ${ARGN})
-  set(launcher ${SLAMMTT_PTY_RUN} --shim ${SLAMMTT_PTY_SHIM_PATH} --)
+  set(shim ${CMAKE_BINARY_DIR}/lib/libslammtt_pty_shim.so)
+  set(launcher ${PROJECT_SOURCE_DIR}/tests/support/pty/pty-run --shim ${shim} --)
   if(ARG_NETNS)
     set(launcher ${PROJECT_SOURCE_DIR}/tests/support/netns-run ${launcher})
   endif()
@@ -36,6 +23,5 @@ function(slammtt_pty_test name)
   slammtt_test(${name} ${ARG_UNPARSED_ARGUMENTS})
   if(TARGET ${name})
     add_dependencies(${name} slammtt_pty_shim)
-    target_compile_definitions(${name} PRIVATE SLAMMTT_PTY_SHIM_PATH="${SLAMMTT_PTY_SHIM_PATH}")
   endif()
 endfunction()
