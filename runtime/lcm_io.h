@@ -88,8 +88,8 @@ class LcmSink : public MessageSink {
 };
 
 // Writes an LCM event log (lcm-logger's format, playable by lcm-logplayer). The log is written
-// to "<path>.partial.<pid>" and renamed to <path> by Commit(); destroying an uncommitted writer removes
-// the partial file, so a failed run leaves nothing that looks like a finished log.
+// to "<path>.partial.<pid>" and renamed to <path> by Commit(); destroying an uncommitted writer
+// removes the partial file, so a failed run leaves nothing that looks like a finished log.
 class LogWriter : public MessageSink {
  public:
   // Throws std::runtime_error when the file cannot be created.

@@ -43,7 +43,8 @@ TEST(LogWriterTest, CommittedLogReadsBackInOrder) {
     writer.Commit();
   }
   ASSERT_TRUE(Exists(path));
-  EXPECT_EQ(FilesStartingWith(path), std::vector<std::string>{std::filesystem::path(path).filename().string()});
+  EXPECT_EQ(FilesStartingWith(path),
+            std::vector<std::string>{std::filesystem::path(path).filename().string()});
   LogReader reader(path);
   for (int i = 0; i < 3; ++i) {
     auto event = reader.Next();

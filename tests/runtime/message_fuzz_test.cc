@@ -71,10 +71,9 @@ std::vector<uint8_t> Damaged(const std::vector<uint8_t>& valid,
     case 3: {  // a stretch of the message repeated (a duplicated datagram fragment)
       const size_t from = r() % bytes.size();
       const size_t length = 1 + r() % (bytes.size() - from);
-      const std::vector<uint8_t> stretch(bytes.begin() + static_cast<std::ptrdiff_t>(from),
-                                         bytes.begin() + static_cast<std::ptrdiff_t>(from + length));
-      bytes.insert(bytes.begin() + static_cast<std::ptrdiff_t>(from), stretch.begin(),
-                   stretch.end());
+      const auto begin = bytes.begin() + static_cast<std::ptrdiff_t>(from);
+      const std::vector<uint8_t> stretch(begin, begin + static_cast<std::ptrdiff_t>(length));
+      bytes.insert(begin, stretch.begin(), stretch.end());
       break;
     }
     default:  // noise of a random size behind the right fingerprint
