@@ -504,10 +504,17 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
       RecordHit(scan.utime, options_.tracks, &record);
     } else {
       const ObjectPrediction& p = after_updates[static_cast<size_t>(j)];
-      RecordMiss(dt,
-                 p.valid && ExpectedVisible(p.range_bearing, seen, detection_range,
-                                            options_.field_of_view_rad,
-                                            options_.tracks.shadow_radius_m),
+      const StateObject& object = state_.object(j);
+      const Eigen::Matrix2d position_cov =
+          state_.covariance().block<2, 2>(object.position_index, object.position_index);
+      const double sigma = std::sqrt(std::max(position_cov(0, 0), position_cov(1, 1)));
+      const bool in_geometry =
+          p.valid && SurelyInGeometry(p.range_bearing, sigma, options_.max_range_m,
+                                      options_.field_of_view_rad);
+      RecordMiss(dt, in_geometry,
+                 in_geometry && ExpectedVisible(p.range_bearing, sigma, seen, detection_range,
+                                                options_.field_of_view_rad,
+                                                options_.tracks.shadow_radius_m),
                  &record);
     }
   }

@@ -40,7 +40,7 @@ struct MotionClassifierOptions {
   double moving_min_speed_mps = 0.3;
   int moving_confirm_scans = 2;
   double still_max_speed_mps = 0.15;
-  double still_hold_s = 2.0;
+  double still_hold_s = 1.5;
   double started_moving_chi2 = 23.0;      // 1e-5 false alarms per scan and landmark (2 dof)
 };
 

@@ -32,6 +32,7 @@ struct ObjectRecord {
   int64_t first_seen_utime = 0;
   int64_t last_seen_utime = 0;
   double unseen_in_view_s = 0.0;   // time it should have been seen without a measurement
+  double unseen_observable_s = 0.0;  // time without a measurement inside the sensor's geometry
   // Classification evidence (motion_classifier.h).
   int moving_evidence_scans = 0;   // consecutive scans whose velocity says "moving"
   // Where the object's estimate was when the current "still" window opened (at creation, when

@@ -22,13 +22,16 @@ void RecordHit(int64_t utime, const TrackManagementOptions& options, ObjectRecor
   ++record->hits;
   record->last_seen_utime = utime;
   record->unseen_in_view_s = 0.0;
+  record->unseen_observable_s = 0.0;
   if (record->hits >= options.confirm_hits) record->confirmed = true;
 }
 
-void RecordMiss(double dt_s, bool expected_visible, ObjectRecord* record) {
+void RecordMiss(double dt_s, bool in_geometry, bool expected_visible, ObjectRecord* record) {
   // One scan is one chance to see the object, whatever the time since the previous one (after
   // a time gap nobody was looking in between): at most kMaxMissPerScan_s per scan.
-  if (expected_visible) record->unseen_in_view_s += std::min(dt_s, kMaxMissPerScan_s);
+  const double miss_s = std::min(dt_s, kMaxMissPerScan_s);
+  if (expected_visible) record->unseen_in_view_s += miss_s;
+  if (in_geometry) record->unseen_observable_s += miss_s;
 }
 
 bool ShouldPrune(const ObjectRecord& record, bool has_velocity, int64_t utime, bool out_of_view,
@@ -40,8 +43,10 @@ bool ShouldPrune(const ObjectRecord& record, bool has_velocity, int64_t utime, b
         record.unseen_in_view_s > options.prune_unseen_visible_s) {
       return true;
     }
-    if (out_of_view && record.object_class == ObjectClass::kMoving) {
-      return unseen_s > options.prune_out_of_view_s || position_sigma_m > options.max_coast_sigma_m;
+    if (record.object_class == ObjectClass::kMoving) {
+      if (unseen_s > options.prune_out_of_view_s) return true;
+      if (out_of_view) return position_sigma_m > options.max_coast_sigma_m;
+      return record.unseen_observable_s > options.prune_unseen_s;
     }
     return unseen_s > options.prune_unseen_s;
   }
@@ -67,11 +72,21 @@ bool InFieldOfView(const Eigen::Vector3d& robot_pose, const Eigen::Vector2d& poi
   return std::abs(z(1)) <= 0.5 * field_of_view_rad;
 }
 
-bool ExpectedVisible(const Eigen::Vector2d& predicted,
+bool SurelyInGeometry(const Eigen::Vector2d& predicted, double sigma_m, double max_range_m,
+                      double field_of_view_rad) {
+  const double range = predicted(0);
+  const double margin = 2.0 * sigma_m;
+  if (!(range + margin <= max_range_m)) return false;
+  if (field_of_view_rad >= 2.0 * M_PI) return true;
+  const double angle_margin = range > margin ? std::asin(margin / range) : M_PI;
+  return std::abs(predicted(1)) + angle_margin <= 0.5 * field_of_view_rad;
+}
+
+bool ExpectedVisible(const Eigen::Vector2d& predicted, double sigma_m,
                      const std::vector<Eigen::Vector3d>& features_range_bearing_width,
                      double max_range_m, double field_of_view_rad, double shadow_radius_m) {
   const double range = predicted(0);
-  if (!(range <= max_range_m) || std::abs(predicted(1)) > 0.5 * field_of_view_rad) return false;
+  if (!SurelyInGeometry(predicted, sigma_m, max_range_m, field_of_view_rad)) return false;
   constexpr double kObjectRadius_m = 0.3;
   constexpr double kRangeMargin_m = 1.0;
   for (const Eigen::Vector3d& f : features_range_bearing_width) {

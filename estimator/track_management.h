@@ -6,12 +6,12 @@
 //   - a tentative object is dropped after tentative_prune_unseen_s without a measurement
 //     (a false alarm must not live 3.5 s);
 //   - a confirmed object with velocity states (moving or undecided) is dropped after
-//     prune_unseen_s without a measurement, as in the paper, except a confirmed MOVING object
-//     whose prediction lies outside the field of view or the sensor's range: it cannot be seen,
-//     so it is kept until prune_out_of_view_s or until its position standard deviation
-//     exceeds max_coast_sigma_m, to be re-associated when it comes back into view (a person
-//     who walked out of a 180-degree view and returns keeps its identity). It is dropped sooner,
-//     after
+//     prune_unseen_s without a measurement, as in the paper; for a confirmed MOVING object only
+//     the time its prediction spent inside the field of view and range counts: out of view it
+//     cannot be seen, so it is kept until prune_out_of_view_s in all or until its position
+//     standard deviation exceeds max_coast_sigma_m, to be re-associated when it comes back (a
+//     person who walked out of a 180-degree view and returns keeps its identity). It is
+//     dropped sooner, after
 //     prune_unseen_visible_s during which it should have been seen: inside the field of view
 //     and range and not in the shadow of anything the scan saw in front of it (negative
 //     information: a person who turned away from the track's prediction is not occluded, and
@@ -49,7 +49,7 @@ struct TrackManagementOptions {
   double coast_confirmed_s = 0.5;
   double coast_unseen_s = 0.75;
   double prune_out_of_view_s = 30.0;
-  double max_coast_sigma_m = 1.5;
+  double max_coast_sigma_m = 2.5;
 };
 
 // Whether an object is reported as confirmed at utime (see coast_confirmed_s).
@@ -62,10 +62,11 @@ ObjectRecord NewObjectRecord(int64_t id, int64_t utime, ObjectClass object_class
 // Marks a scan in which the object got a measurement.
 void RecordHit(int64_t utime, const TrackManagementOptions& options, ObjectRecord* record);
 
-// Accounts a scan of dt_s without a measurement (expected_visible: see ExpectedVisible). A scan
-// counts for at most kMaxMissPerScan_s (the period of a 5 Hz sensor).
+// Accounts a scan of dt_s without a measurement (in_geometry: the prediction lies inside the
+// field of view and range; expected_visible: see ExpectedVisible). A scan counts for at most
+// kMaxMissPerScan_s (the period of a 5 Hz sensor).
 inline constexpr double kMaxMissPerScan_s = 0.2;
-void RecordMiss(double dt_s, bool expected_visible, ObjectRecord* record);
+void RecordMiss(double dt_s, bool in_geometry, bool expected_visible, ObjectRecord* record);
 
 // Whether the object should be removed at utime. `out_of_view`: its prediction lies outside the
 // field of view or the sensor's range; `position_sigma_m`: the largest standard deviation of its
@@ -78,12 +79,18 @@ bool ShouldPrune(const ObjectRecord& record, bool has_velocity, int64_t utime, b
 bool InFieldOfView(const Eigen::Vector3d& robot_pose, const Eigen::Vector2d& point,
                    const SensorMount& mount, double max_range_m, double field_of_view_rad);
 
+// Whether a prediction (range, bearing) with position standard deviation sigma_m lies inside
+// the field of view and range with a margin of 2 sigma (the object is surely there, not merely
+// its estimate).
+bool SurelyInGeometry(const Eigen::Vector2d& predicted, double sigma_m, double max_range_m,
+                      double field_of_view_rad);
+
 // Whether an object predicted at `predicted` (range, bearing) should have produced a feature:
-// in the field of view and range, and not behind any of the scan's features. A feature at
+// SurelyInGeometry up to max_range_m, and not behind any of the scan's features. A feature at
 // (r, b) of width w hides the bearings within atan((max(w / 2, shadow_radius_m) + object
 // radius) / r) of b beyond range r - 1 m (a person merged with a neighbour into one cluster
 // hides it too).
-bool ExpectedVisible(const Eigen::Vector2d& predicted,
+bool ExpectedVisible(const Eigen::Vector2d& predicted, double sigma_m,
                      const std::vector<Eigen::Vector3d>& features_range_bearing_width,
                      double max_range_m, double field_of_view_rad, double shadow_radius_m);
 
