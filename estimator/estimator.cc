@@ -211,8 +211,7 @@ bool Estimator::AddOdometry(const OdometryReading& reading) {
   return true;
 }
 
-void Estimator::Predict(int64_t utime, bool first_scan, StepCounts* counts) {
-  (void)counts;
+void Estimator::Predict(int64_t utime, bool first_scan) {
   const double dt = first_scan ? 0.0 : Seconds(utime - *last_scan_utime_);
   RobotMotionAccumulator motion(state_.robot_pose());
   const double speed_var_rate = options_.extrapolation_speed_sigma_mps *
@@ -369,7 +368,7 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
   std::vector<double> widths;
   const std::vector<PointMeasurement> measurements =
       ValidateFeatures(scan.features, &counts, &widths);
-  Predict(scan.utime, first_scan, &counts);
+  Predict(scan.utime, first_scan);
   last_scan_utime_ = scan.utime;
   lap(Substage::kPredict);
 

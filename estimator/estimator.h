@@ -229,7 +229,7 @@ class Estimator {
     double angular_radps = 0.0;
   };
 
-  void Predict(int64_t utime, bool first_scan, StepCounts* counts);
+  void Predict(int64_t utime, bool first_scan);
   // Accepted measurements, and the width of each in `widths`.
   std::vector<PointMeasurement> ValidateFeatures(const std::vector<FeatureReading>& features,
                                                  StepCounts* counts, std::vector<double>* widths);

@@ -65,13 +65,6 @@ bool ReportedConfirmed(const ObjectRecord& record, bool has_velocity, int64_t ut
   return options.coast_unseen_s <= 0.0 || unseen_s <= options.coast_unseen_s;
 }
 
-bool InFieldOfView(const Eigen::Vector3d& robot_pose, const Eigen::Vector2d& point,
-                   const SensorMount& mount, double max_range_m, double field_of_view_rad) {
-  const Eigen::Vector2d z = PredictRangeBearing(robot_pose, point, mount);
-  if (!(z(0) <= max_range_m)) return false;
-  return std::abs(z(1)) <= 0.5 * field_of_view_rad;
-}
-
 bool SurelyInGeometry(const Eigen::Vector2d& predicted, double sigma_m, double max_range_m,
                       double field_of_view_rad) {
   const double range = predicted(0);

@@ -74,11 +74,6 @@ void RecordMiss(double dt_s, bool in_geometry, bool expected_visible, ObjectReco
 bool ShouldPrune(const ObjectRecord& record, bool has_velocity, int64_t utime, bool out_of_view,
                  double position_sigma_m, const TrackManagementOptions& options);
 
-// Whether a map point lies inside the sensor's field of view (centred on the sensor's x axis,
-// field_of_view_rad wide) and within max_range_m.
-bool InFieldOfView(const Eigen::Vector3d& robot_pose, const Eigen::Vector2d& point,
-                   const SensorMount& mount, double max_range_m, double field_of_view_rad);
-
 // Whether a prediction (range, bearing) with position standard deviation sigma_m lies inside
 // the field of view and range with a margin of 2 sigma (the object is surely there, not merely
 // its estimate).
