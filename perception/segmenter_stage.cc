@@ -1,11 +1,13 @@
 #include "perception/segmenter_stage.h"
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
-#include <sstream>
 #include <utility>
 
+#include "runtime/lcm_io.h"
 #include "runtime/log.h"
+#include "runtime/message_checks.h"
 #include "slammtt_msgs/features_t.hpp"
 #include "slammtt_msgs/laser_scan_t.hpp"
 #include "slammtt_msgs/stage_timing_t.hpp"
@@ -15,19 +17,16 @@ namespace {
 
 constexpr double kDegToRad = M_PI / 180.0;
 
-// laser_scan_t's encoding: 8-byte type hash, utime, sequence, scan_duration_us (8 each),
-// range_min_m, range_max_m (4 each), num_beams (int32, big-endian), then 4 + 4 + 4 + 1 bytes
-// per beam. Checked before decoding so that a corrupt num_beams cannot make the decoder
-// allocate gigabytes.
-constexpr int kUtimeOffset = 8;
-constexpr int kNumBeamsOffset = 40;
-constexpr int64_t kHeaderBytes = 44;
-constexpr int64_t kBytesPerBeam = 13;
+// The scan's utime is the big-endian int64 right after the 8-byte type fingerprint
+// (lcmtypes/laser_scan_t.lcm; LCM type specification). The stage reads it before decoding, so
+// that the "decode" sub-stage can be timed under the scan's own utime.
+constexpr int kUtimeOffset = static_cast<int>(encoded_bytes::kFingerprint);
+constexpr int kUtimeEnd = kUtimeOffset + static_cast<int>(encoded_bytes::kInt64);
 
-uint64_t BigEndian(const uint8_t* bytes, int count) {
+int64_t BigEndianInt64(const uint8_t* bytes) {
   uint64_t value = 0;
-  for (int i = 0; i < count; ++i) value = (value << 8) | bytes[i];
-  return value;
+  for (int i = 0; i < 8; ++i) value = (value << 8) | bytes[i];
+  return static_cast<int64_t>(value);
 }
 
 double PositiveDouble(const Config& section, const std::string& key, double fallback) {
@@ -121,22 +120,17 @@ void SegmenterStage::Reject(const std::string& reason) {
 void SegmenterStage::Handle(const std::string& channel, const void* data, int size,
                             MessageSink& out) {
   if (channel != laser_scan_channel_) return;
-  if (data == nullptr || size < kHeaderBytes) {
+  if (data == nullptr || size < kUtimeEnd) {
     Reject("message of " + std::to_string(size) + " bytes is too short for a laser_scan_t");
     return;
   }
-  const auto* bytes = static_cast<const uint8_t*>(data);
-  // The timer starts before decoding, so it needs the utime from the bytes (big-endian).
-  StageTimer timer(Name(), static_cast<int64_t>(BigEndian(bytes + kUtimeOffset, 8)));
-  const int64_t num_beams = static_cast<int32_t>(BigEndian(bytes + kNumBeamsOffset, 4));
-  if (num_beams < 0 || kHeaderBytes + kBytesPerBeam * num_beams != size) {
-    Reject("num_beams " + std::to_string(num_beams) + " does not match the message size of " +
-           std::to_string(size) + " bytes");
-    return;
-  }
+  StageTimer timer(Name(), BigEndianInt64(static_cast<const uint8_t*>(data) + kUtimeOffset));
   slammtt_msgs::laser_scan_t scan;
+  // Decode checks the fingerprint and every array count against the size before LCM's decoder
+  // runs (runtime/message_checks.h): a corrupt num_beams is a rejection, never an allocation.
   if (!Decode(data, size, &scan)) {
-    Reject("not a laser_scan_t (type hash or encoding mismatch)");
+    Reject("not a well-formed laser_scan_t of " + std::to_string(size) +
+           " bytes (type fingerprint, num_beams or size)");
     return;
   }
   timer.Lap("decode");

@@ -1,7 +1,9 @@
 // Sine and cosine of angles up to pi/2 in magnitude from their Taylor series to the 15th/16th
 // order: absolute error below 1e-11 at pi/2 and below 1e-16 under 0.1 rad. Used in the
 // per-beam loops instead of libm calls: about three times cheaper here, inlined, and the same
-// bits on every platform (replay determinism does not depend on a libm version).
+// bits on every platform, so which beams form a cluster does not depend on a libm version.
+// (The centre rules still call libm a few times per cluster: a feature's last bits may differ
+// between libm versions, never between two runs of one build.)
 #pragma once
 
 namespace slammtt {

@@ -13,9 +13,10 @@
 //    is a false positive.
 // recall = matched objects / truth-set objects, precision = matched features / (features -
 // ignored), centre error = distance of the matched pairs; over all scans of seeds 1-3.
-// Targets (issue): recall >= 0.95, precision >= 0.95, median centre error < 0.05 m with the
-// default (radius-corrected family) centre; the figures of every centre rule are printed, with
-// the NEES of the reported covariance (2 dof: mean 2 when consistent, less when conservative).
+// Targets (issue): recall >= 0.95, precision >= 0.95, median centre error < 0.05 m, asserted for
+// both corrected rules (radius_corrected, and circle_fit, the default); the figures of every
+// centre rule are printed, with the NEES of the reported covariance (2 dof: mean 2 when
+// consistent, less when conservative).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -191,23 +192,27 @@ std::vector<DetectionFigures> Evaluate(const std::string& scenario_name) {
 
 void ExpectTargets(const std::vector<DetectionFigures>& figures) {
   const SegmenterOptions defaults;
-  size_t chosen = 0;
   for (size_t r = 0; r < std::size(kRules); ++r) {
-    if (kRules[r] == defaults.centre_rule) chosen = r;
+    if (kRules[r] == CentreRule::kMiddlePoint) continue;
+    // Both corrected rules meet the issue's targets (it names the radius-corrected centre; the
+    // circle fit, the default, starts from it), not only the default.
+    const DetectionFigures& f = figures[r];
+    SCOPED_TRACE(CentreRuleName(kRules[r]));
+    ASSERT_GT(f.scans, 1000);
+    ASSERT_GT(f.truth_objects, 5000);
+    EXPECT_GE(f.Recall(), 0.95);
+    EXPECT_GE(f.Precision(), 0.95);
+    EXPECT_LT(f.MedianError(), 0.05);
+    if (kRules[r] != defaults.centre_rule) continue;
+    // The covariance handed to the estimator is not over-confident: the 95th percentile of the
+    // NEES stays below the chi-square 95 % point for 2 degrees of freedom.
+    EXPECT_LT(testing_support::Percentile(f.nees, 0.95), 5.99);
+    // The paper's middle point finds the same clusters but puts them about a radius short.
+    const DetectionFigures& middle = figures[0];
+    EXPECT_EQ(middle.features, f.features);
+    EXPECT_GT(middle.MedianError(), 2.0 * f.MedianError());
   }
-  const DetectionFigures& f = figures[chosen];
-  ASSERT_GT(f.scans, 1000);
-  ASSERT_GT(f.truth_objects, 5000);
-  EXPECT_GE(f.Recall(), 0.95);
-  EXPECT_GE(f.Precision(), 0.95);
-  EXPECT_LT(f.MedianError(), 0.05);
-  // The covariance handed to the estimator is not over-confident: the 95th percentile of the
-  // NEES stays below the chi-square 95 % point for 2 degrees of freedom.
-  EXPECT_LT(testing_support::Percentile(f.nees, 0.95), 5.99);
-  // The paper's middle point finds the same clusters but puts them about a radius short.
-  const DetectionFigures& middle = figures[0];
-  EXPECT_EQ(middle.features, f.features);
-  EXPECT_GT(middle.MedianError(), 2.0 * f.MedianError());
+  EXPECT_NE(defaults.centre_rule, CentreRule::kMiddlePoint);
 }
 
 TEST(GroundTruthTest, S2LobbyMeetsTheDetectionTargets) { ExpectTargets(Evaluate("s2-lobby")); }

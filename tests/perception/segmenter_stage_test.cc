@@ -14,6 +14,7 @@
 #include "slammtt_msgs/laser_scan_t.hpp"
 #include "slammtt_msgs/odometry_t.hpp"
 #include "slammtt_msgs/stage_timing_t.hpp"
+#include "tests/perception/scan_message.h"
 #include "tests/perception/synthetic_scan.h"
 
 namespace slammtt {
@@ -41,19 +42,8 @@ const std::vector<Circle> kScene = {{2.0, 0.5, 0.2}, {-1.5, 2.5, 0.25}, {0.5, -3
 
 slammtt_msgs::laser_scan_t MakeScanMessage(int64_t utime, int64_t sequence,
                                            const std::vector<Circle>& scene = kScene) {
-  const testing_support::TestScan scan = CastScan(scene, EvenAngles(0.0, 2.0 * M_PI, 400, true));
-  slammtt_msgs::laser_scan_t msg;
-  msg.utime = utime;
-  msg.sequence = sequence;
-  msg.scan_duration_us = 100000;
-  msg.range_min_m = 0.15f;
-  msg.range_max_m = 12.0f;
-  msg.num_beams = static_cast<int32_t>(scan.size());
-  msg.angle_rad = scan.angle_rad;
-  msg.range_m = scan.range_m;
-  msg.intensity.assign(scan.size(), 1.0f);
-  msg.valid = scan.valid;
-  return msg;
+  return testing_support::ScanMessage(CastScan(scene, EvenAngles(0.0, 2.0 * M_PI, 400, true)),
+                                      utime, sequence);
 }
 
 SegmenterStage MakeStage() {
