@@ -1,23 +1,42 @@
 #include "drivers/p3dx/p3dx_driver_options.h"
 
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
+#include <string>
 
 #include "drivers/common/byte_stream.h"
 #include "drivers/p3dx/p3dx_odometry.h"
 
 namespace slammtt {
+namespace {
+
+// An integer key in [minimum, maximum], checked before it is narrowed to int (a baud rate of
+// 2^32 + 9600 must be an error, not 9600).
+int ReadBoundedInt(const Config& section, const std::string& key, int fallback, int64_t minimum,
+                   int64_t maximum) {
+  const int64_t value = section.GetInt(key, fallback);
+  if (value < minimum || value > maximum) {
+    section.FailKey(key, "must be an integer from " + std::to_string(minimum) + " to " +
+                             std::to_string(maximum) + ", got " + std::to_string(value));
+  }
+  return static_cast<int>(value);
+}
+
+constexpr int64_t kMaxBaud = 10000000;
+
+}  // namespace
 
 P3dxDriverOptions ReadP3dxDriverOptions(const Config& section) {
   P3dxDriverOptions o;
   o.port = section.GetString("port", o.port);
-  o.baud = static_cast<int>(section.GetInt("baud", o.baud));
+  o.baud = ReadBoundedInt(section, "baud", o.baud, 1, kMaxBaud);
   o.max_linear_mps = section.GetDouble("max_linear_mps", o.max_linear_mps);
   o.max_angular_radps = section.GetDouble("max_angular_radps", o.max_angular_radps);
   o.command_timeout_s = section.GetDouble("command_timeout_s", o.command_timeout_s);
   o.pulse_interval_s = section.GetDouble("pulse_interval_s", o.pulse_interval_s);
   o.sync_reply_timeout_s = section.GetDouble("sync_reply_timeout_s", o.sync_reply_timeout_s);
-  o.sync_attempts = static_cast<int>(section.GetInt("sync_attempts", o.sync_attempts));
+  o.sync_attempts = ReadBoundedInt(section, "sync_attempts", o.sync_attempts, 1, 1000);
   o.sip_timeout_s = section.GetDouble("sip_timeout_s", o.sip_timeout_s);
   o.reconnect_initial_s = section.GetDouble("reconnect_initial_s", o.reconnect_initial_s);
   o.reconnect_max_s = section.GetDouble("reconnect_max_s", o.reconnect_max_s);
@@ -46,7 +65,10 @@ void AddP3dxDriverOptions(CommandLine* command_line) {
 
 void ApplyP3dxDriverCommandLine(const CommandLine& command_line, P3dxDriverOptions* options) {
   if (auto v = command_line.Value("port")) options->port = *v;
-  if (auto v = command_line.IntValue("baud")) options->baud = static_cast<int>(*v);
+  if (auto v = command_line.IntValue("baud")) {
+    if (*v < 1 || *v > kMaxBaud) throw UsageError("--baud must be a rate from 1 to 10000000");
+    options->baud = static_cast<int>(*v);
+  }
   if (auto v = command_line.DoubleValue("max-linear-mps")) options->max_linear_mps = *v;
   if (auto v = command_line.DoubleValue("max-angular-radps")) options->max_angular_radps = *v;
   if (auto v = command_line.DoubleValue("command-timeout-s")) options->command_timeout_s = *v;
