@@ -8,7 +8,14 @@ cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 scripts/build.sh -DSLAMMTT_WERROR=ON
 cd build
+# Label target_open: issue targets the code does not meet yet. Their tests assert the targets
+# exactly as the issues state them and fail today; they are left out of the default run (so
+# they do not block every other change) and listed in docs/targets.md with the measured
+# figures. The long run includes them.
+exclude="-LE target_open"
 if [ "${SLAMMTT_LONG_TESTS:-0}" = "1" ]; then
   export SLAMMTT_LONG_TESTS=1
+  exclude=""
 fi
-ctest --output-on-failure --parallel "$(nproc)" --timeout 900
+# shellcheck disable=SC2086
+ctest --output-on-failure --parallel "$(nproc)" --timeout 900 $exclude
