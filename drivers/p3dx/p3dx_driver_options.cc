@@ -85,16 +85,22 @@ void ValidateP3dxDriverOptions(const P3dxDriverOptions& o) {
       throw std::invalid_argument(std::string(name) + " must be a positive number");
     }
   };
+  // Durations become microseconds in int64_t: an hour is far beyond any sensible value and far
+  // below an overflow.
+  auto duration = [&positive](double value, const char* name) {
+    positive(value, name);
+    if (value > 3600.0) throw std::invalid_argument(std::string(name) + " above 3600 s");
+  };
   CheckEndpoint(o.port, o.baud);
   positive(o.max_linear_mps, "max_linear_mps");
   positive(o.max_angular_radps, "max_angular_radps");
-  positive(o.command_timeout_s, "command_timeout_s");
-  positive(o.pulse_interval_s, "pulse_interval_s");
-  positive(o.sync_reply_timeout_s, "sync_reply_timeout_s");
-  positive(o.sip_timeout_s, "sip_timeout_s");
-  positive(o.reconnect_initial_s, "reconnect_initial_s");
-  positive(o.reconnect_max_s, "reconnect_max_s");
-  positive(o.status_period_s, "status_period_s");
+  duration(o.command_timeout_s, "command_timeout_s");
+  duration(o.pulse_interval_s, "pulse_interval_s");
+  duration(o.sync_reply_timeout_s, "sync_reply_timeout_s");
+  duration(o.sip_timeout_s, "sip_timeout_s");
+  duration(o.reconnect_initial_s, "reconnect_initial_s");
+  duration(o.reconnect_max_s, "reconnect_max_s");
+  duration(o.status_period_s, "status_period_s");
   if (o.sync_attempts < 1) throw std::invalid_argument("sync_attempts must be at least 1");
   if (o.reconnect_max_s < o.reconnect_initial_s) {
     throw std::invalid_argument("reconnect_max_s must not be less than reconnect_initial_s");

@@ -50,10 +50,13 @@ int Main(int argc, char** argv) {
       options, [](const std::string& endpoint, int baud) { return OpenByteStream(endpoint, baud); },
       &clock, &sink, channels);
 
+  // An exception must not unwind through LCM's C dispatch: the handler keeps the first one and
+  // the loop rethrows it once handle() has returned (the driver's destructor stops the robot).
   struct Context {
     P3dxDriver* driver;
     int64_t undecodable = 0;
-  } context{&driver};
+    std::string error;
+  } context{&driver, 0, {}};
   lcm->subscribeFunction(
       settings.channels.Get("velocity_command"),
       +[](const lcm::ReceiveBuffer* buffer, const std::string& channel, Context* c) {
@@ -65,7 +68,11 @@ int Main(int argc, char** argv) {
           }
           return;
         }
-        c->driver->HandleVelocityCommand(command);
+        try {
+          c->driver->HandleVelocityCommand(command);
+        } catch (const std::exception& e) {
+          if (c->error.empty()) c->error = e.what();
+        }
       },
       &context);
   LogInfo() << "driving " << options.port << " (max " << options.max_linear_mps << " m/s, "
@@ -94,6 +101,7 @@ int Main(int argc, char** argv) {
       // Everything that is waiting, without blocking.
       do {
         if (lcm->handle() != 0) throw std::runtime_error("LCM failed while receiving");
+        if (!context.error.empty()) throw std::runtime_error(context.error);
       } while (poll(fds, 1, 0) > 0 && (fds[0].revents & POLLIN) != 0);
     }
   }

@@ -79,7 +79,10 @@ RplidarDriverOptions ReadRplidarDriverOptions(const Config& section) {
     section.FailKey("reconnect_max_ms", "must be at least reconnect_initial_ms");
   }
   options.status_period_s = section.GetDouble("status_period_s", options.status_period_s);
-  if (options.status_period_s <= 0.0) section.FailKey("status_period_s", "must be positive");
+  // Becomes microseconds in int64_t: an hour is far beyond any sensible period.
+  if (options.status_period_s <= 0.0 || options.status_period_s > 3600.0) {
+    section.FailKey("status_period_s", "must be within (0, 3600] s");
+  }
   return options;
 }
 

@@ -82,6 +82,7 @@ TEST(P3dxDriverOptionsTest, MistakesNameTheKey) {
   ExpectConfigError("  max_linear_mps: 3\n", "max_linear_mps");
   ExpectConfigError("  max_angular_radps: .nan\n", "max_angular_radps");
   ExpectConfigError("  command_timeout_s: 0\n", "command_timeout_s");
+  ExpectConfigError("  status_period_s: 1e300\n", "status_period_s");  // no int64 overflow
   ExpectConfigError("  pulse_interval_s: 2.5\n", "pulse_interval_s");
   ExpectConfigError("  reconnect_initial_s: 2\n  reconnect_max_s: 1\n", "reconnect_max_s");
   ExpectConfigError("  subclass: p3at\n", "p3at");

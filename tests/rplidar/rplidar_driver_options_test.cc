@@ -69,6 +69,9 @@ TEST(RplidarDriverOptionsTest, BadValuesNameTheKey) {
   ExpectConfigError("  reconnect_initial_ms: 500\n  reconnect_max_ms: 100\n", "reconnect_max_ms");
   ExpectConfigError("  max_step_deg: 0\n", "rplidar.max_step_deg");
   ExpectConfigError("  prot: /dev/ttyUSB0\n", "rplidar.prot");
+  ExpectConfigError("  status_period_s: 0\n", "rplidar.status_period_s");
+  ExpectConfigError("  status_period_s: 1e300\n", "rplidar.status_period_s");  // no overflow
+  ExpectConfigError("  baud: 4294967297\n", "rplidar.baud");  // 2^32 + 1: not 1 when narrowed
 }
 
 TEST(RplidarDriverOptionsTest, MalformedPortIsRefusedBeforeAnyOpen) {
