@@ -23,9 +23,12 @@ bool ValidName(const std::string& name) {
   return true;
 }
 
+// A day at most: the supervisor turns these into millisecond poll timeouts (int).
 double PositiveSeconds(const Config& section, const std::string& key, double fallback) {
   const double value = section.GetDouble(key, fallback);
-  if (!(value > 0.0)) section.FailKey(key, "must be a positive number of seconds");
+  if (!(value > 0.0) || value > 86400.0) {
+    section.FailKey(key, "must be a number of seconds in (0, 86400]");
+  }
   return value;
 }
 

@@ -93,6 +93,9 @@ TEST(LaunchPlanTest, MistakesAreErrorsNamingTheKey) {
                 .find("on_give_up"), std::string::npos);
   EXPECT_NE(ErrorOf("robot:\n  stop_grace_s: 0\n  processes:\n    - {name: a, program: x}\n")
                 .find("stop_grace_s"), std::string::npos);
+  // A delay the supervisor could not turn into a poll timeout without overflow.
+  EXPECT_NE(ErrorOf("robot:\n  restart_max_s: 1e300\n  processes:\n    - {name: a, program: x}\n")
+                .find("restart_max_s"), std::string::npos);
   EXPECT_NE(ErrorOf("robot:\n  log_directory: x\n").find("processes"), std::string::npos);
   EXPECT_NE(ErrorOf("robot:\n  processes: []\n").find("processes"), std::string::npos);
   // Every message names the file and the line.
