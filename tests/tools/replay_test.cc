@@ -2,10 +2,15 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <map>
 #include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "slammtt_msgs/stage_timing_t.hpp"
+#include "tools/replay/replay_config.h"
 #include "tests/tools/log_test_util.h"
 
 namespace slammtt {
@@ -382,6 +387,64 @@ TEST(ReplayTest, ReportsProgress) {
   ASSERT_TRUE(ReplayLogFile(dir.File("in.lcm"), dir.File("out2.lcm"), FakeStack(), options)
                   .error.empty());
   EXPECT_EQ(reported, (std::vector<int64_t>{26, 51, 76}));
+}
+
+// A damaged or odd log may jump by centuries, or run backwards: progress stays one line per
+// step reached, computed at once (stepping through a jump of 1e18 us would never end).
+TEST(ReplayTest, ProgressSurvivesTimestampJumps) {
+  TempDir dir;
+  const int64_t far = std::numeric_limits<int64_t>::max() - 5;
+  WriteLog(dir.File("in.lcm"), {Event(std::numeric_limits<int64_t>::min() + 3, "ODOM", "a"),
+                                Event(0, "ODOM", "b"), Event(far, "ODOM", "c"),
+                                Event(-7, "ODOM", "d"), Event(far, "ODOM", "e")});
+  ReplayFileOptions options;
+  options.progress_every_events = 1000;
+  options.progress_every_log_s = 1e-12;  // below one microsecond: one microsecond
+  std::vector<int64_t> reported;
+  options.on_progress = [&](const ReplayProgress& p) { reported.push_back(p.events_done); };
+  const ReplayFileResult r =
+      ReplayLogFile(dir.File("in.lcm"), dir.File("out.lcm"), FakeStack(), options);
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  EXPECT_EQ(r.events_written, 5);
+  // Events 2 and 3 reach new steps (the saturated difference); 4 runs backwards; 5 repeats 3's
+  // saturated time, which is the last step there is.
+  EXPECT_EQ(reported, (std::vector<int64_t>{2, 3}));
+}
+
+TEST(ReplayConfigTest, ReadsTheReplaySection) {
+  const std::vector<std::string> stack = {"segmenter", "estimator"};
+  const ReplaySettings defaults = ReadReplaySettings(Config(), stack);
+  EXPECT_EQ(defaults.stages, stack);
+  EXPECT_EQ(defaults.file_options.progress_every_events, 20000);
+  EXPECT_DOUBLE_EQ(defaults.file_options.progress_every_log_s, 30.0);
+  EXPECT_FALSE(defaults.file_options.truncated_tail_is_error);
+  const Config config = Config::FromString(
+      "replay:\n  stages: [estimator]\n  progress_every_events: 5\n"
+      "  progress_every_log_s: 2.5\n  truncated_tail: error\n",
+      "stack.yaml");
+  const ReplaySettings s = ReadReplaySettings(config.Child("replay"), stack);
+  EXPECT_EQ(s.stages, std::vector<std::string>{"estimator"});
+  EXPECT_EQ(s.file_options.progress_every_events, 5);
+  EXPECT_DOUBLE_EQ(s.file_options.progress_every_log_s, 2.5);
+  EXPECT_TRUE(s.file_options.truncated_tail_is_error);
+}
+
+TEST(ReplayConfigTest, BadValuesNameTheKey) {
+  for (const auto& [yaml, key] : std::vector<std::pair<std::string, std::string>>{
+           {"replay:\n  stagse: [estimator]\n", "stagse"},
+           {"replay:\n  progress_every_events: 0\n", "progress_every_events"},
+           {"replay:\n  progress_every_log_s: 0\n", "progress_every_log_s"},
+           {"replay:\n  progress_every_log_s: 1e-9\n", "progress_every_log_s"},
+           {"replay:\n  progress_every_log_s: 1e300\n", "progress_every_log_s"},
+           {"replay:\n  truncated_tail: maybe\n", "truncated_tail"}}) {
+    try {
+      ReadReplaySettings(Config::FromString(yaml, "stack.yaml").Child("replay"), {});
+      ADD_FAILURE() << "accepted: " << yaml;
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("stack.yaml:2"), std::string::npos) << e.what();
+    }
+  }
 }
 
 TEST(ReplayTest, ScanCountsChannels) {

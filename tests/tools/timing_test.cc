@@ -8,6 +8,8 @@
 
 #include "slammtt_msgs/stage_timing_t.hpp"
 #include "tests/tools/log_test_util.h"
+#include "tools/timing/timing_log.h"
+#include "tools/timing/timing_report.h"
 
 namespace slammtt {
 namespace {
@@ -68,6 +70,76 @@ TEST(TimingTableTest, ASingleRecordHasNoPeriod) {
   EXPECT_FALSE(s[0].period_median_us.has_value());
   EXPECT_FALSE(s[0].share_of_period.has_value());
   EXPECT_TRUE(SummariseTiming({}).empty());
+}
+
+TEST(TimingReportTest, TableRowsAreMicrosecondsWithShareAndCounts) {
+  std::vector<TimingRecord> records;
+  for (int k = 0; k < 4; ++k) {
+    records.push_back({k * 125000, "segmenter", 1000 * (k + 1), {{"sort", 500}}, {{"beams", 360}}});
+  }
+  const std::string table = TimingTableText(SummariseTiming(records));
+  // Median 2.0 us (nearest rank: the lower middle), p95 = p99 = max = 4.0 us; 2 us of 125 ms is
+  // 0.0016 %; load 10 us over 0.375 s = 0.0027 %.
+  EXPECT_NE(table.find("segmenter                         4        2.0        4.0        4.0 "
+                       "       4.0   0.002% of the 125.0 ms period, load 0.003%\n"),
+            std::string::npos)
+      << table;
+  EXPECT_NE(table.find("\n  sort                            4        0.5        0.5        0.5 "
+                       "       0.5\n"),
+            std::string::npos)
+      << table;
+  EXPECT_NE(table.find("  #beams                          4        360        360        360 "
+                       "       360   (count)\n"),
+            std::string::npos)
+      << table;
+}
+
+TEST(TimingReportTest, JsonHasNullWhereThereIsNoPeriod) {
+  const nlohmann::json j =
+      TimingJson(SummariseTiming({{5, "x", 10, {{"a", 4}}, {}}}), "t.lcm", "STAGE_TIMING", 1, 2);
+  EXPECT_EQ(j["log"], "t.lcm");
+  EXPECT_EQ(j["messages"], 1);
+  EXPECT_EQ(j["skipped_messages"], 2);
+  ASSERT_EQ(j["stages"].size(), 1u);
+  EXPECT_EQ(j["stages"][0]["total_ns"]["median"], 10);
+  EXPECT_EQ(j["stages"][0]["substages"][0]["ns"]["max"], 4);
+  EXPECT_TRUE(j["stages"][0]["period_median_us"].is_null());
+  EXPECT_TRUE(j["stages"][0]["share_of_period"].is_null());
+  EXPECT_TRUE(j["stages"][0]["load"].is_null());
+}
+
+TEST(TimingLogTest, SkipsAndCountsBadMessages) {
+  testing::TempDir dir;
+  LogWriter writer(dir.File("timing.lcm"));
+  slammtt_msgs::stage_timing_t good;
+  good.utime = 7;
+  good.stage = "segmenter";
+  good.total_ns = 900;
+  good.num_substages = 1;
+  good.substage = {"sort"};
+  good.substage_ns = {300};
+  good.num_counters = 1;
+  good.counter_name = {"beams"};
+  good.counter_value = {400};
+  writer.WriteMessage(1, "STAGE_TIMING", good);
+  slammtt_msgs::stage_timing_t negative = good;
+  negative.substage_ns = {-1};
+  writer.WriteMessage(2, "STAGE_TIMING", negative);
+  writer.WriteMessage(3, "OTHER_TIMING", good);  // another channel: not read
+  const std::string junk = "garbage";
+  writer.Write(4, "STAGE_TIMING", junk.data(), static_cast<int>(junk.size()));
+  writer.Commit();
+  const TimingLog log = ReadTimingLog(dir.File("timing.lcm"), "STAGE_TIMING");
+  ASSERT_EQ(log.records.size(), 1u);
+  EXPECT_EQ(log.records[0].utime, 7);
+  EXPECT_EQ(log.records[0].stage, "segmenter");
+  EXPECT_EQ(log.records[0].substages_ns,
+            (std::vector<std::pair<std::string, int64_t>>{{"sort", 300}}));
+  EXPECT_EQ(log.records[0].counters,
+            (std::vector<std::pair<std::string, int64_t>>{{"beams", 400}}));
+  EXPECT_EQ(log.negative, 1);
+  EXPECT_EQ(log.undecodable, 1);
+  EXPECT_TRUE(log.read.problem.empty());
 }
 
 std::string RunCommand(const std::string& command, int* status) {

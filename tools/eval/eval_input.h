@@ -19,10 +19,10 @@ namespace slammtt {
 struct TruthObjectSample {
   int64_t id = 0;
   Eigen::Vector2d position_m = Eigen::Vector2d::Zero();  // world frame
-  Eigen::Vector2d velocity_mps = Eigen::Vector2d::Zero();
-  double radius_m = 0.0;
   bool moving = false;   // CLASS_MOVING (it may stand still for a while)
-  bool visible = false;  // a feature of it was emitted at this scan
+  // GROUND_TRUTH's `visible`: the world emitted a point feature of it (FEATURES output), or at
+  // least one beam hit it first (LASER_SCAN output: beams_on_object >= 1).
+  bool visible = false;
 };
 
 // GROUND_TRUTH at one scan time.
@@ -36,8 +36,6 @@ struct TruthScan {
 struct TrackSample {
   int64_t id = 0;
   Eigen::Vector2d position_m = Eigen::Vector2d::Zero();
-  Eigen::Vector2d velocity_mps = Eigen::Vector2d::Zero();
-  Eigen::Matrix2d position_covariance = Eigen::Matrix2d::Zero();
   ObjectLabel label = ObjectLabel::kUndecided;
   bool confirmed = false;
 };

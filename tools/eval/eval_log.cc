@@ -2,6 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+#include <system_error>
 
 #include "runtime/lcm_io.h"
 #include "slammtt_msgs/ground_truth_t.hpp"
@@ -80,7 +84,7 @@ EvalInput ReadEvalInput(const std::string& path, const Channels& channels, LogRe
              (o.object_class == slammtt_msgs::object_truth_t::CLASS_STATIC ||
               o.object_class == slammtt_msgs::object_truth_t::CLASS_MOVING);
         scan.objects.push_back(TruthObjectSample{
-            o.id, Eigen::Vector2d(o.x_m, o.y_m), Eigen::Vector2d(o.vx_mps, o.vy_mps), o.radius_m,
+            o.id, Eigen::Vector2d(o.x_m, o.y_m),
             o.object_class == slammtt_msgs::object_truth_t::CLASS_MOVING, o.visible != 0});
       }
       for (size_t a = 0; ok && a < scan.objects.size(); ++a) {
@@ -124,9 +128,6 @@ EvalInput ReadEvalInput(const std::string& path, const Channels& channels, LogRe
         TrackSample sample;
         sample.id = t.id;
         sample.position_m = Eigen::Vector2d(t.x_m, t.y_m);
-        sample.velocity_mps = Eigen::Vector2d(t.vx_mps, t.vy_mps);
-        sample.position_covariance << t.covariance[0], t.covariance[1], t.covariance[4],
-            t.covariance[5];
         sample.label = static_cast<ObjectLabel>(t.object_class);
         sample.confirmed = t.confirmed != 0;
         scan.tracks.push_back(sample);
@@ -175,6 +176,50 @@ EvalInput ReadEvalInput(const std::string& path, const Channels& channels, LogRe
   input.accepted["pose"] = static_cast<int64_t>(input.estimate.size());
   input.accepted["tracks"] = static_cast<int64_t>(input.tracks.size());
   return input;
+}
+
+EvalOptions ReadEvalOptions(const Config& section) {
+  EvalOptions options;
+  options.match_threshold_m = section.GetDouble("match_threshold_m", options.match_threshold_m);
+  if (!(options.match_threshold_m > 0.0)) section.FailKey("match_threshold_m", "must be > 0");
+  options.ospa_cutoff_m = section.GetDouble("ospa_cutoff_m", options.ospa_cutoff_m);
+  if (!(options.ospa_cutoff_m > 0.0)) section.FailKey("ospa_cutoff_m", "must be > 0");
+  options.ospa_order = section.GetDouble("ospa_order", options.ospa_order);
+  if (!(options.ospa_order >= 1.0)) section.FailKey("ospa_order", "must be >= 1");
+  options.gospa_alpha = section.GetDouble("gospa_alpha", options.gospa_alpha);
+  if (!(options.gospa_alpha > 0.0 && options.gospa_alpha <= 2.0)) {
+    section.FailKey("gospa_alpha", "must be in (0, 2]");
+  }
+  section.CheckUnused();
+  return options;
+}
+
+void WriteFileAtomically(const std::string& path, const std::string& text) {
+  const std::string partial = path + ".partial";
+  std::FILE* f = std::fopen(partial.c_str(), "wb");
+  if (f == nullptr) throw std::runtime_error(path + ": cannot create");
+  const bool written = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+  if (std::fclose(f) != 0 || !written) {
+    std::remove(partial.c_str());
+    throw std::runtime_error(path + ": write failed");
+  }
+  if (std::rename(partial.c_str(), path.c_str()) != 0) {
+    std::remove(partial.c_str());
+    throw std::runtime_error(path + ": cannot move the file into place");
+  }
+}
+
+std::vector<std::string> WriteTextFiles(
+    const std::string& directory, const std::vector<std::pair<std::string, std::string>>& files) {
+  std::error_code error;
+  std::filesystem::create_directories(directory, error);
+  if (error) throw std::runtime_error(directory + ": cannot create directory: " + error.message());
+  std::vector<std::string> written;
+  for (const auto& [name, text] : files) {
+    written.push_back(directory + "/" + name);
+    WriteFileAtomically(written.back(), text);
+  }
+  return written;
 }
 
 }  // namespace slammtt

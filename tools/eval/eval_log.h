@@ -4,17 +4,38 @@
 // utime outside [0, 1e18] us, an unknown class, duplicate object ids, or repeats the utime of an
 // earlier one of its channel is rejected and counted (EvalInput::rejected), never used;
 // messages are sorted by utime per channel (a live recording may interleave them).
+//
+// Also the rest of slammtt-eval's contact with files and configuration: the `eval:` section and
+// writing the report and the pictures.
 #pragma once
 
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "runtime/channels.h"
+#include "runtime/config.h"
 #include "tools/eval/eval_input.h"
+#include "tools/eval/evaluation.h"
 #include "tools/replay/log_events.h"
 
 namespace slammtt {
 
 // Throws std::runtime_error when the log cannot be opened. `read` receives the damage report.
 EvalInput ReadEvalInput(const std::string& path, const Channels& channels, LogReadResult* read);
+
+// The `eval:` section (docs/evaluation.md): match_threshold_m (1.0), ospa_cutoff_m (1.0),
+// ospa_order (2), gospa_alpha (2). ConfigError naming file, line and key for an unknown key or a
+// value outside the range Evaluate() accepts.
+EvalOptions ReadEvalOptions(const Config& section);
+
+// Writes `text` to "<path>.partial" and renames it to `path`: a failure never leaves a half
+// file under the final name. Throws std::runtime_error naming the path.
+void WriteFileAtomically(const std::string& path, const std::string& text);
+
+// Writes each (file name, text) into `directory` (created if missing) with
+// WriteFileAtomically(); returns the paths written.
+std::vector<std::string> WriteTextFiles(
+    const std::string& directory, const std::vector<std::pair<std::string, std::string>>& files);
 
 }  // namespace slammtt

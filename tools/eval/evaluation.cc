@@ -5,6 +5,7 @@
 #include <map>
 #include <set>
 #include <stdexcept>
+#include <utility>
 
 #include "tools/metrics/set_distance.h"
 
@@ -19,7 +20,18 @@ void CheckOptions(const EvalOptions& o) {
   }
 }
 
-// Pairs truth scans with estimates at exactly the same utime, anchors at the first pair.
+// Anchors `pairs` at the first one and scores them; nullopt without any pair.
+std::optional<TrajectoryResult> ScorePairs(std::vector<PosePair> pairs) {
+  if (pairs.empty()) return std::nullopt;
+  TrajectoryResult result;
+  result.anchor_utime = pairs.front().utime;
+  result.anchor = AnchorAtFirstPair(&pairs);
+  result.error = EvaluateTrajectory(pairs);
+  for (const PosePair& p : pairs) result.anchored.push_back({p.utime, p.estimate});
+  return result;
+}
+
+// Pairs truth scans with estimates at exactly the same utime.
 std::optional<TrajectoryResult> ScoreExactTimes(const std::vector<TruthScan>& truth,
                                                 const std::vector<TimedPose>& estimate) {
   std::map<int64_t, Pose2> by_time;
@@ -29,13 +41,7 @@ std::optional<TrajectoryResult> ScoreExactTimes(const std::vector<TruthScan>& tr
     const auto it = by_time.find(scan.utime);
     if (it != by_time.end()) pairs.push_back({scan.utime, scan.robot, it->second});
   }
-  if (pairs.empty()) return std::nullopt;
-  TrajectoryResult result;
-  result.anchor_utime = pairs.front().utime;
-  result.anchor = AnchorAtFirstPair(&pairs);
-  result.error = EvaluateTrajectory(pairs);
-  for (const PosePair& p : pairs) result.anchored.push_back({p.utime, p.estimate});
-  return result;
+  return ScorePairs(std::move(pairs));
 }
 
 // Pairs truth scans with the odometry interpolated at their times.
@@ -47,13 +53,7 @@ std::optional<TrajectoryResult> ScoreInterpolated(const std::vector<TruthScan>& 
       pairs.push_back({scan.utime, scan.robot, *pose});
     }
   }
-  if (pairs.empty()) return std::nullopt;
-  TrajectoryResult result;
-  result.anchor_utime = pairs.front().utime;
-  result.anchor = AnchorAtFirstPair(&pairs);
-  result.error = EvaluateTrajectory(pairs);
-  for (const PosePair& p : pairs) result.anchored.push_back({p.utime, p.estimate});
-  return result;
+  return ScorePairs(std::move(pairs));
 }
 
 std::string Count(int64_t n, const std::string& what) {

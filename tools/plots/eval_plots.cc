@@ -1,7 +1,6 @@
 #include "tools/plots/eval_plots.h"
 
-#include <filesystem>
-#include <stdexcept>
+#include <algorithm>
 
 #include "tools/plots/svg_plot.h"
 
@@ -214,26 +213,11 @@ std::string ErrorsSvg(const EvaluationReport& report) {
   return doc.ToString();
 }
 
-std::vector<std::string> WriteEvaluationPlots(const EvaluationReport& report,
-                                              const std::string& directory) {
-  std::error_code error;
-  std::filesystem::create_directories(directory, error);
-  if (error) throw std::runtime_error(directory + ": cannot create directory: " + error.message());
-  std::vector<std::string> written;
-  const std::vector<std::pair<std::string, std::string>> files = {
-      {"trajectory.svg", TrajectorySvg(report)},
-      {"map.svg", MapSvg(report)},
-      {"tracks.svg", TracksSvg(report)},
-      {"errors.svg", ErrorsSvg(report)}};
-  for (const auto& [name, text] : files) {
-    const std::string path = directory + "/" + name;
-    std::FILE* f = std::fopen(path.c_str(), "wb");
-    if (f == nullptr) throw std::runtime_error(path + ": cannot create");
-    const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
-    if (std::fclose(f) != 0 || !ok) throw std::runtime_error(path + ": write failed");
-    written.push_back(path);
-  }
-  return written;
+std::vector<std::pair<std::string, std::string>> EvaluationPlots(const EvaluationReport& report) {
+  return {{"trajectory.svg", TrajectorySvg(report)},
+          {"map.svg", MapSvg(report)},
+          {"tracks.svg", TracksSvg(report)},
+          {"errors.svg", ErrorsSvg(report)}};
 }
 
 }  // namespace slammtt

@@ -11,18 +11,18 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "tools/eval/evaluation.h"
 
 namespace slammtt {
 
-// Writes the four pictures into `directory` (created if missing) and returns their paths.
-// Throws std::runtime_error naming the file on an I/O error.
-std::vector<std::string> WriteEvaluationPlots(const EvaluationReport& report,
-                                              const std::string& directory);
+// The four pictures as (file name, SVG document), in the order of the list above (slammtt-eval
+// writes them with WriteTextFiles(), eval_log.h).
+std::vector<std::pair<std::string, std::string>> EvaluationPlots(const EvaluationReport& report);
 
-// The documents themselves, for tests and for callers that write elsewhere.
+// The documents one by one.
 std::string TrajectorySvg(const EvaluationReport& report);
 std::string MapSvg(const EvaluationReport& report);
 std::string TracksSvg(const EvaluationReport& report);

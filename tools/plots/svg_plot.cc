@@ -7,7 +7,6 @@
 #include <cstdio>
 #include <limits>
 #include <sstream>
-#include <stdexcept>
 
 namespace slammtt {
 namespace {
@@ -102,14 +101,6 @@ std::string SvgDocument::ToString() const {
   for (const std::string& e : elements_) out << e << "\n";
   out << "</svg>\n";
   return out.str();
-}
-
-void SvgDocument::WriteFile(const std::string& path) const {
-  const std::string text = ToString();
-  std::FILE* f = std::fopen(path.c_str(), "wb");
-  if (f == nullptr) throw std::runtime_error(path + ": cannot create");
-  const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
-  if (std::fclose(f) != 0 || !ok) throw std::runtime_error(path + ": write failed");
 }
 
 PlotPanel::PlotPanel(SvgDocument* document, double left_px, double top_px, double width_px,

@@ -1,8 +1,9 @@
-// A small SVG writer for the evaluation's pictures: a document of fixed pixel size holding plot
-// panels, each mapping data coordinates (metres, seconds) to pixels with axes, ticks, a grid and
-// a legend. Numbers are written with a fixed number of decimals, so the same data gives the same
-// bytes, and long polylines are decimated to keep files small. Only the SVG 1.1 basics every
-// browser and image viewer renders (path, circle, ellipse, line, rect, text).
+// A small SVG builder for the evaluation's pictures (text only; writing files is the caller's): a
+// document of fixed pixel size holding plot panels, each mapping data coordinates (metres,
+// seconds) to pixels with axes, ticks, a grid and a legend. Numbers are written with a fixed
+// number of decimals, so the same data gives the same bytes, and long polylines are decimated to
+// keep files small. Only the SVG 1.1 basics every browser and image viewer renders (path,
+// circle, ellipse, line, rect, text).
 #pragma once
 
 #include <Eigen/Core>
@@ -38,8 +39,6 @@ class SvgDocument {
   void Text(double x_px, double y_px, const std::string& text, int size_px = 12,
             const std::string& anchor = "start", const std::string& extra = "");
   std::string ToString() const;
-  // Writes the document; throws std::runtime_error naming the path on failure.
-  void WriteFile(const std::string& path) const;
 
   int width_px() const { return width_px_; }
   int height_px() const { return height_px_; }

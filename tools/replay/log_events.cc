@@ -8,8 +8,13 @@ namespace slammtt {
 
 LogReadResult ForEachLogEvent(const std::string& path,
                               const std::function<void(const LogEventView&)>& on_event) {
+  return ForEachLogEvent(path, ScanLogFile(path), on_event);
+}
+
+LogReadResult ForEachLogEvent(const std::string& path, const LogScan& scan,
+                              const std::function<void(const LogEventView&)>& on_event) {
   LogReadResult result;
-  result.scan = ScanLogFile(path);
+  result.scan = scan;
   lcm::LogFile file(path, "r");
   if (!file.good()) throw std::runtime_error(path + ": cannot open log file");
   while (const lcm::LogEvent* raw = file.readNextEvent()) {
@@ -25,7 +30,7 @@ LogReadResult ForEachLogEvent(const std::string& path,
     result.problem = path + ": LCM read " + std::to_string(result.events_read) + " of " +
                      std::to_string(result.scan.complete_events) + " complete events";
   } else if (result.scan.damage == LogDamage::kTruncatedTail) {
-    result.problem = path + ": " + result.scan.damage_description + "; ignored";
+    result.problem = path + ": " + result.scan.damage_description;
   }
   return result;
 }

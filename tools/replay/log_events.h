@@ -1,6 +1,6 @@
 // Reads a log's events one by one through LCM's own reader (lcm::LogFile, as lcm-logplayer
 // does), with the structural scan (log_scan.h) that says whether the log was damaged and where.
-// For the tools that only read a log: slammtt-timing and slammtt-eval.
+// Every tool reads logs through here: slammtt-replay, slammtt-timing and slammtt-eval.
 #pragma once
 
 #include <cstdint>
@@ -23,7 +23,8 @@ struct LogEventView {
 struct LogReadResult {
   LogScan scan;
   int64_t events_read = 0;
-  // One line when the log is damaged: "<path>: corrupt ..." or "<path>: truncated ...".
+  // One line when the log is damaged: "<path>: corrupt ...; read the N events before it" or
+  // "<path>: truncated final event ..." (every complete event was read: a caller may go on).
   std::string problem;
   bool corrupt = false;  // damage other than a truncated final event
 };
@@ -31,6 +32,11 @@ struct LogReadResult {
 // Calls `on_event` for every readable event in file order. Throws std::runtime_error when the
 // file cannot be opened; exceptions from `on_event` propagate.
 LogReadResult ForEachLogEvent(const std::string& path,
+                              const std::function<void(const LogEventView&)>& on_event);
+
+// The same with the structural scan already made (a caller that needs the log's channels before
+// the first event, as replay does). `scan` must be ScanLogFile(path).
+LogReadResult ForEachLogEvent(const std::string& path, const LogScan& scan,
                               const std::function<void(const LogEventView&)>& on_event);
 
 }  // namespace slammtt

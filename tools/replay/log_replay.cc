@@ -2,11 +2,15 @@
 
 #include <sys/stat.h>
 
+#include <algorithm>
+#include <cmath>
 #include <exception>
+#include <limits>
 #include <stdexcept>
 #include <utility>
 
 #include "runtime/log.h"
+#include "tools/replay/log_events.h"
 
 namespace slammtt {
 namespace {
@@ -14,6 +18,13 @@ namespace {
 // A chain of stages feeding each other longer than this is a loop (a stage consuming what it
 // publishes, directly or through others); the message is dropped and counted as an error.
 constexpr int kMaxCascadeDepth = 16;
+
+// a - b, saturated to the int64 range (a damaged log may hold any timestamp).
+int64_t SaturatingDifference(int64_t a, int64_t b) {
+  int64_t difference = 0;
+  if (!__builtin_sub_overflow(a, b, &difference)) return difference;
+  return a > b ? std::numeric_limits<int64_t>::max() : std::numeric_limits<int64_t>::min();
+}
 
 bool SameFile(const std::string& a, const std::string& b) {
   struct stat sa {};
@@ -116,10 +127,8 @@ void LogReplay::HandleEvent(const LogEvent& event, const EventWriter& output,
   if (produced_.count(event.channel) != 0) {
     // Replaced by what a running stage computes: neither copied nor fed to the stages (the
     // estimator must see the replayed FEATURES only, not also the recorded ones).
-    ++events_replaced_;
     return;
   }
-  ++events_copied_;
   output(event.timestamp_us, event.channel, event.data.data(), size);
   Deliver(event.channel, event.data.data(), size, event.timestamp_us, event.eventnum, output,
           timing, 0);
@@ -187,53 +196,54 @@ ReplayFileResult ReplayLogFile(const std::string& input_path, const std::string&
     };
   }
 
-  // Events are read through LCM's own API (what lcm-logplayer plays).
-  lcm::LogFile file(input_path, "r");
-  if (!file.good()) throw std::runtime_error(input_path + ": cannot open log file");
+  // Events are read through LCM's own API (what lcm-logplayer plays), with the damage report of
+  // log_events.h.
   ReplayProgress progress;
   progress.events_total = result.input.complete_events;
-  progress.log_span_us = result.input.last_timestamp_us - result.input.first_timestamp_us;
-  int64_t next_progress_events = options.progress_every_events;
-  int64_t next_progress_time_us = static_cast<int64_t>(options.progress_every_log_s * 1e6);
-  while (const lcm::LogEvent* raw = file.readNextEvent()) {
-    LogEvent event;
-    event.eventnum = raw->eventnum;
-    event.timestamp_us = raw->timestamp;
-    event.channel = raw->channel;
-    const auto* bytes = static_cast<const uint8_t*>(raw->data);
-    event.data.assign(bytes, bytes + raw->datalen);
+  progress.log_span_us =
+      SaturatingDifference(result.input.last_timestamp_us, result.input.first_timestamp_us);
+  // Steps of at least one event and one microsecond, and at most about 30 years of log time
+  // (beyond, the conversion to int64 would overflow).
+  const int64_t events_step = std::max<int64_t>(1, options.progress_every_events);
+  const double time_step = options.progress_every_log_s * 1e6;
+  const int64_t time_step_us =
+      std::isfinite(time_step) ? static_cast<int64_t>(std::clamp(time_step, 1.0, 1e15)) : 1000000;
+  // Progress is reported when the number of whole steps done (events, or log time since the
+  // first event) passes the most reported so far: no counter to overflow, however far a
+  // timestamp jumps, and time running backwards reports nothing.
+  int64_t reported_event_steps = 0;
+  int64_t reported_time_steps = 0;
+  LogEvent event;
+  const LogReadResult read = ForEachLogEvent(input_path, result.input, [&](const LogEventView& e) {
+    event.eventnum = e.eventnum;
+    event.timestamp_us = e.timestamp_us;
+    event.channel = e.channel;
+    const auto* bytes = static_cast<const uint8_t*>(e.data);
+    event.data.assign(bytes, bytes + e.size);
     ++result.events_read;
     replay.HandleEvent(event, output, timing);
     progress.events_done = result.events_read;
-    progress.log_time_us = event.timestamp_us - result.input.first_timestamp_us;
-    if (options.on_progress && (progress.events_done >= next_progress_events ||
-                                progress.log_time_us >= next_progress_time_us)) {
+    progress.log_time_us =
+        SaturatingDifference(event.timestamp_us, result.input.first_timestamp_us);
+    const int64_t event_steps = progress.events_done / events_step;
+    const int64_t time_steps = progress.log_time_us > 0 ? progress.log_time_us / time_step_us : 0;
+    if (options.on_progress &&
+        (event_steps > reported_event_steps || time_steps > reported_time_steps)) {
       options.on_progress(progress);
-      while (next_progress_events <= progress.events_done) {
-        next_progress_events += options.progress_every_events;
-      }
-      while (next_progress_time_us <= progress.log_time_us) {
-        next_progress_time_us += static_cast<int64_t>(options.progress_every_log_s * 1e6);
-      }
+      reported_event_steps = event_steps;
+      reported_time_steps = std::max(reported_time_steps, time_steps);
     }
-  }
+  });
   result.stages = replay.stats();
 
-  const LogScan& scan = result.input;
   std::string problem;
-  if (scan.damage == LogDamage::kCorrupt) {
-    problem = input_path + ": " + scan.damage_description + "; processed the " +
-              std::to_string(result.events_read) + " events before it";
-  } else if (result.events_read != scan.complete_events) {
-    // LCM's reader and the structural scan disagree: never write a log we cannot vouch for.
-    problem = input_path + ": LCM read " + std::to_string(result.events_read) + " of " +
-              std::to_string(scan.complete_events) + " complete events";
-  } else if (scan.damage == LogDamage::kTruncatedTail) {
-    const std::string line = input_path + ": " + scan.damage_description;
+  if (read.corrupt) {
+    problem = read.problem;
+  } else if (!read.problem.empty()) {  // a truncated tail
     if (options.truncated_tail_is_error) {
-      problem = line;
+      problem = read.problem;
     } else {
-      result.warning = line + "; ignored (all " + std::to_string(result.events_read) +
+      result.warning = read.problem + "; ignored (all " + std::to_string(result.events_read) +
                        " complete events replayed)";
     }
   }

@@ -67,9 +67,6 @@ class LogReplay {
   void HandleEvent(const LogEvent& event, const EventWriter& output, const EventWriter& timing);
 
   const std::vector<StageReplayStats>& stats() const { return stats_; }
-  // Input events copied to the output, and input events dropped because a stage replaces them.
-  int64_t events_copied() const { return events_copied_; }
-  int64_t events_replaced() const { return events_replaced_; }
   // Channels the running stages produce (the replaced ones), for reports.
   const std::set<std::string>& produced_channels() const { return produced_; }
 
@@ -84,8 +81,6 @@ class LogReplay {
   std::string timing_channel_;
   std::set<std::string> produced_;
   bool planned_ = false;
-  int64_t events_copied_ = 0;
-  int64_t events_replaced_ = 0;
 };
 
 struct ReplayProgress {

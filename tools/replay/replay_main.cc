@@ -9,6 +9,7 @@
 #include "runtime/log.h"
 #include "runtime/process.h"
 #include "tools/replay/log_replay.h"
+#include "tools/replay/replay_config.h"
 #include "tools/replay/stack_stages.h"
 
 namespace slammtt {
@@ -18,11 +19,11 @@ int Run(int argc, char** argv) {
   CommandLine cl("slammtt-replay", "[options] IN.lcm -o OUT.lcm",
                  "Runs the processing stages on a log in log order and writes a log with the "
                  "inputs and every output, byte-identical on every run. Stage timing goes to a "
-                 "separate log (OUT.timing.lcm by default).");
+                 "separate log (OUT.lcm.timing.lcm by default).");
   AddStandardOptions(&cl);
   cl.AddPositional("IN.lcm", "input log (lcm-logger or slammtt-world)");
   cl.AddOption("output", "OUT.lcm", "output log (required)", 'o');
-  cl.AddOption("timing-log", "FILE", "STAGE_TIMING log (default: OUT.timing.lcm)");
+  cl.AddOption("timing-log", "FILE", "STAGE_TIMING log (default: OUT.lcm.timing.lcm)");
   cl.AddFlag("no-timing", "write no timing log");
   cl.AddRepeatedOption("stage", "NAME",
                        "run only these stages (segmenter, estimator; overrides replay.stages)");
@@ -36,31 +37,12 @@ int Run(int argc, char** argv) {
   }
 
   ProcessSettings settings = LoadProcessSettings(cl);
-  const Config section = settings.config.Child("replay");
-  std::vector<std::string> enabled = StackStageNames();
-  if (section.Has("stages")) {
-    enabled.clear();
-    for (const Config& item : section.Items("stages")) enabled.push_back(item.AsString());
-  }
-  if (!cl.Values("stage").empty()) enabled = cl.Values("stage");
-  ReplayFileOptions options;
-  options.progress_every_events = section.GetInt("progress_every_events", 20000);
-  options.progress_every_log_s = section.GetDouble("progress_every_log_s", 30.0);
-  options.truncated_tail_is_error =
-      cl.Flag("strict") || section.GetString("truncated_tail", "warn") == "error";
-  if (section.Has("truncated_tail")) {
-    const std::string value = section.GetString("truncated_tail", "warn");
-    if (value != "warn" && value != "error") {
-      section.FailKey("truncated_tail", "expected warn or error, got \"" + value + "\"");
-    }
-  }
-  if (options.progress_every_events < 1) {
-    section.FailKey("progress_every_events", "must be at least 1");
-  }
-  if (!(options.progress_every_log_s > 0.0)) {
-    section.FailKey("progress_every_log_s", "must be positive");
-  }
-  section.CheckUnused();
+  const ReplaySettings replay =
+      ReadReplaySettings(settings.config.Child("replay"), StackStageNames());
+  ReplayFileOptions options = replay.file_options;
+  const std::vector<std::string> enabled =
+      cl.Values("stage").empty() ? replay.stages : cl.Values("stage");
+  if (cl.Flag("strict")) options.truncated_tail_is_error = true;
   options.timing_channel = settings.channels.Get("stage_timing");
   if (!cl.Flag("no-timing")) {
     options.timing_path = cl.ValueOr("timing-log", *output + ".timing.lcm");
