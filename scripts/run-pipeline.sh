@@ -9,8 +9,8 @@
 #
 # while lcm-logger records the bus; then slammtt-eval scores the recording against the world's
 # GROUND_TRUTH and draws it, and slammtt-timing shows where the time went. The world runs
-# RATE_FACTOR times faster than real time (default 5). The stack configuration for simulated
-# scenarios is config/sim.yaml.
+# RATE_FACTOR times faster than real time (default 5). The stack configuration is the
+# scenario's own (estimator/config/SCENARIO.yaml: the simulated sensor's mount and field of view).
 #
 # Outputs in OUTDIR: SCENARIO-seedSEED.lcm (the recording), report.json, plots/*.svg, timing.txt.
 set -eu
@@ -24,7 +24,7 @@ out=$3
 rate=${4:-5}
 cd "$(dirname "$0")/.."
 bin=build/bin
-config=config/sim.yaml
+config=estimator/config/$scenario.yaml
 mkdir -p "$out"
 log="$out/$scenario-seed$seed.lcm"
 rm -f "$log"
@@ -46,7 +46,7 @@ pids="$pids $!"
 pids="$pids $!"
 sleep 1  # let every process subscribe before the world starts talking
 
-"$bin/slammtt-world" --config "$config" --scenario "$scenario" --seed "$seed" --output scans \
+"$bin/slammtt-world" --scenario "$scenario" --seed "$seed" --output scans \
   --rate-factor "$rate"
 sleep 1  # let the last scan travel through segmenter and estimator into the log
 stop_all
