@@ -1,6 +1,7 @@
 // slammtt-replay with the stack's real stages on logs of the synthetic world: byte-identical
-// runs, a stage skipped when its input is absent, replaying a replay changes nothing, and
-// slammtt-timing and slammtt-eval run on what it writes.
+// runs (logs with scans, with point features, with both), a stage skipped when its input is
+// absent, replaying a replay changes nothing, progress lines, and slammtt-timing and slammtt-eval
+// run on what it writes.
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -119,6 +120,32 @@ TEST_F(ReplayStackTest, SkipsTheSegmenterOnAFeaturesOnlyLog) {
   }
   EXPECT_EQ(in_features, out_features);
   EXPECT_EQ(poses, 201);
+  // Deterministic on this kind of log too.
+  ASSERT_EQ(Shell(Bin("slammtt-replay") + " " + dir_.File("world.lcm") + " -o " +
+                      dir_.File("again.lcm"),
+                  &out),
+            0)
+      << out;
+  EXPECT_EQ(testing::FileBytes(dir_.File("out.lcm")), testing::FileBytes(dir_.File("again.lcm")));
+}
+
+// A long log gets progress lines ("every 5 s of log" here, for a 25 s log; 30 s by default).
+TEST_F(ReplayStackTest, PrintsProgressOnLongLogs) {
+  WriteWorldLog("world.lcm", "scans");
+  testing::WriteFileBytes(dir_.File("progress.yaml"), "replay:\n  progress_every_log_s: 5\n");
+  std::string out;
+  ASSERT_EQ(Shell(Bin("slammtt-replay") + " --no-timing --config " + dir_.File("progress.yaml") +
+                      " " + dir_.File("world.lcm") + " -o " + dir_.File("out.lcm"),
+                  &out),
+            0)
+      << out;
+  size_t lines = 0;
+  for (size_t at = out.find("slammtt-replay: info: replay: "); at != std::string::npos;
+       at = out.find("slammtt-replay: info: replay: ", at + 1)) {
+    ++lines;
+  }
+  EXPECT_EQ(lines, 5u) << out;  // at 5, 10, 15, 20 and 25 s of log
+  EXPECT_NE(out.find(" of 25 s of log, "), std::string::npos) << out;
 }
 
 // Overwrites the big-endian int32 at `offset` of an encoded message.
