@@ -31,11 +31,14 @@ inline int64_t ScanTime(int k) { return kT0 + k * kScanUs; }
 // i.e. the map frame sits at (2, 3) turned by -90 degrees in the truth frame.
 inline Eigen::Vector2d ToMap(double x, double y) { return Eigen::Vector2d(3.0 - y, x - 2.0); }
 
-inline Obj Object(int64_t id, double x, double y, bool moving, bool visible) {
+inline Obj Object(int64_t id, double x, double y, bool moving, bool visible, double vx = 0.0,
+                  double vy = 0.0) {
   Obj o{};
   o.id = id;
   o.x_m = x;
   o.y_m = y;
+  o.vx_mps = vx;
+  o.vy_mps = vy;
   o.radius_m = 0.25;
   o.object_class = moving ? Obj::CLASS_MOVING : Obj::CLASS_STATIC;
   o.beams_on_object = visible ? 5 : 0;
@@ -58,7 +61,7 @@ inline Trk Track(int64_t id, double truth_x, double truth_y, int8_t cls, bool co
 
 // Truth (5 scans): the robot drives along +x from (2, 3); static S1 (5, 5) always visible, S2
 // (10, -5) visible at scan 0 only, S3 (20, 20) never; mover M1 walks (2 + k, 6), always visible;
-// mover M2 walks (8, k), invisible at scan 2.
+// mover M2 walks (8, k), invisible at scan 2. The movers walk 1 m per scan: 8 m/s.
 // Estimator: POSE exact but for 0.3 m at scan 3 and +0.1 rad at scan 4. Tracks: M1 by 100
 // (0.3 m off) then by 102 at scan 4 (an identity switch); M2 by 101 except scan 3 (a miss, and
 // a fragmentation when 101 returns at scan 4), 101 coasting on the invisible M2 at scan 2 (don't
@@ -84,8 +87,8 @@ inline void WriteHandBuiltLog(const std::string& path, bool with_estimator) {
     gt.robot_y_m = 3.0;
     gt.robot_linear_mps = 8.0;
     gt.objects = {Object(1, 5, 5, false, true), Object(2, 10, -5, false, k == 0),
-                  Object(3, 20, 20, false, false), Object(10, 2.0 + k, 6, true, true),
-                  Object(11, 8, k, true, k != 2)};
+                  Object(3, 20, 20, false, false), Object(10, 2.0 + k, 6, true, true, 8.0, 0.0),
+                  Object(11, 8, k, true, k != 2, 0.0, 8.0)};
     gt.num_objects = static_cast<int32_t>(gt.objects.size());
     log.WriteMessage(t, "GROUND_TRUTH", gt);
     if (!with_estimator) continue;

@@ -19,10 +19,13 @@ namespace slammtt {
 struct TruthObjectSample {
   int64_t id = 0;
   Eigen::Vector2d position_m = Eigen::Vector2d::Zero();  // world frame
+  Eigen::Vector2d velocity_mps = Eigen::Vector2d::Zero();  // world frame, at this moment
   bool moving = false;   // CLASS_MOVING (it may stand still for a while)
   // GROUND_TRUTH's `visible`: the world emitted a point feature of it (FEATURES output), or at
-  // least one beam hit it first (LASER_SCAN output: beams_on_object >= 1).
+  // least one beam hit it first (LASER_SCAN output: beams_on_object >= 1). The evaluation's own
+  // rule for a log with LASER_SCAN is beams_on_object >= EvalOptions::min_beams (evaluation.h).
   bool visible = false;
+  int beams_on_object = 0;  // laser beams whose first hit is this object (>= 0)
 };
 
 // GROUND_TRUTH at one scan time.
@@ -60,6 +63,9 @@ struct EvalInput {
   std::vector<TrackScan> tracks;      // sorted, unique
   std::optional<std::vector<LandmarkSample>> final_map;  // the last MAP message
   int64_t final_map_utime = 0;
+  // LASER_SCAN messages in the log (counted, not decoded): a log with raw scans, whose features
+  // come from the segmenter, so visibility is judged by beams_on_object (evaluation.h).
+  int64_t laser_scans = 0;
   // Messages per channel key ("ground_truth", "odometry", "pose", "tracks", "map") that were
   // undecodable, carried NaN/inf or an unknown class, or repeated an earlier utime.
   std::map<std::string, int64_t> rejected;

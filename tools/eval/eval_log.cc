@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <string>
 #include <stdexcept>
 #include <system_error>
 
@@ -62,6 +63,7 @@ EvalInput ReadEvalInput(const std::string& path, const Channels& channels, LogRe
   const std::string pose_channel = channels.Get("pose");
   const std::string tracks_channel = channels.Get("tracks");
   const std::string map_channel = channels.Get("map");
+  const std::string laser_scan_channel = channels.Get("laser_scan");
   for (const char* key : {"ground_truth", "odometry", "pose", "tracks", "map"}) {
     input.rejected[key] = 0;
     input.accepted[key] = 0;
@@ -82,10 +84,12 @@ EvalInput ReadEvalInput(const std::string& path, const Channels& channels, LogRe
       for (const auto& o : msg.objects) {
         ok = ok && Finite({o.x_m, o.y_m, o.vx_mps, o.vy_mps, o.radius_m}) &&
              (o.object_class == slammtt_msgs::object_truth_t::CLASS_STATIC ||
-              o.object_class == slammtt_msgs::object_truth_t::CLASS_MOVING);
+              o.object_class == slammtt_msgs::object_truth_t::CLASS_MOVING) &&
+             o.beams_on_object >= 0;
         scan.objects.push_back(TruthObjectSample{
-            o.id, Eigen::Vector2d(o.x_m, o.y_m),
-            o.object_class == slammtt_msgs::object_truth_t::CLASS_MOVING, o.visible != 0});
+            o.id, Eigen::Vector2d(o.x_m, o.y_m), Eigen::Vector2d(o.vx_mps, o.vy_mps),
+            o.object_class == slammtt_msgs::object_truth_t::CLASS_MOVING, o.visible != 0,
+            o.beams_on_object});
       }
       for (size_t a = 0; ok && a < scan.objects.size(); ++a) {
         for (size_t b = a + 1; b < scan.objects.size(); ++b) {
@@ -97,6 +101,8 @@ EvalInput ReadEvalInput(const std::string& path, const Channels& channels, LogRe
         return;
       }
       input.truth.push_back(std::move(scan));
+    } else if (e.channel == laser_scan_channel) {
+      ++input.laser_scans;
     } else if (e.channel == odometry_channel) {
       slammtt_msgs::odometry_t msg{};
       if (!Decode(e.data, e.size, &msg) || !ValidUtime(msg.utime) ||
@@ -190,8 +196,42 @@ EvalOptions ReadEvalOptions(const Config& section) {
   if (!(options.gospa_alpha > 0.0 && options.gospa_alpha <= 2.0)) {
     section.FailKey("gospa_alpha", "must be in (0, 2]");
   }
+  const int64_t min_beams = section.GetInt("min_beams", options.min_beams);
+  if (min_beams < 1 || min_beams > kMaxMinBeams) {
+    section.FailKey("min_beams", "must be in [1, " + std::to_string(kMaxMinBeams) + "]");
+  }
+  options.min_beams = static_cast<int>(min_beams);
+  const double speed_mps = section.GetDouble("min_moving_speed_mps", options.min_moving_speed_mps);
+  options.min_moving_speed_mps = speed_mps;
+  if (!(speed_mps >= 0.0 && speed_mps <= kMaxMinMovingSpeedMps)) {
+    section.FailKey("min_moving_speed_mps", "must be in [0, 100] m/s");
+  }
   section.CheckUnused();
   return options;
+}
+
+void AddEvalCommandLineOptions(CommandLine* command_line) {
+  command_line->AddOption("min-beams", "N",
+                          "in a log with LASER_SCAN, an object is visible at a scan when at least "
+                          "N beams hit it (eval.min_beams, default 3)");
+  command_line->AddOption("min-moving-speed-mps", "MPS",
+                          "a mover slower than this stands still: don't care for tracking "
+                          "(eval.min_moving_speed_mps, default 0.2; 0 turns it off)");
+}
+
+void ApplyEvalCommandLine(const CommandLine& command_line, EvalOptions* options) {
+  if (const auto n = command_line.IntValue("min-beams")) {
+    if (*n < 1 || *n > kMaxMinBeams) {
+      throw UsageError("--min-beams must be in [1, " + std::to_string(kMaxMinBeams) + "]");
+    }
+    options->min_beams = static_cast<int>(*n);
+  }
+  if (const auto v = command_line.DoubleValue("min-moving-speed-mps")) {
+    if (!(*v >= 0.0 && *v <= kMaxMinMovingSpeedMps)) {
+      throw UsageError("--min-moving-speed-mps must be in [0, 100]");
+    }
+    options->min_moving_speed_mps = *v;
+  }
 }
 
 void WriteFileAtomically(const std::string& path, const std::string& text) {

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "runtime/channels.h"
+#include "runtime/command_line.h"
 #include "runtime/config.h"
 #include "tools/eval/eval_input.h"
 #include "tools/eval/evaluation.h"
@@ -25,9 +26,14 @@ namespace slammtt {
 EvalInput ReadEvalInput(const std::string& path, const Channels& channels, LogReadResult* read);
 
 // The `eval:` section (docs/evaluation.md): match_threshold_m (1.0), ospa_cutoff_m (1.0),
-// ospa_order (2), gospa_alpha (2). ConfigError naming file, line and key for an unknown key or a
-// value outside the range Evaluate() accepts.
+// ospa_order (2), gospa_alpha (2), min_beams (3), min_moving_speed_mps (0.2). ConfigError naming
+// file, line and key for an unknown key or a value outside the range Evaluate() accepts.
 EvalOptions ReadEvalOptions(const Config& section);
+
+// Declares --min-beams N and --min-moving-speed-mps MPS, which override the `eval:` section.
+void AddEvalCommandLineOptions(CommandLine* command_line);
+// Applies them to `options`; UsageError naming the option for a value out of range.
+void ApplyEvalCommandLine(const CommandLine& command_line, EvalOptions* options);
 
 // Writes `text` to "<path>.partial" and renames it to `path`: a failure never leaves a half
 // file under the final name. Throws std::runtime_error naming the path.

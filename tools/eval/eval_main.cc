@@ -27,10 +27,12 @@ int Run(int argc, char** argv) {
                    "a log with GROUND_TRUTH (slammtt-world, or slammtt-replay's output)");
   cl.AddOption("json", "REPORT.json", "write the full report as JSON");
   cl.AddOption("plots", "DIR", "write trajectory.svg, map.svg, tracks.svg, errors.svg into DIR");
+  AddEvalCommandLineOptions(&cl);
   if (!cl.Parse(argc, argv)) return 0;
   const std::string path = *cl.Positional("LOG.lcm");
   const ProcessSettings settings = LoadProcessSettings(cl);
-  const EvalOptions options = ReadEvalOptions(settings.config.Child("eval"));
+  EvalOptions options = ReadEvalOptions(settings.config.Child("eval"));
+  ApplyEvalCommandLine(cl, &options);
 
   LogReadResult read;
   const EvalInput input = ReadEvalInput(path, settings.channels, &read);

@@ -14,10 +14,30 @@ namespace {
 
 void CheckOptions(const EvalOptions& o) {
   if (!(o.match_threshold_m > 0.0) || !(o.ospa_cutoff_m > 0.0) || !(o.ospa_order >= 1.0) ||
-      !(o.gospa_alpha > 0.0 && o.gospa_alpha <= 2.0)) {
+      !(o.gospa_alpha > 0.0 && o.gospa_alpha <= 2.0) || o.min_beams < 1 ||
+      o.min_beams > kMaxMinBeams ||
+      !(o.min_moving_speed_mps >= 0.0 && o.min_moving_speed_mps <= kMaxMinMovingSpeedMps)) {
     throw std::invalid_argument(
-        "evaluation options: thresholds must be positive, order >= 1, 0 < alpha <= 2");
+        "evaluation options: thresholds must be positive, order >= 1, 0 < alpha <= 2, "
+        "min_beams >= 1, min_moving_speed_mps >= 0");
   }
+}
+
+// The evaluation's visibility rule (evaluation.h): beams in a scan log, the world's flag in a
+// feature log.
+bool Visible(const TruthObjectSample& o, bool scan_log, int min_beams) {
+  return scan_log ? o.beams_on_object >= min_beams : o.visible;
+}
+
+// Seen by the world (at least one beam) but short of the beams a feature needs.
+bool FewBeams(const TruthObjectSample& o, bool scan_log, int min_beams) {
+  return scan_log && o.beams_on_object >= 1 && o.beams_on_object < min_beams;
+}
+
+// A mover standing still at this scan (evaluation.h). Strictly below the threshold, so a
+// threshold of 0 turns the rule off.
+bool Standing(const TruthObjectSample& o, double min_moving_speed_mps) {
+  return o.moving && o.velocity_mps.norm() < min_moving_speed_mps;
 }
 
 // Anchors `pairs` at the first one and scores them; nullopt without any pair.
@@ -67,6 +87,8 @@ EvaluationReport Evaluate(const EvalInput& input, const EvalOptions& options) {
   EvaluationReport report;
   report.options = options;
   report.source = input.source;
+  report.scan_log = input.laser_scans > 0;
+  const bool scan_log = report.scan_log;
   report.truth_scans = static_cast<int64_t>(input.truth.size());
   for (const auto& [key, n] : input.rejected) {
     if (n > 0) {
@@ -86,16 +108,27 @@ EvaluationReport Evaluate(const EvalInput& input, const EvalOptions& options) {
   std::map<int64_t, std::vector<Eigen::Vector2d>> mover_paths;
   std::map<int64_t, Eigen::Vector2d> static_last_seen;
   std::map<int64_t, Eigen::Vector2d> static_any;
+  std::map<int64_t, bool> ever_visible;     // by the evaluation's rule, per object
+  std::map<int64_t, bool> ever_few_beams;   // seen by the world with too few beams
+  std::map<int64_t, bool> is_mover;
   for (const TruthScan& scan : input.truth) {
     report.truth_trajectory.push_back({scan.utime, scan.robot});
     for (const TruthObjectSample& o : scan.objects) {
+      const bool visible = Visible(o, scan_log, options.min_beams);
+      ever_visible[o.id] = ever_visible[o.id] || visible;
+      ever_few_beams[o.id] = ever_few_beams[o.id] || FewBeams(o, scan_log, options.min_beams);
+      is_mover[o.id] = o.moving;
       if (o.moving) {
         mover_paths[o.id].push_back(o.position_m);
       } else {
         static_any[o.id] = o.position_m;
-        if (o.visible) static_last_seen[o.id] = o.position_m;
+        if (visible) static_last_seen[o.id] = o.position_m;
       }
     }
+  }
+  for (const auto& [id, few] : ever_few_beams) {
+    if (!few || ever_visible.at(id)) continue;
+    ++(is_mover.at(id) ? report.movers_few_beams_only : report.statics_few_beams_only);
   }
   for (const auto& [id, path] : mover_paths) report.mover_paths.push_back(path);
   for (const auto& [id, p] : static_any) {
@@ -169,6 +202,8 @@ EvaluationReport Evaluate(const EvalInput& input, const EvalOptions& options) {
   ClearMotAccumulator clear_mot(options.match_threshold_m);
   ClassificationAccumulator classification(options.match_threshold_m);
   std::map<int64_t, TrackPath> paths;
+  std::set<int64_t> movers_few_beams;
+  std::set<int64_t> movers_standing;
   double ospa_sum = 0.0;
   double ospa_loc_sum = 0.0;
   double ospa_card_sum = 0.0;
@@ -182,15 +217,32 @@ EvaluationReport Evaluate(const EvalInput& input, const EvalOptions& options) {
     if (!row.had_tracks_message) ++tracking.scans_without_tracks;
 
     std::vector<IdentifiedPoint> truth_movers;
-    std::vector<Eigen::Vector2d> dont_care;
+    DontCare dont_care;
     std::vector<TruthObject> truth_objects;
     for (const TruthObjectSample& o : scan.objects) {
-      if (o.moving && o.visible) truth_movers.push_back({o.id, o.position_m});
-      if (o.moving && !o.visible) dont_care.push_back(o.position_m);
+      const bool visible = Visible(o, scan_log, options.min_beams);
+      const bool standing = Standing(o, options.min_moving_speed_mps);
       truth_objects.push_back({o.id, o.position_m,
-                               o.moving ? ObjectLabel::kMoving : ObjectLabel::kStatic,
-                               o.visible});
+                               o.moving ? ObjectLabel::kMoving : ObjectLabel::kStatic, visible,
+                               standing});
+      if (!o.moving) continue;
+      if (!visible) {
+        dont_care.positions.push_back(o.position_m);
+        ++tracking.mover_scans_invisible;
+        if (FewBeams(o, scan_log, options.min_beams)) {
+          ++row.num_few_beams;
+          movers_few_beams.insert(o.id);
+        }
+      } else if (standing) {
+        dont_care.objects.push_back({o.id, o.position_m});
+        ++row.num_standing;
+        movers_standing.insert(o.id);
+      } else {
+        truth_movers.push_back({o.id, o.position_m});
+      }
     }
+    tracking.mover_scans_few_beams += row.num_few_beams;
+    tracking.mover_scans_standing += row.num_standing;
     std::vector<IdentifiedPoint> hypotheses;
     std::vector<LabelledTrack> labelled;
     if (row.had_tracks_message) {
@@ -207,6 +259,16 @@ EvaluationReport Evaluate(const EvalInput& input, const EvalOptions& options) {
     }
     const ClearMotFrame frame = clear_mot.AddFrame(truth_movers, hypotheses, dont_care);
     classification.AddScan(scan.utime, truth_objects, labelled);
+    for (const IdentitySwitch& e : frame.id_switches) {
+      tracking.identity_switches.push_back({scan.utime, e});
+    }
+    for (const Fragmentation& e : frame.fragmentations) {
+      // Every AddFrame call has its row in tracking.scans, in order: the frame index is the row.
+      const size_t since = static_cast<size_t>(e.untracked_since_frame);
+      tracking.fragmentations.push_back(
+          {scan.utime, since < tracking.scans.size() ? tracking.scans[since].utime : scan.utime,
+           e});
+    }
 
     const std::set<int64_t> excused(frame.dont_care_hypotheses.begin(),
                                     frame.dont_care_hypotheses.end());
@@ -246,13 +308,15 @@ EvaluationReport Evaluate(const EvalInput& input, const EvalOptions& options) {
   tracking.ospa_cardinality_mean_m = ospa_card_sum / n;
   tracking.gospa_mean_m = gospa_sum / n;
   tracking.clear_mot = clear_mot.Summary();
+  tracking.movers_few_beams = static_cast<int64_t>(movers_few_beams.size());
+  tracking.movers_standing = static_cast<int64_t>(movers_standing.size());
   if (tracking.scans_without_tracks > 0) {
     report.notes.push_back(Count(tracking.scans_without_tracks,
                                  "GROUND_TRUTH scans within the TRACKS span have no TRACKS of "
                                  "the same utime (scored as an empty output)"));
   }
   if (!tracking.clear_mot.mota) {
-    report.notes.push_back("no visible moving object in any scored scan: MOTA undefined");
+    report.notes.push_back("no visible mover in motion in any scored scan: MOTA undefined");
   }
   report.tracking = tracking;
   report.classification = classification.Summary();

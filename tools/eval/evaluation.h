@@ -7,12 +7,22 @@
 // - Robot: absolute trajectory error of POSE at every ground-truth scan with a POSE of the same
 //   utime; of ODOMETRY interpolated at the ground-truth times (dead reckoning, for comparison).
 // - Map: the final MAP against the static objects that were ever visible (map_score.h).
+// - Visibility: in a log with LASER_SCAN (raw scans, features made by the segmenter) an object
+//   is visible at a scan when beams_on_object >= min_beams (the segmenter's minimum cluster
+//   size: fewer points never make a feature); in a feature log, the world's `visible` flag (a
+//   feature of it was emitted). Used by the map, tracking and classification alike.
+// - Standing still: a MOVING object whose true speed is below min_moving_speed_mps at a scan is,
+//   while it stands, indistinguishable from a post (the paper's Algorithm 2, line 12: a moving
+//   object that stops becomes a static landmark): "don't care" for tracking at that scan and not
+//   judged by the classification.
 // - Tracking, per ground-truth scan from the first to the last TRACKS message (a scan in that
-//   window without TRACKS counts as an empty output): truth = visible MOVING objects, output =
-//   confirmed tracks labelled MOVING; an unmatched track within the threshold of an existing
-//   but invisible mover is "don't care" and is left out of CLEAR-MOT and of OSPA/GOSPA.
+//   window without TRACKS counts as an empty output): truth = visible MOVING objects that are not
+//   standing, output = confirmed tracks labelled MOVING. Don't care (clear_mot.h, DontCare): a
+//   track the optimal assignment gives to a visible standing mover, and an unmatched track
+//   within the threshold of an existing but invisible mover; both are left out of CLEAR-MOT and
+//   of OSPA/GOSPA. Every identity switch and fragmentation is listed with its time.
 // - Classification: visible objects of both classes against every confirmed track
-//   (classification_score.h), over the same window.
+//   (classification_score.h), over the same window; standing scans of movers are not judged.
 // Missing inputs leave the affected results empty, with a one-line note each.
 #pragma once
 
@@ -34,7 +44,18 @@ struct EvalOptions {
   double ospa_cutoff_m = 1.0;      // c of OSPA and GOSPA
   double ospa_order = 2.0;         // p of OSPA and GOSPA
   double gospa_alpha = 2.0;
+  // Visibility in a log with LASER_SCAN: beams_on_object >= min_beams. Default: the segmenter's
+  // default minimum cluster size (perception/segmenter_options.h, min_points = 3); a stack that
+  // changes segmenter.min_points should set the same here. 1 gives the world's own flag back.
+  int min_beams = 3;
+  // A MOVING object slower than this (true speed, m/s) stands still at that scan. 0 turns the
+  // rule off.
+  double min_moving_speed_mps = 0.2;
 };
+
+// Upper bounds of the options, well beyond any use (a laser scan has a few thousand beams).
+inline constexpr int kMaxMinBeams = 100000;
+inline constexpr double kMaxMinMovingSpeedMps = 100.0;
 
 struct TrajectoryResult {
   Pose2 anchor;              // estimate frame -> truth frame
@@ -48,15 +69,37 @@ struct TrackingScan {
   int num_truth = 0;
   int num_tracks = 0;  // confirmed MOVING tracks, don't-cares included
   int num_matches = 0;
-  int num_dont_care = 0;
+  int num_dont_care = 0;  // tracks excused
+  int num_few_beams = 0;  // movers hit by 1 to min_beams - 1 beams (scan log): not visible
+  int num_standing = 0;   // visible movers standing still: not in the truth set
   double ospa_m = 0.0;
   double gospa_m = 0.0;
   bool had_tracks_message = true;
 };
 
+// An identity switch or a fragmentation with the utime of the scan where it is counted.
+struct IdentitySwitchEvent {
+  int64_t utime = 0;
+  IdentitySwitch what;
+};
+struct FragmentationEvent {
+  int64_t utime = 0;                  // tracked again
+  int64_t untracked_since_utime = 0;  // the first scan of the gap
+  Fragmentation what;
+};
+
 struct TrackingResult {
   std::vector<TrackingScan> scans;
   ClearMotSummary clear_mot;
+  std::vector<IdentitySwitchEvent> identity_switches;
+  std::vector<FragmentationEvent> fragmentations;
+  // What the rules took out of the truth set over the scored scans, as (object, scan) pairs and
+  // as distinct objects. A mover both standing and short of beams counts as short of beams.
+  int64_t mover_scans_invisible = 0;   // not visible by the visibility rule (few beams included)
+  int64_t mover_scans_few_beams = 0;   // hit by 1 to min_beams - 1 beams (scan log only)
+  int64_t movers_few_beams = 0;
+  int64_t mover_scans_standing = 0;    // visible and standing still
+  int64_t movers_standing = 0;
   double ospa_mean_m = 0.0;
   double ospa_max_m = 0.0;
   double ospa_localisation_mean_m = 0.0;
@@ -84,6 +127,12 @@ struct AnchoredLandmark {
 struct EvaluationReport {
   EvalOptions options;
   std::string source;
+  // True when the log holds LASER_SCAN: visibility is beams_on_object >= min_beams.
+  bool scan_log = false;
+  // Objects the world marked visible at some scan but never visible by the min_beams rule (so
+  // neither in the static truth of the map nor scored by the classification), per true class.
+  int64_t statics_few_beams_only = 0;
+  int64_t movers_few_beams_only = 0;
   int64_t truth_scans = 0;
   int64_t first_utime = 0;
   int64_t last_utime = 0;
@@ -104,7 +153,8 @@ struct EvaluationReport {
 };
 
 // Scores `input`. Throws std::invalid_argument for options out of range (thresholds not
-// positive, order < 1, alpha outside (0, 2]).
+// positive, order < 1, alpha outside (0, 2], min_beams outside [1, kMaxMinBeams],
+// min_moving_speed_mps outside [0, kMaxMinMovingSpeedMps]).
 EvaluationReport Evaluate(const EvalInput& input, const EvalOptions& options);
 
 }  // namespace slammtt

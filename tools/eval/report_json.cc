@@ -92,13 +92,19 @@ json ReportToJson(const EvalInput& input, const EvaluationReport& report) {
   for (const auto& [key, n] : input.rejected) channels[key]["rejected"] = n;
   detail["input"] = {{"log", report.source},
                      {"ground_truth_scans", report.truth_scans},
+                     {"laser_scans", input.laser_scans},
                      {"first_utime", report.first_utime},
                      {"last_utime", report.last_utime},
                      {"messages", channels}};
   detail["options"] = {{"match_threshold_m", report.options.match_threshold_m},
                        {"ospa_cutoff_m", report.options.ospa_cutoff_m},
                        {"ospa_order", report.options.ospa_order},
-                       {"gospa_alpha", report.options.gospa_alpha}};
+                       {"gospa_alpha", report.options.gospa_alpha},
+                       {"min_beams", report.options.min_beams},
+                       {"min_moving_speed_mps", report.options.min_moving_speed_mps},
+                       {"visibility", report.scan_log
+                                          ? "beams_on_object >= min_beams (log with LASER_SCAN)"
+                                          : "the world's visible flag (log without LASER_SCAN)"}};
   detail["robot"] = report.robot ? TrajectoryJson(*report.robot) : json(nullptr);
   detail["odometry"] = report.odometry ? TrajectoryJson(*report.odometry) : json(nullptr);
   if (report.map) {
@@ -112,6 +118,7 @@ json ReportToJson(const EvalInput& input, const EvaluationReport& report) {
                      {"static_objects_ever_visible", m.num_static_truth},
                      {"static_objects_never_visible",
                       static_cast<int64_t>(report.unseen_static_objects.size())},
+                     {"static_objects_few_beams_only", report.statics_few_beams_only},
                      {"matched", m.num_matched},
                      {"static_recall", OrNull(m.static_recall)},
                      {"landmark_rmse_m", OrNull(m.landmark_rmse_m)},
@@ -129,7 +136,8 @@ json ReportToJson(const EvalInput& input, const EvaluationReport& report) {
     json per_scan = {{"utime", json::array()},       {"ospa_m", json::array()},
                      {"gospa_m", json::array()},     {"truth", json::array()},
                      {"tracks", json::array()},      {"matches", json::array()},
-                     {"dont_care", json::array()}};
+                     {"dont_care", json::array()},   {"few_beams", json::array()},
+                     {"standing", json::array()}};
     for (const TrackingScan& s : t.scans) {
       per_scan["utime"].push_back(s.utime);
       per_scan["ospa_m"].push_back(s.ospa_m);
@@ -138,6 +146,23 @@ json ReportToJson(const EvalInput& input, const EvaluationReport& report) {
       per_scan["tracks"].push_back(s.num_tracks);
       per_scan["matches"].push_back(s.num_matches);
       per_scan["dont_care"].push_back(s.num_dont_care);
+      per_scan["few_beams"].push_back(s.num_few_beams);
+      per_scan["standing"].push_back(s.num_standing);
+    }
+    json switches = json::array();
+    for (const IdentitySwitchEvent& e : t.identity_switches) {
+      switches.push_back({{"utime", e.utime},
+                          {"truth_id", e.what.truth_id},
+                          {"previous_track_id", e.what.previous_hypothesis_id},
+                          {"new_track_id", e.what.new_hypothesis_id}});
+    }
+    json fragmentations = json::array();
+    for (const FragmentationEvent& e : t.fragmentations) {
+      fragmentations.push_back({{"utime", e.utime},
+                                {"untracked_since_utime", e.untracked_since_utime},
+                                {"truth_id", e.what.truth_id},
+                                {"previous_track_id", e.what.previous_hypothesis_id},
+                                {"new_track_id", e.what.new_hypothesis_id}});
     }
     detail["tracking"] = {
         {"scans", static_cast<int64_t>(t.scans.size())},
@@ -159,6 +184,15 @@ json ReportToJson(const EvalInput& input, const EvaluationReport& report) {
                        {"dont_care", c.num_dont_care},
                        {"mota", OrNull(c.mota)},
                        {"motp_m", OrNull(c.motp_m)}}},
+        {"dont_care", {{"tracks_on_standing_movers", c.num_dont_care_objects},
+                       {"tracks_near_invisible_movers", c.num_dont_care_positions},
+                       {"mover_scans_invisible", t.mover_scans_invisible},
+                       {"mover_scans_few_beams", t.mover_scans_few_beams},
+                       {"movers_few_beams", t.movers_few_beams},
+                       {"mover_scans_standing", t.mover_scans_standing},
+                       {"movers_standing", t.movers_standing}}},
+        {"identity_switch_events", switches},
+        {"fragmentation_events", fragmentations},
         {"per_scan", per_scan}};
   } else {
     detail["tracking"] = nullptr;
@@ -184,6 +218,8 @@ json ReportToJson(const EvalInput& input, const EvaluationReport& report) {
       for (int c = 0; c < kNumFinalLabels; ++c) confusion[rows[r]][cols[c]] = s.confusion[r][c];
     }
     detail["classification"] = {{"objects", objects},
+                                {"movers_seen_only_standing", s.movers_seen_only_standing},
+                                {"movers_few_beams_only", report.movers_few_beams_only},
                                 {"confusion_true_by_final", confusion},
                                 {"accuracy", OrNull(s.accuracy)},
                                 {"accuracy_of_tracked", OrNull(s.accuracy_of_tracked)},
@@ -239,6 +275,14 @@ std::string ReportSummaryText(const EvaluationReport& report) {
         << " m, MOTA " << FixedOr(t.clear_mot.mota, 3) << ", MOTP "
         << FixedOr(t.clear_mot.motp_m, 3, " m") << ", " << t.clear_mot.num_id_switches
         << " identity switches, " << t.clear_mot.num_fragmentations << " fragmentations";
+    out << "\n  don't care:     " << t.mover_scans_standing << " mover-scans standing still (<"
+        << Fixed(report.options.min_moving_speed_mps, 2) << " m/s), " << t.mover_scans_invisible
+        << " invisible";
+    if (report.scan_log && report.options.min_beams > 1) {
+      out << " (" << t.mover_scans_few_beams << " with 1-" << report.options.min_beams - 1
+          << " beams)";
+    }
+    out << "; " << t.clear_mot.num_dont_care << " tracks excused";
   } else {
     out << "n/a";
   }

@@ -32,6 +32,9 @@ void ClassificationAccumulator::AddScan(int64_t utime, const std::vector<TruthOb
     if (!object.position_m.allFinite()) {
       throw std::invalid_argument("classification: non-finite truth position");
     }
+    if (object.standing && object.true_class != ObjectLabel::kMoving) {
+      throw std::invalid_argument("classification: only a mover can stand still");
+    }
     if (object.visible) visible.push_back(&object);
   }
   ids.clear();
@@ -46,6 +49,10 @@ void ClassificationAccumulator::AddScan(int64_t utime, const std::vector<TruthOb
   }
 
   for (const TruthObject* object : visible) {
+    if (object->standing) {
+      seen_standing_.insert(object->id);
+      continue;
+    }
     auto [it, inserted] = histories_.try_emplace(object->id);
     if (inserted) {
       it->second.true_class = object->true_class;
@@ -64,7 +71,7 @@ void ClassificationAccumulator::AddScan(int64_t utime, const std::vector<TruthOb
   const Assignment assignment = SolveMinCostAssignment(cost);
   for (size_t i = 0; i < visible.size(); ++i) {
     const int j = assignment.row_to_col[i];
-    if (j < 0) continue;
+    if (j < 0 || visible[i]->standing) continue;
     histories_.at(visible[i]->id)
         .labels.emplace_back(utime, tracks[static_cast<size_t>(j)].label);
   }
@@ -113,6 +120,9 @@ ClassificationSummary ClassificationAccumulator::Summary() const {
       summary.max_delay_s = std::max(summary.max_delay_s.value_or(0.0), delay_s);
     }
     summary.objects.push_back(object);
+  }
+  for (int64_t id : seen_standing_) {
+    if (histories_.count(id) == 0) summary.movers_seen_only_standing.push_back(id);
   }
   if (!histories_.empty()) {
     summary.accuracy = static_cast<double>(correct) / static_cast<double>(histories_.size());

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <set>
 #include <stdexcept>
+#include <string>
 
 #include "tools/metrics/assignment.h"
 
@@ -33,9 +34,22 @@ ClearMotAccumulator::ClearMotAccumulator(double match_threshold_m)
 
 ClearMotFrame ClearMotAccumulator::AddFrame(const std::vector<IdentifiedPoint>& truth,
                                             const std::vector<IdentifiedPoint>& hypotheses,
-                                            const std::vector<Eigen::Vector2d>& dont_care) {
+                                            const DontCare& dont_care) {
   CheckUniqueFinite(truth, "truth");
   CheckUniqueFinite(hypotheses, "hypothesis");
+  CheckUniqueFinite(dont_care.objects, "don't-care object");
+  for (const IdentifiedPoint& object : dont_care.objects) {
+    for (const IdentifiedPoint& t : truth) {
+      if (t.id == object.id) {
+        throw std::invalid_argument("CLEAR-MOT: object " + std::to_string(t.id) +
+                                    " is both in the truth set and a don't-care object");
+      }
+    }
+  }
+  for (const Eigen::Vector2d& p : dont_care.positions) {
+    if (!p.allFinite()) throw std::invalid_argument("CLEAR-MOT: non-finite don't-care position");
+  }
+  const int64_t frame_index = totals_.num_frames;
   ClearMotFrame frame;
   frame.num_truth = static_cast<int>(truth.size());
   frame.num_hypotheses = static_cast<int>(hypotheses.size());
@@ -91,6 +105,8 @@ ClearMotFrame ClearMotAccumulator::AddFrame(const std::vector<IdentifiedPoint>& 
     if (history != objects_.end() && history->second.last_hypothesis &&
         *history->second.last_hypothesis != hypotheses[j].id) {
       ++frame.num_id_switches;
+      frame.id_switches.push_back(
+          {truth[i].id, *history->second.last_hypothesis, hypotheses[j].id});
     }
   }
 
@@ -100,28 +116,59 @@ ClearMotFrame ClearMotAccumulator::AddFrame(const std::vector<IdentifiedPoint>& 
     const int j = truth_to_hyp[i];
     if (j < 0) {
       ++frame.num_misses;
-      if (history.ever_tracked) history.interrupted = true;
+      if (history.ever_tracked && !history.interrupted) {
+        history.interrupted = true;
+        history.interrupted_since_frame = frame_index;
+      }
       continue;
     }
     const IdentifiedPoint& hyp = hypotheses[static_cast<size_t>(j)];
     ++frame.num_matches;
     frame.distance_sum_m += distance(i, static_cast<size_t>(j));
     frame.matches.emplace_back(truth[i].id, hyp.id);
-    if (history.ever_tracked && history.interrupted) ++frame.num_fragmentations;
+    if (history.ever_tracked && history.interrupted) {
+      ++frame.num_fragmentations;
+      frame.fragmentations.push_back(
+          {truth[i].id, *history.last_hypothesis, hyp.id, history.interrupted_since_frame});
+    }
     history.ever_tracked = true;
     history.interrupted = false;
     history.last_hypothesis = hyp.id;
     last_object_of_hypothesis_[hyp.id] = truth[i].id;
   }
 
-  // Step 4: unmatched hypotheses are false positives unless excused.
+  // Step 4: unmatched hypotheses are false positives unless excused: first one each by the
+  // don't-care objects (optimal assignment), then any near a don't-care position.
+  std::vector<size_t> unmatched;
   for (size_t j = 0; j < hypotheses.size(); ++j) {
-    if (hyp_taken[j]) continue;
-    bool excused = false;
-    for (const Eigen::Vector2d& p : dont_care) {
-      if ((p - hypotheses[j].position_m).norm() <= threshold_m_) excused = true;
+    if (!hyp_taken[j]) unmatched.push_back(j);
+  }
+  std::vector<bool> excused(hypotheses.size(), false);
+  Eigen::MatrixXd dont_care_cost(dont_care.objects.size(), unmatched.size());
+  for (size_t a = 0; a < dont_care.objects.size(); ++a) {
+    for (size_t b = 0; b < unmatched.size(); ++b) {
+      const double d =
+          (dont_care.objects[a].position_m - hypotheses[unmatched[b]].position_m).norm();
+      dont_care_cost(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b)) =
+          d <= threshold_m_ ? d : kForbiddenCost;
     }
-    if (excused) {
+  }
+  const Assignment dont_care_assignment = SolveMinCostAssignment(dont_care_cost);
+  for (size_t a = 0; a < dont_care.objects.size(); ++a) {
+    const int b = dont_care_assignment.row_to_col[a];
+    if (b < 0) continue;
+    excused[unmatched[static_cast<size_t>(b)]] = true;
+    ++frame.num_dont_care_objects;
+  }
+  for (size_t j : unmatched) {
+    if (excused[j]) continue;
+    for (const Eigen::Vector2d& p : dont_care.positions) {
+      if ((p - hypotheses[j].position_m).norm() <= threshold_m_) excused[j] = true;
+    }
+    if (excused[j]) ++frame.num_dont_care_positions;
+  }
+  for (size_t j : unmatched) {
+    if (excused[j]) {
       ++frame.num_dont_care;
       frame.dont_care_hypotheses.push_back(hypotheses[j].id);
     } else {
@@ -137,6 +184,8 @@ ClearMotFrame ClearMotAccumulator::AddFrame(const std::vector<IdentifiedPoint>& 
   totals_.num_id_switches += frame.num_id_switches;
   totals_.num_fragmentations += frame.num_fragmentations;
   totals_.num_dont_care += frame.num_dont_care;
+  totals_.num_dont_care_objects += frame.num_dont_care_objects;
+  totals_.num_dont_care_positions += frame.num_dont_care_positions;
   totals_.distance_sum_m += frame.distance_sum_m;
   return frame;
 }

@@ -13,8 +13,15 @@
 //    distance among the assignments with the most pairs within the threshold).
 // 3. A new match whose object was last matched to a different hypothesis is an identity switch
 //    (mismatch, section 2.1.1 step 3).
-// 4. An unmatched hypothesis within the threshold of a "don't care" position (an existing but
-//    currently invisible true object) is neither a false positive nor a match.
+// 4. "Don't care" (DontCare below): what is left of the hypotheses after steps 1-3 may be
+//    excused, i.e. counted neither as a false positive nor as a match. First, each don't-care
+//    object (an object that is seen but need not be tracked now: a mover standing still) excuses
+//    the one hypothesis the optimal assignment within the threshold gives it. Then every
+//    hypothesis within the threshold of a don't-care position (an object that exists but cannot
+//    be seen: occluded, out of view, too few beams) is excused: a tracker coasting through an
+//    occlusion is right to. Don't-care objects are not in the truth set: their correspondence
+//    history (last matched hypothesis, fragmentation state) stays as it was, as for an object
+//    absent from the frame.
 //
 // Totals: MOTA = 1 - (misses + false positives + identity switches) / truth count (eq. 3),
 // MOTP = sum of matched distances / number of matches in metres (eq. 1). A fragmentation is
@@ -38,6 +45,33 @@ struct IdentifiedPoint {
   Eigen::Vector2d position_m = Eigen::Vector2d::Zero();
 };
 
+// What is present at a frame but neither to be tracked nor to be held against the tracker
+// (step 4 above).
+struct DontCare {
+  // Seen, but need not be tracked now: each excuses at most one hypothesis (optimal assignment
+  // within the threshold among the hypotheses left unmatched by the truth set). Ids must not
+  // repeat and must not be in the frame's truth set.
+  std::vector<IdentifiedPoint> objects;
+  // Exist but cannot be seen: every unmatched hypothesis within the threshold is excused.
+  std::vector<Eigen::Vector2d> positions;
+};
+
+// A new correspondence of a true object that contradicts its last one (step 3).
+struct IdentitySwitch {
+  int64_t truth_id = 0;
+  int64_t previous_hypothesis_id = 0;
+  int64_t new_hypothesis_id = 0;
+};
+
+// A true object tracked again after it was untracked while in the truth set.
+struct Fragmentation {
+  int64_t truth_id = 0;
+  int64_t previous_hypothesis_id = 0;  // the hypothesis it was last matched to
+  int64_t new_hypothesis_id = 0;       // the hypothesis it is matched to now (may be the same)
+  int64_t untracked_since_frame = 0;   // index (0-based, in AddFrame order) of the first frame
+                                       // in which it was in the truth set and unmatched
+};
+
 struct ClearMotFrame {
   int num_truth = 0;
   int num_hypotheses = 0;
@@ -46,10 +80,14 @@ struct ClearMotFrame {
   int num_false_positives = 0;
   int num_id_switches = 0;
   int num_fragmentations = 0;  // fragmentations that ended in this frame
-  int num_dont_care = 0;       // unmatched hypotheses excused by a don't-care position
+  int num_dont_care = 0;       // unmatched hypotheses excused (both kinds below)
+  int num_dont_care_objects = 0;    // ... by a don't-care object (DontCare::objects)
+  int num_dont_care_positions = 0;  // ... by a don't-care position (DontCare::positions)
   double distance_sum_m = 0.0;
   std::vector<std::pair<int64_t, int64_t>> matches;  // (truth id, hypothesis id)
-  std::vector<int64_t> dont_care_hypotheses;          // their ids
+  std::vector<int64_t> dont_care_hypotheses;          // ids of the excused hypotheses
+  std::vector<IdentitySwitch> id_switches;            // one per counted switch
+  std::vector<Fragmentation> fragmentations;          // one per counted fragmentation
 };
 
 struct ClearMotSummary {
@@ -61,6 +99,8 @@ struct ClearMotSummary {
   int64_t num_id_switches = 0;
   int64_t num_fragmentations = 0;
   int64_t num_dont_care = 0;
+  int64_t num_dont_care_objects = 0;
+  int64_t num_dont_care_positions = 0;
   double distance_sum_m = 0.0;
   std::optional<double> mota;    // absent when there was no true object at all
   std::optional<double> motp_m;  // absent when nothing was matched
@@ -71,11 +111,12 @@ class ClearMotAccumulator {
   // `match_threshold_m` > 0 (std::invalid_argument otherwise).
   explicit ClearMotAccumulator(double match_threshold_m);
 
-  // Scores one frame. Ids must be unique within `truth` and within `hypotheses`, and every
-  // position finite (std::invalid_argument otherwise: the caller validates log input first).
+  // Scores one frame. Ids must be unique within `truth`, within `hypotheses` and within
+  // `dont_care.objects`, no don't-care object may share an id with `truth`, and every position
+  // must be finite (std::invalid_argument otherwise: the caller validates log input first).
   ClearMotFrame AddFrame(const std::vector<IdentifiedPoint>& truth,
                          const std::vector<IdentifiedPoint>& hypotheses,
-                         const std::vector<Eigen::Vector2d>& dont_care_positions = {});
+                         const DontCare& dont_care = {});
 
   ClearMotSummary Summary() const;
 
@@ -84,6 +125,7 @@ class ClearMotAccumulator {
     std::optional<int64_t> last_hypothesis;
     bool ever_tracked = false;
     bool interrupted = false;  // untracked while present since it was last tracked
+    int64_t interrupted_since_frame = 0;
   };
 
   double threshold_m_;
