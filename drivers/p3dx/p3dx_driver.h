@@ -101,7 +101,6 @@ class P3dxDriver {
   // The status as it would be published now.
   slammtt_msgs::base_status_t Status() const;
 
-  int64_t odometry_published() const { return odometry_sequence_; }
   int64_t commands_skipped() const { return commands_skipped_; }
   const P3dxDecoderCounters& decoder_counters() const { return decoder_.counters(); }
 

@@ -95,9 +95,6 @@ void P3dxRobotModel::Handle(const P3dxClientCommand& command, int64_t now_us) {
     case cmd::kEstop:
       Stop();
       break;
-    case cmd::kHostBaud:
-      requested_host_baud_index_ = command.value;
-      break;
     default:  // PULSE, OPEN again and everything we do not model: the watchdog is fed anyway
       break;
   }

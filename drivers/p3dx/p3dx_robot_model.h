@@ -8,7 +8,8 @@
 //    a SYNC out of order restarts the sequence; everything else is ignored;
 //  - after the name packet, OPEN starts the server: a standard SIP every SIP cycle (100 ms);
 //  - connected: PULSE (= SYNC0) only feeds the watchdog, ENABLE, VEL, RVEL, VEL2, STOP, ESTOP set
-//    the motion, HOSTBAUD is recorded, CLOSE stops the robot and ends the session (no more SIPs);
+//    the motion, CLOSE stops the robot and ends the session (no more SIPs); any other valid
+//    command (HOSTBAUD included: the emulated line has no rate) only feeds the watchdog;
 //  - the watchdog stops the robot when no valid packet came for `watchdog_ms` (ARCOS default 2 s);
 //    motion resumes only with a new motion command.
 // VEL/RVEL become wheel speeds through the effective track 2 / DiffConvFactor, as the host's
@@ -60,7 +61,6 @@ class P3dxRobotModel {
   void AdvanceTo(int64_t now_us);
   // Bytes for the host produced so far; the queue is emptied.
   std::vector<uint8_t> TakeOutput();
-  bool HasOutput() const { return !output_.empty(); }
   // The next time something happens by itself (a SIP, the watchdog, the end of a silence), or
   // INT64_MAX.
   int64_t NextEventUs() const;
@@ -85,7 +85,6 @@ class P3dxRobotModel {
   void SetWheelStall(bool left, bool right);
 
   // Inspection.
-  LinkState link_state() const { return link_state_; }
   bool connected() const { return link_state_ == LinkState::kOpen; }
   bool motors_enabled() const { return motors_enabled_; }
   double left_wheel_mmps() const { return left_mmps_; }
@@ -98,8 +97,6 @@ class P3dxRobotModel {
   int64_t sips_sent() const { return sips_sent_; }
   int64_t watchdog_stops() const { return watchdog_stops_; }
   int64_t bad_packets_received() const { return bad_packets_received_; }
-  int requested_host_baud_index() const { return requested_host_baud_index_; }
-  const P3dxDecoderCounters& decoder_counters() const { return decoder_.counters(); }
   const P3dxConversion& conversion() const { return conversion_; }
 
  private:
@@ -139,7 +136,6 @@ class P3dxRobotModel {
   int64_t sips_sent_ = 0;
   int64_t watchdog_stops_ = 0;
   int64_t bad_packets_received_ = 0;
-  int requested_host_baud_index_ = -1;
 };
 
 }  // namespace slammtt

@@ -42,7 +42,10 @@
 // decoded with 32 stretched angles (the rotation speed changes far less in 8 ms).
 // Capsules carry no quality: like the SDK we report 47 (of 63) for a return, 0 for none.
 // Revolutions are cut per sample when the interpolated angle wraps past 360 degrees (the
-// capsule's S bit is not a revolution mark).
+// capsule's S bit is not a revolution mark): the first sample at or past 360 starts the new
+// one. The SDK's flag looks one increment ahead and marks the sample just before the wrap
+// (handler_capsules.cpp, syncBit), so its revolutions start one sample earlier; the samples
+// and their angles are the same.
 //
 // Counters follow lidar_status_t: a resync is one episode of discarding bytes (or untrusted
 // nodes) until valid data is found again; a checksum error is one express capsule that failed

@@ -358,6 +358,9 @@ void ExpectOdometryTracksTheRobot(const RecordingSink& sink, SimulatedRobot& rob
   if (same_frame) {
     EXPECT_NEAR(sink.odometry.back().x_m, robot.model().x_mm() / 1000.0, 0.002);
     EXPECT_NEAR(sink.odometry.back().y_m, robot.model().y_mm() / 1000.0, 0.002);
+    // One THPOS unit (2 pi / 4096 rad) of rounding.
+    EXPECT_NEAR(WrapAngleRad(sink.odometry.back().heading_rad - robot.model().heading_rad()), 0.0,
+                0.0016);
   }
   for (size_t i = 1; i < sink.odometry.size(); ++i) {
     // A step never jumps further than 0.3 m/s allows in 0.5 s (a bad packet would).

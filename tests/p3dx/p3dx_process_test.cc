@@ -226,6 +226,9 @@ TEST_P(P3dxProcessTest, ReconnectsAfterTheDeviceIsUnplugged) {
   }));
   EXPECT_EQ(status_.back().reconnects, 1);
   EXPECT_FALSE(status_.back().last_error.empty());
+  if (GetParam() == Transport::kTcp) {
+    EXPECT_EQ(emulator_->host_connections(), 2);  // the driver came back on a new connection
+  }
   const size_t before = odometry_.size();
   PumpUntil(1.0, [] { return false; });
   EXPECT_GE(odometry_.size() - before, 7u);

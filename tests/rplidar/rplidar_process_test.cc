@@ -29,6 +29,19 @@ using testing_support::RecordingSink;
 // Guards against a hang; never a measure of speed.
 constexpr int kGuardMs = 30000;
 
+// What the emulated device did, for the message of a failed expectation.
+std::string DescribeDevice(const EmulatorServerStats& stats) {
+  const RplidarDeviceStats& d = stats.device;
+  std::string dtr = "unseen";
+  if (d.host_dtr) dtr = *d.host_dtr ? "asserted" : "cleared";
+  return "device: scanning " + std::to_string(d.scanning) + ", motor " +
+         std::to_string(d.motor_running) + ", host DTR " + dtr + ", nodes " +
+         std::to_string(d.nodes_sent) + ", capsules " + std::to_string(d.capsules_sent) +
+         ", samples skipped " + std::to_string(d.samples_skipped) + ", overflow bytes " +
+         std::to_string(stats.overflow_bytes) + ", last request 0x" +
+         std::to_string(d.last_request);
+}
+
 class RplidarProcessTest : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -220,7 +233,9 @@ TEST_F(RplidarProcessTest, FaultsOnARealLinkNeverBecomeBeams) {
       const auto status = sink_.last_status();
       return status && status->resyncs >= 5 && (!express || status->checksum_errors >= 5);
     })) << mode;
-    EXPECT_EQ(sink_.last_status()->reconnects, 0) << mode;
+    EXPECT_EQ(sink_.last_status()->reconnects, 0)
+        << mode << ": " << sink_.last_status()->last_error << "; "
+        << DescribeDevice(emulator.stats());
     driver->Signal(SIGTERM);
     ASSERT_EQ(driver->Wait(kGuardMs), std::optional<int>(0)) << mode;
     ExpectBeamsAgreeWithRoom();
