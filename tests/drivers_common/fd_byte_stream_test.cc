@@ -1,13 +1,14 @@
 #include "drivers/common/fd_byte_stream.h"
 
 #include <gtest/gtest.h>
-#include <poll.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
 #include <memory>
 #include <numeric>
 #include <vector>
+
+#include "byte_stream_test_util.h"
 
 namespace slammtt {
 namespace {
@@ -21,16 +22,6 @@ Pair MakePair() {
   int fds[2];
   EXPECT_EQ(socketpair(AF_UNIX, SOCK_STREAM, 0, fds), 0);
   return {std::make_unique<FdByteStream>(fds[0], "a"), std::make_unique<FdByteStream>(fds[1], "b")};
-}
-
-std::vector<uint8_t> ReadExactly(ByteStream& stream, size_t count) {
-  std::vector<uint8_t> out;
-  uint8_t buffer[512];
-  for (int i = 0; i < 200 && out.size() < count; ++i) {
-    const size_t got = stream.Read(buffer, std::min(sizeof buffer, count - out.size()), 50);
-    out.insert(out.end(), buffer, buffer + got);
-  }
-  return out;
 }
 
 TEST(FdByteStreamTest, CarriesEveryByteValueBothWays) {
@@ -85,12 +76,6 @@ TEST(FdByteStreamTest, FlushInputDropsWhatArrived) {
   const uint8_t fresh = 7;
   pair.b->Write(&fresh, 1);
   EXPECT_EQ(ReadExactly(*pair.a, 1), std::vector<uint8_t>({7}));
-}
-
-// True when poll() reports the descriptor readable or failed within `timeout_ms`.
-bool PollsReady(int fd, int timeout_ms) {
-  struct pollfd entry = {fd, POLLIN, 0};
-  return poll(&entry, 1, timeout_ms) == 1 && entry.revents != 0;
 }
 
 TEST(FdByteStreamTest, PollDescriptorIsReadyExactlyWhenReadHasSomethingToSay) {

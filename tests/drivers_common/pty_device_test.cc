@@ -10,6 +10,8 @@
 #include <numeric>
 #include <vector>
 
+#include "byte_stream_test_util.h"
+
 namespace slammtt {
 namespace {
 
@@ -18,16 +20,6 @@ std::unique_ptr<FdByteStream> OpenHost(const std::string& path) {
   const int fd = open(path.c_str(), O_RDWR | O_NOCTTY);
   if (fd < 0) return nullptr;
   return std::make_unique<FdByteStream>(fd, "host:" + path);
-}
-
-std::vector<uint8_t> ReadExactly(ByteStream& stream, size_t count) {
-  std::vector<uint8_t> out;
-  uint8_t buffer[512];
-  for (int i = 0; i < 200 && out.size() < count; ++i) {
-    const size_t got = stream.Read(buffer, std::min(sizeof buffer, count - out.size()), 50);
-    out.insert(out.end(), buffer, buffer + got);
-  }
-  return out;
 }
 
 TEST(PtyDeviceTest, RawLinkCarriesEveryByteValueUnchanged) {

@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 #include <stdlib.h>
 #include <fcntl.h>
-#include <poll.h>
 #include <termios.h>
 #include <unistd.h>
 
@@ -13,6 +12,7 @@
 
 #include "drivers/common/byte_stream.h"
 #include "drivers/common/pty_device.h"
+#include "byte_stream_test_util.h"
 
 namespace slammtt {
 namespace {
@@ -25,16 +25,6 @@ class SerialPtyTest : public ::testing::Test {
   }
 };
 
-std::vector<uint8_t> ReadExactly(ByteStream& stream, size_t count) {
-  std::vector<uint8_t> out;
-  uint8_t buffer[512];
-  for (int i = 0; i < 200 && out.size() < count; ++i) {
-    const size_t got = stream.Read(buffer, std::min(sizeof buffer, count - out.size()), 50);
-    out.insert(out.end(), buffer, buffer + got);
-  }
-  return out;
-}
-
 TEST_F(SerialPtyTest, LibserialportOpensThePtyAndCarriesEveryByte) {
   PtyDevice device;
   auto host = OpenByteStream(device.slave_path(), 115200);
@@ -45,12 +35,6 @@ TEST_F(SerialPtyTest, LibserialportOpensThePtyAndCarriesEveryByte) {
   EXPECT_EQ(ReadExactly(device.stream(), 256), all);
   device.stream().Write(all.data(), all.size());
   EXPECT_EQ(ReadExactly(*host, 256), all);
-}
-
-// True when poll() reports the descriptor readable or failed within `timeout_ms`.
-bool PollsReady(int fd, int timeout_ms) {
-  struct pollfd entry = {fd, POLLIN, 0};
-  return poll(&entry, 1, timeout_ms) == 1 && entry.revents != 0;
 }
 
 TEST_F(SerialPtyTest, PollDescriptorWakesForBytesAndForAnUnpluggedDevice) {
