@@ -13,6 +13,7 @@
 #include "tools/eval/evaluation.h"
 #include "tools/eval/report_json.h"
 #include "tools/plots/eval_plots.h"
+#include "tools/plots/svg_plot.h"
 
 namespace slammtt {
 namespace {
@@ -145,6 +146,79 @@ TEST(EvaluationTest, NoGroundTruthScoresNothing) {
   EXPECT_NE(r.notes.back().find("no GROUND_TRUTH"), std::string::npos);
   EXPECT_TRUE(ReportToJson(input, r)["ate_rmse_m"].is_null());
   EXPECT_THROW(Evaluate(input, EvalOptions{0.0, 1.0, 2.0, 2.0}), std::invalid_argument);
+}
+
+// What the pictures must show: every track identity by its id, in its own colour, the static
+// truth as crosses in the legend as on the map, ticks printed alike.
+TEST(EvalPlotsTest, PicturesNameTrackIdsAndUseConsistentTicks) {
+  testing::TempDir dir;
+  WriteHandBuiltLog(dir.File("run.lcm"), true);
+  EvalInput input;
+  const EvaluationReport r = EvaluateFile(dir.File("run.lcm"), &input);
+  const std::string tracks = TracksSvg(r);
+  for (const TrackPath& t : r.track_paths) {
+    EXPECT_NE(tracks.find("fill=\"" + IdentityColour(t.id) + "\""), std::string::npos) << t.id;
+    EXPECT_NE(tracks.find(">" + std::to_string(t.id) + "</text>"), std::string::npos) << t.id;
+  }
+  EXPECT_NE(IdentityColour(100), IdentityColour(101));
+  // The legend's cross for the true static objects (a path with a horizontal and a vertical
+  // stroke), not a line.
+  const std::string map = MapSvg(r);
+  const size_t label = map.find(">true static object</text>");
+  ASSERT_NE(label, std::string::npos);
+  const size_t mark = map.rfind("<path d=\"M", label);
+  ASSERT_NE(mark, std::string::npos);
+  EXPECT_NE(map.substr(mark, label - mark).find('V'), std::string::npos);
+
+  EXPECT_EQ(TickDecimals(NiceTicks(0.0, 1.08, 6)), 1);  // 0.0 0.2 ... 1.0
+  EXPECT_EQ(TickDecimals(NiceTicks(0.0, 120.0, 8)), 0);
+  EXPECT_EQ(TickDecimals(NiceTicks(0.0, 0.3, 6)), 2);   // 0.00 0.05 ...
+  EXPECT_EQ(NiceTicks(0.0, 1.08, 6).size(), 6u);
+}
+
+TEST(EvalOptionsTest, ReadsTheEvalSectionAndNamesBadKeys) {
+  const EvalOptions defaults = ReadEvalOptions(Config());
+  EXPECT_DOUBLE_EQ(defaults.match_threshold_m, 1.0);
+  EXPECT_DOUBLE_EQ(defaults.ospa_cutoff_m, 1.0);
+  EXPECT_DOUBLE_EQ(defaults.ospa_order, 2.0);
+  EXPECT_DOUBLE_EQ(defaults.gospa_alpha, 2.0);
+  const EvalOptions o = ReadEvalOptions(
+      Config::FromString("eval:\n  match_threshold_m: 0.5\n  ospa_cutoff_m: 2\n"
+                         "  ospa_order: 1\n  gospa_alpha: 1\n")
+          .Child("eval"));
+  EXPECT_DOUBLE_EQ(o.match_threshold_m, 0.5);
+  EXPECT_DOUBLE_EQ(o.ospa_cutoff_m, 2.0);
+  EXPECT_DOUBLE_EQ(o.ospa_order, 1.0);
+  EXPECT_DOUBLE_EQ(o.gospa_alpha, 1.0);
+  for (const std::string key : {"match_threshold_m: 0", "ospa_cutoff_m: -1", "ospa_order: 0.5",
+                                "gospa_alpha: 3", "ospa_cutof_m: 1"}) {
+    const std::string name = key.substr(0, key.find(':'));
+    try {
+      ReadEvalOptions(Config::FromString("eval:\n  " + key + "\n", "stack.yaml").Child("eval"));
+      ADD_FAILURE() << "accepted " << key;
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find("stack.yaml:2"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(EvalFilesTest, WritesIntoANewDirectoryAndNeverLeavesAPartialFile) {
+  testing::TempDir dir;
+  const std::vector<std::string> paths =
+      WriteTextFiles(dir.File("a/b"), {{"one.txt", "1"}, {"two.txt", "22"}});
+  EXPECT_EQ(paths, (std::vector<std::string>{dir.File("a/b/one.txt"), dir.File("a/b/two.txt")}));
+  EXPECT_EQ(testing::FileBytes(dir.File("a/b/two.txt")), "22");
+  EXPECT_FALSE(testing::FileExists(dir.File("a/b/two.txt.partial")));
+  // A directory where the file should go: an error naming the path, nothing left behind.
+  WriteTextFiles(dir.File("c/report.json"), {{"x", ""}});
+  try {
+    WriteFileAtomically(dir.File("c/report.json"), "{}");
+    ADD_FAILURE() << "no error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find(dir.File("c/report.json")), std::string::npos);
+  }
+  EXPECT_FALSE(testing::FileExists(dir.File("c/report.json.partial")));
 }
 
 std::string RunCommand(const std::string& command, int* status) {

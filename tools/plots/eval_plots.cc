@@ -48,17 +48,17 @@ std::string TrajectorySvg(const EvaluationReport& report) {
   panel.Polyline(odometry, kOdometryStyle);
   panel.Polyline(estimate, kEstimateStyle);
   if (!truth.empty()) panel.Dots({truth.front()}, 5, LineStyle{"#2ca02c"});
-  std::vector<LegendEntry> legend = {{"truth", kTruthStyle, false}};
+  std::vector<LegendEntry> legend = {{"truth", kTruthStyle}};
   if (report.odometry) {
     legend.push_back({"odometry (ATE RMSE " + FormatNumber(report.odometry->error.rmse_m, 3) +
                           " m)",
-                      kOdometryStyle, false});
+                      kOdometryStyle});
   }
   if (report.robot) {
     legend.push_back({"estimate (ATE RMSE " + FormatNumber(report.robot->error.rmse_m, 3) + " m)",
-                      kEstimateStyle, false});
+                      kEstimateStyle});
   }
-  legend.push_back({"start", LineStyle{"#2ca02c"}, true});
+  legend.push_back({"start", LineStyle{"#2ca02c"}, LegendMark::kDot});
   panel.Legend(legend);
   if (truth.empty()) panel.Message("no ground truth in the log");
   doc.Text(kMapWidthPx / 2.0, kMapHeightPx - 6, Subtitle(report), 10, "middle", "fill=\"#777777\"");
@@ -76,7 +76,8 @@ std::string MapSvg(const EvaluationReport& report) {
                  true);
   panel.DrawAxes("Static map (2-sigma ellipses)", "x [m]", "y [m]");
   for (const auto& path : report.mover_paths) panel.Polyline(path, kMoverPathStyle, 400);
-  panel.Polyline(truth, LineStyle{"#111111", 1.0, "3 3", 0.6});
+  const LineStyle robot_path{"#111111", 1.0, "3 3", 0.6};
+  panel.Polyline(truth, robot_path);
   const LineStyle static_truth{"#111111", 1.6};
   const LineStyle unseen_truth{"#aaaaaa", 1.2};
   panel.Crosses(Points(report.static_objects), 5, static_truth);
@@ -92,13 +93,15 @@ std::string MapSvg(const EvaluationReport& report) {
     panel.Dots({l.position_m}, 2.2, style);
   }
   std::vector<LegendEntry> legend = {
-      {"true static object", static_truth, false},
-      {"landmark on a static object", good, true},
-      {"landmark on a mover's path", mover, true},
-      {"other landmark", other, true},
-      {"true mover paths", kMoverPathStyle, false}};
+      {"true static object", static_truth, LegendMark::kCross},
+      {"landmark on a static object", good, LegendMark::kDot},
+      {"landmark on a mover's path", mover, LegendMark::kDot},
+      {"other landmark", other, LegendMark::kDot},
+      {"true mover paths", kMoverPathStyle},
+      {"robot path (truth)", robot_path}};
   if (!report.unseen_static_objects.empty()) {
-    legend.insert(legend.begin() + 1, {"static object never seen", unseen_truth, false});
+    legend.insert(legend.begin() + 1,
+                  {"static object never seen", unseen_truth, LegendMark::kCross});
   }
   panel.Legend(legend);
   if (!report.map) panel.Message("no MAP in the log");
@@ -131,11 +134,14 @@ std::string TracksSvg(const EvaluationReport& report) {
       panel.Polyline(t.points, style, 600);
       panel.Dots({t.points.back()}, 2.5, style);
     }
+    // The identity at the track's last position, so that a switch can be read off the picture.
+    panel.Label(t.points.back(), std::to_string(t.id), style.colour);
   }
-  panel.Legend({{"true mover paths", kMoverPathStyle, false},
-                {"robot (truth)", LineStyle{"#111111", 1.2}, false},
-                {"confirmed moving tracks, one colour per identity", LineStyle{"#1f77b4", 1.4},
-                 false}});
+  panel.Legend({{"true mover paths", kMoverPathStyle},
+                {"robot (truth)", LineStyle{"#111111", 1.2}},
+                {"confirmed moving track (label: its id), one colour per identity",
+                 LineStyle{"#1f77b4", 1.4}},
+                {"where a track ends", LineStyle{"#1f77b4"}, LegendMark::kDot}});
   if (!report.tracking) panel.Message("no TRACKS in the log");
   std::string caption = Subtitle(report);
   if (report.tracking) {
@@ -178,8 +184,8 @@ std::string ErrorsSvg(const EvaluationReport& report) {
   top.Polyline(odometry, kOdometryStyle, 2000);
   top.Polyline(estimate, kEstimateStyle, 2000);
   std::vector<LegendEntry> top_legend;
-  if (report.odometry) top_legend.push_back({"odometry", kOdometryStyle, false});
-  if (report.robot) top_legend.push_back({"estimate", kEstimateStyle, false});
+  if (report.odometry) top_legend.push_back({"odometry", kOdometryStyle});
+  if (report.robot) top_legend.push_back({"estimate", kEstimateStyle});
   top.Legend(top_legend);
   if (!report.robot && !report.odometry) top.Message("no estimate and no odometry in the log");
 
@@ -204,9 +210,9 @@ std::string ErrorsSvg(const EvaluationReport& report) {
   bottom.Polyline(ospa, ospa_style, 2000);
   if (report.tracking) {
     bottom.Legend({{"OSPA (mean " + FormatNumber(report.tracking->ospa_mean_m, 3) + " m)",
-                    ospa_style, false},
+                    ospa_style},
                    {"GOSPA (mean " + FormatNumber(report.tracking->gospa_mean_m, 3) + " m)",
-                    gospa_style, false}});
+                    gospa_style}});
   } else {
     bottom.Message("no TRACKS in the log");
   }

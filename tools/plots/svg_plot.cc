@@ -56,6 +56,13 @@ std::vector<double> NiceTicks(double min, double max, int target_count) {
   return ticks;
 }
 
+int TickDecimals(const std::vector<double>& ticks) {
+  if (ticks.size() < 2) return 0;
+  const double step = ticks[1] - ticks[0];
+  // A step of 1, 2 or 5 times 10^k needs max(0, -k) decimals.
+  return std::max(0, -static_cast<int>(std::floor(std::log10(step) + 1e-9)));
+}
+
 std::string IdentityColour(int64_t id) {
   static const char* palette[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd",
                                   "#ff7f0e", "#17becf", "#8c564b", "#e377c2",
@@ -187,21 +194,21 @@ void PlotPanel::DrawAxes(const std::string& title, const std::string& x_label,
   SvgDocument& d = *document_;
   const double right = inner_left_px_ + inner_width_px_;
   const double bottom = inner_top_px_ + inner_height_px_;
-  for (double t : NiceTicks(x_min_, x_max_, 8)) {
+  const std::vector<double> x_ticks = NiceTicks(x_min_, x_max_, 8);
+  for (double t : x_ticks) {
     const double x = ToPixel(Eigen::Vector2d(t, y_min_)).x();
     d.Add("<line x1=\"" + FormatNumber(x, 1) + "\" y1=\"" + FormatNumber(inner_top_px_, 1) +
           "\" x2=\"" + FormatNumber(x, 1) + "\" y2=\"" + FormatNumber(bottom, 1) +
           "\" stroke=\"#e4e4e4\" stroke-width=\"1\"/>");
-    d.Text(x, bottom + 15, FormatNumber(t, std::abs(t - std::round(t)) < 1e-9 ? 0 : 1), 11,
-           "middle");
+    d.Text(x, bottom + 15, FormatNumber(t, TickDecimals(x_ticks)), 11, "middle");
   }
-  for (double t : NiceTicks(y_min_, y_max_, 6)) {
+  const std::vector<double> y_ticks = NiceTicks(y_min_, y_max_, 6);
+  for (double t : y_ticks) {
     const double y = ToPixel(Eigen::Vector2d(x_min_, t)).y();
     d.Add("<line x1=\"" + FormatNumber(inner_left_px_, 1) + "\" y1=\"" + FormatNumber(y, 1) +
           "\" x2=\"" + FormatNumber(right, 1) + "\" y2=\"" + FormatNumber(y, 1) +
           "\" stroke=\"#e4e4e4\" stroke-width=\"1\"/>");
-    d.Text(inner_left_px_ - 6, y + 4,
-           FormatNumber(t, std::abs(t - std::round(t)) < 1e-9 ? 0 : 2), 11, "end");
+    d.Text(inner_left_px_ - 6, y + 4, FormatNumber(t, TickDecimals(y_ticks)), 11, "end");
   }
   d.Add("<rect x=\"" + FormatNumber(inner_left_px_, 1) + "\" y=\"" +
         FormatNumber(inner_top_px_, 1) + "\" width=\"" + FormatNumber(inner_width_px_, 1) +
@@ -302,9 +309,14 @@ void PlotPanel::Legend(const std::vector<LegendEntry>& entries) {
                  "\" fill=\"#ffffff\" fill-opacity=\"0.85\" stroke=\"#bbbbbb\"/>");
   for (const LegendEntry& e : entries) {
     const double cy = y + 7;
-    if (e.marker) {
+    if (e.mark == LegendMark::kDot) {
       document_->Add("<circle cx=\"" + FormatNumber(x + 11, 1) + "\" cy=\"" +
                      FormatNumber(cy, 1) + "\" r=\"3.5\" fill=\"" + e.style.colour + "\"/>");
+    } else if (e.mark == LegendMark::kCross) {
+      document_->Add("<path d=\"M" + FormatNumber(x + 6, 1) + " " + FormatNumber(cy, 1) + "H" +
+                     FormatNumber(x + 16, 1) + "M" + FormatNumber(x + 11, 1) + " " +
+                     FormatNumber(cy - 5, 1) + "V" + FormatNumber(cy + 5, 1) + "\" " +
+                     StrokeAttributes(e.style) + "/>");
     } else {
       document_->Add("<line x1=\"" + FormatNumber(x, 1) + "\" y1=\"" + FormatNumber(cy, 1) +
                      "\" x2=\"" + FormatNumber(x + 22, 1) + "\" y2=\"" + FormatNumber(cy, 1) +
@@ -313,6 +325,14 @@ void PlotPanel::Legend(const std::vector<LegendEntry>& entries) {
     document_->Text(x + 28, cy + 4, e.label, 11);
     y += 16;
   }
+}
+
+void PlotPanel::Label(const Eigen::Vector2d& at, const std::string& text,
+                      const std::string& colour) {
+  if (!at.allFinite()) return;
+  const Eigen::Vector2d p = ToPixel(at);
+  document_->Text(p.x() + 4, p.y() - 4, text, 10, "start",
+                  "fill=\"" + colour + "\" " + clip_attribute_);
 }
 
 void PlotPanel::Message(const std::string& text) {

@@ -25,10 +25,13 @@ struct LineStyle {
   double opacity;
 };
 
+// How a legend entry shows its style: as the line, the dot or the cross drawn in the panel.
+enum class LegendMark { kLine, kDot, kCross };
+
 struct LegendEntry {
   std::string label;
   LineStyle style;
-  bool marker = false;  // a dot instead of a line
+  LegendMark mark = LegendMark::kLine;
 };
 
 class SvgDocument {
@@ -77,6 +80,8 @@ class PlotPanel {
   void CovarianceEllipse(const Eigen::Vector2d& centre, const Eigen::Matrix2d& covariance,
                          double sigma, const LineStyle& style);
   void Legend(const std::vector<LegendEntry>& entries);
+  // A small text next to a data point (clipped to the panel like the data).
+  void Label(const Eigen::Vector2d& at, const std::string& text, const std::string& colour);
   // A centred message inside the panel ("no estimator output").
   void Message(const std::string& text);
 
@@ -104,6 +109,9 @@ class PlotPanel {
 std::string FormatNumber(double value, int decimals);
 // Ticks at 1, 2 or 5 times a power of ten, about `target_count` of them, within [min, max].
 std::vector<double> NiceTicks(double min, double max, int target_count);
+// Decimals that print every tick of NiceTicks() alike and exactly (0 for steps >= 1, 1 for 0.5 or
+// 0.2 or 0.1, ...): "0.0 0.5 1.0", never "0 0.50 1".
+int TickDecimals(const std::vector<double>& ticks);
 // A colour for an identity (a fixed palette of 12 distinguishable colours).
 std::string IdentityColour(int64_t id);
 // Escapes &, <, >, " for SVG text.
