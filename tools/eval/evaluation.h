@@ -12,9 +12,9 @@
 //   size: fewer points never make a feature); in a feature log, the world's `visible` flag (a
 //   feature of it was emitted). Used by the map, tracking and classification alike.
 // - Standing still: a MOVING object whose true speed is below min_moving_speed_mps at a scan is,
-//   while it stands, indistinguishable from a post (the paper's Algorithm 2, line 12: a moving
-//   object that stops becomes a static landmark): "don't care" for tracking at that scan and not
-//   judged by the classification.
+//   while it stands, indistinguishable from a post, and the paper's method turns it into a static
+//   object (Algorithm 2, line 12, "determine state of objects": stationary objects become moving
+//   and vice versa): "don't care" for tracking at that scan, not judged by the classification.
 // - Tracking, per ground-truth scan from the first to the last TRACKS message (a scan in that
 //   window without TRACKS counts as an empty output): truth = visible MOVING objects that are not
 //   standing, output = confirmed tracks labelled MOVING. Don't care (clear_mot.h, DontCare): a

@@ -5,11 +5,11 @@
 //   confirmed tracks (any label) by Hungarian assignment within the threshold; the label of the
 //   matched track is the object's label at that scan;
 // - a mover standing still (`TruthObject::standing`) is, while it stands, indistinguishable from
-//   a post: the paper's method labels it static (Algorithm 2, line 12: a moving object that
-//   stops becomes a static landmark). Its scans while standing take part in the matching (its
-//   track is not free for another object) but are not judged: no label, right or wrong, is
-//   recorded, and they are not its first sighting. A scan is "judged" for an object when it is
-//   visible and not standing;
+//   a post: the paper's method turns it into a static object (Algorithm 2, line 12, "determine
+//   state of objects": moving objects become stationary and vice versa). Its scans while
+//   standing take part in the matching (its track is not free for another object) but are not
+//   judged: no label, right or wrong, is recorded, and they are not its first sighting. A scan
+//   is "judged" for an object when it is visible and not standing;
 // - final label = the label at the last judged scan in which the object was matched
 //   ("untracked" if there is none); the confusion matrix counts true class x final label;
 // - the scored objects are those with at least one judged visible scan; a mover seen only while
