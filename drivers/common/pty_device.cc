@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <climits>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -51,6 +52,14 @@ PtyDevice::PtyDevice() {
 }
 
 PtyDevice::~PtyDevice() {
+  if (!published_link_.empty()) {
+    // Only our own link: a newer device may have taken the name over.
+    char target[PATH_MAX];
+    const ssize_t length = readlink(published_link_.c_str(), target, sizeof target - 1);
+    if (length > 0 && std::string(target, static_cast<size_t>(length)) == slave_path_) {
+      unlink(published_link_.c_str());
+    }
+  }
   master_.reset();
   if (held_slave_fd_ >= 0) close(held_slave_fd_);
 }
@@ -66,7 +75,7 @@ std::optional<bool> PtyDevice::HostDtr() const {
   return (lines & TIOCM_DTR) != 0;
 }
 
-void PtyDevice::PublishLink(const std::string& link_path) const {
+void PtyDevice::PublishLink(const std::string& link_path) {
   const std::string temporary = link_path + ".new";
   unlink(temporary.c_str());
   if (symlink(slave_path_.c_str(), temporary.c_str()) != 0) {
@@ -78,6 +87,7 @@ void PtyDevice::PublishLink(const std::string& link_path) const {
     errno = error;
     FailErrno("cannot replace " + link_path);
   }
+  published_link_ = link_path;
 }
 
 }  // namespace slammtt

@@ -19,8 +19,9 @@ class PtyDevice {
   // anyone opens the slave, so not one byte is altered. Throws LinkError when the system has
   // no pseudo-terminal left.
   PtyDevice();
-  // Closes both ends: a host that still has the slave open sees a hangup (poll POLLHUP, read
-  // 0), as when a USB adapter is pulled.
+  // Removes the published link (if it still names this device), then closes both ends: a host
+  // that still has the slave open sees a hangup (poll POLLHUP, read 0), as when a USB adapter
+  // is pulled and udev removes its /dev/... name.
   ~PtyDevice();
   PtyDevice(const PtyDevice&) = delete;
   PtyDevice& operator=(const PtyDevice&) = delete;
@@ -37,13 +38,17 @@ class PtyDevice {
 
   // Makes `link_path` a symlink to slave_path(), replaced atomically, so that scripts and
   // drivers can use one stable name while the emulator re-creates its pty (a simulated unplug
-  // gives a new /dev/pts/N). Throws LinkError when the link cannot be written.
-  void PublishLink(const std::string& link_path) const;
+  // gives a new /dev/pts/N). The link lives as long as this device: the destructor removes it
+  // before the pty is closed, so no host retrying the name can ever open a /dev/pts/N that the
+  // kernel has handed to someone else meanwhile (another test's emulator: pty numbers are
+  // shared by the whole machine). Throws LinkError when the link cannot be written.
+  void PublishLink(const std::string& link_path);
 
  private:
   std::unique_ptr<FdByteStream> master_;
   int held_slave_fd_ = -1;
   std::string slave_path_;
+  std::string published_link_;  // "" when none
 };
 
 }  // namespace slammtt

@@ -1,6 +1,5 @@
 // slammtt-rplidar-emulator: an RPLIDAR A2 on a pseudo-terminal or a TCP port, scanning a
 // simple room, with scheduled fault injection. Options in docs/rplidar.md.
-#include <unistd.h>
 
 #include <chrono>
 #include <cstdio>
@@ -187,7 +186,6 @@ int main(int argc, char** argv) {
               << " resets, " << stats.disconnects << " disconnects; scan "
               << (stats.device.scanning ? "running" : "stopped") << ", motor "
               << (stats.device.motor_running ? "running" : "stopped");
-    if (!transport.link_path.empty()) unlink(transport.link_path.c_str());
-    return 0;
+    return 0;  // the server's pty device removes its link when it goes
   });
 }

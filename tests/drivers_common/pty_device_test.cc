@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <limits.h>
 #include <stdlib.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <memory>
@@ -84,6 +85,33 @@ TEST(PtyDeviceTest, PublishLinkPointsAStableNameAtTheCurrentPty) {
   char target[PATH_MAX] = {};
   ASSERT_GT(readlink(link.c_str(), target, sizeof target - 1), 0);
   EXPECT_EQ(std::string(target), second.slave_path());
+  unlink(link.c_str());
+  rmdir(directory_template);
+}
+
+// Like udev removing /dev/rplidar when the adapter is pulled: a host retrying the name must
+// never reach a /dev/pts/N that the kernel has meanwhile given to another program (pty numbers
+// are shared by the whole machine; parallel tests once stole each other's bytes that way).
+TEST(PtyDeviceTest, TheLinkGoesWithItsDeviceButNeverTakesANewerOneWithIt) {
+  char directory_template[] = "/tmp/slammtt-pty-test-XXXXXX";
+  ASSERT_NE(mkdtemp(directory_template), nullptr);
+  const std::string link = std::string(directory_template) + "/lidar";
+  {
+    PtyDevice device;
+    device.PublishLink(link);
+    ASSERT_EQ(access(link.c_str(), F_OK), 0);
+  }
+  struct stat info = {};
+  EXPECT_NE(lstat(link.c_str(), &info), 0) << "the link outlived its device";
+
+  auto older = std::make_unique<PtyDevice>();
+  older->PublishLink(link);
+  PtyDevice newer;
+  newer.PublishLink(link);
+  older.reset();
+  char target[PATH_MAX] = {};
+  ASSERT_GT(readlink(link.c_str(), target, sizeof target - 1), 0);
+  EXPECT_EQ(std::string(target), newer.slave_path());
   unlink(link.c_str());
   rmdir(directory_template);
 }

@@ -38,8 +38,8 @@ std::string DescribeDevice(const EmulatorServerStats& stats) {
          std::to_string(d.motor_running) + ", host DTR " + dtr + ", nodes " +
          std::to_string(d.nodes_sent) + ", capsules " + std::to_string(d.capsules_sent) +
          ", samples skipped " + std::to_string(d.samples_skipped) + ", overflow bytes " +
-         std::to_string(stats.overflow_bytes) + ", last request 0x" +
-         std::to_string(d.last_request);
+         std::to_string(stats.overflow_bytes) + ", last request " +
+         std::to_string(d.last_request) + " (decimal)";
 }
 
 class RplidarProcessTest : public ::testing::Test {
