@@ -24,6 +24,8 @@
 namespace slammtt {
 namespace {
 
+using testing::RunCommand;
+
 using Obj = slammtt_msgs::object_truth_t;
 using Trk = slammtt_msgs::track_t;
 constexpr int64_t kT0 = 2000000;
@@ -192,6 +194,21 @@ TEST(EvalVisibilityTest, TwoBeamsAreNotVisibleInAScanLog) {
   EXPECT_EQ(r2.map->num_static_truth, 1);
 }
 
+TEST(EvalVisibilityTest, ANegativeBeamCountRejectsTheScan) {
+  testing::TempDir dir;
+  LogWriter log(dir.File("bad.lcm"));
+  WriteScan(&log, 0, {Truth(10, 5, 0, true, 1.0, 5, true)}, {}, true);
+  WriteScan(&log, 1, {Truth(10, 5, 0, true, 1.0, -1, false)}, {}, true);
+  log.Commit();
+  LogReadResult read;
+  const EvalInput input = ReadEvalInput(dir.File("bad.lcm"), Channels(), &read);
+  EXPECT_EQ(input.truth.size(), 1u);
+  EXPECT_EQ(input.rejected.at("ground_truth"), 1);
+  const EvaluationReport r = Evaluate(input, EvalOptions());
+  ASSERT_FALSE(r.notes.empty());
+  EXPECT_NE(r.notes[0].find("negative beam count"), std::string::npos) << r.notes[0];
+}
+
 // Eight scans of a feature log. Mover 20 stands at (3, 0) at scans 0-3 (0.1 m/s: a sway below
 // the 0.2 m/s threshold), then walks at 1 m/s from scan 4. Track 200 sits on it throughout,
 // labelled undecided (0-1), static (2-4), moving (5-7). At scan 1 a moving track 201 is 0.5 m
@@ -340,16 +357,6 @@ TEST(EvalOptionsTest, ReadsTheVisibilityAndStandingRules) {
   bad = EvalOptions();
   bad.min_moving_speed_mps = -1.0;
   EXPECT_THROW(Evaluate(input, bad), std::invalid_argument);
-}
-
-std::string RunCommand(const std::string& command, int* status) {
-  std::FILE* pipe = popen(command.c_str(), "r");
-  std::string out;
-  char buffer[4096];
-  size_t n = 0;
-  while ((n = std::fread(buffer, 1, sizeof(buffer), pipe)) > 0) out.append(buffer, n);
-  *status = pclose(pipe);
-  return out;
 }
 
 TEST(EvalProgramTest, CommandLineOverridesTheRules) {

@@ -1,9 +1,10 @@
 // Reads the channels slammtt-eval needs from an LCM log into EvalInput: GROUND_TRUTH, ODOMETRY,
 // POSE, TRACKS and MAP (channel names from the stack's Channels). A message that cannot be
 // decoded, holds a non-finite number or one beyond 1e6 (metres, m/s, covariance entries), a
-// utime outside [0, 1e18] us, an unknown class, duplicate object ids, or repeats the utime of an
-// earlier one of its channel is rejected and counted (EvalInput::rejected), never used;
-// messages are sorted by utime per channel (a live recording may interleave them).
+// utime outside [0, 1e18] us, an unknown class, a negative beams_on_object, duplicate object ids,
+// or repeats the utime of an earlier one of its channel is rejected and counted
+// (EvalInput::rejected), never used; messages are sorted by utime per channel (a live recording
+// may interleave them). LASER_SCAN messages are only counted (EvalInput::laser_scans).
 //
 // Also the rest of slammtt-eval's contact with files and configuration: the `eval:` section and
 // writing the report and the pictures.

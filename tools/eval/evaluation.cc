@@ -93,8 +93,8 @@ EvaluationReport Evaluate(const EvalInput& input, const EvalOptions& options) {
   for (const auto& [key, n] : input.rejected) {
     if (n > 0) {
       report.notes.push_back("rejected " + Count(n, key) +
-                             " messages (undecodable, non-finite, unknown class or repeated "
-                             "utime)");
+                             " messages (undecodable, non-finite, unknown class, negative beam "
+                             "count or repeated utime)");
     }
   }
   if (input.truth.empty()) {
