@@ -18,6 +18,8 @@
 namespace slammtt {
 namespace {
 
+using testing::RunCommand;
+
 using testing::kScans;
 using testing::WriteHandBuiltLog;
 
@@ -219,16 +221,6 @@ TEST(EvalFilesTest, WritesIntoANewDirectoryAndNeverLeavesAPartialFile) {
     EXPECT_NE(std::string(e.what()).find(dir.File("c/report.json")), std::string::npos);
   }
   EXPECT_FALSE(testing::FileExists(dir.File("c/report.json.partial")));
-}
-
-std::string RunCommand(const std::string& command, int* status) {
-  std::FILE* pipe = popen(command.c_str(), "r");
-  std::string out;
-  char buffer[4096];
-  size_t n = 0;
-  while ((n = std::fread(buffer, 1, sizeof(buffer), pipe)) > 0) out.append(buffer, n);
-  *status = pclose(pipe);
-  return out;
 }
 
 TEST(EvalProgramTest, WritesJsonSummaryAndPictures) {

@@ -77,4 +77,28 @@ inline void WriteFileBytes(const std::string& path, const std::string& bytes) {
 
 inline bool FileExists(const std::string& path) { return access(path.c_str(), F_OK) == 0; }
 
+// Runs `command` with /bin/sh and returns what it printed on stdout; *status gets pclose()'s
+// status (0 when the command exited with 0).
+inline std::string RunCommand(const std::string& command, int* status) {
+  std::FILE* pipe = popen(command.c_str(), "r");
+  std::string out;
+  if (pipe == nullptr) {
+    *status = -1;
+    return out;
+  }
+  char buffer[4096];
+  size_t n = 0;
+  while ((n = std::fread(buffer, 1, sizeof(buffer), pipe)) > 0) out.append(buffer, n);
+  *status = pclose(pipe);
+  return out;
+}
+
+// The same with stderr mixed into the output; returns the status.
+inline int Shell(const std::string& command, std::string* output = nullptr) {
+  int status = 0;
+  const std::string out = RunCommand(command + " 2>&1", &status);
+  if (output != nullptr) *output = out;
+  return status;
+}
+
 }  // namespace slammtt::testing

@@ -28,6 +28,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <string>
 #include <thread>
@@ -39,6 +40,8 @@
 
 namespace slammtt {
 namespace {
+
+using testing::Shell;
 
 std::string Bin(const std::string& program) { return std::string(SLAMMTT_BIN_DIR) + "/" + program; }
 
@@ -76,16 +79,6 @@ std::map<std::string, std::vector<std::string>> MessagesByChannel(const std::str
   return out;
 }
 
-int Shell(const std::string& command, std::string* output) {
-  std::FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  std::string out;
-  char buffer[4096];
-  size_t n = 0;
-  while ((n = std::fread(buffer, 1, sizeof(buffer), pipe)) > 0) out.append(buffer, n);
-  *output = out;
-  return pclose(pipe);
-}
-
 TEST(ReplayLiveTest, LivePlaybackEvaluatesLikeTheReplay) {
   testing::TempDir dir;
   std::string out;
@@ -104,6 +97,13 @@ TEST(ReplayLiveTest, LivePlaybackEvaluatesLikeTheReplay) {
   const size_t scans = world.at("LASER_SCAN").size();
   ASSERT_GT(scans, 100u);
 
+  // Every process on the bus (ours, LCM's) gets a 4 MB socket receive buffer instead of the
+  // kernel's default 208 kB: a datagram lost by a descheduled lcm-logger on a loaded machine would
+  // make the comparison meaningless (and fail the test below). 4 MB is this machine's
+  // net.core.rmem_max, about 14 s of this log at --speed=4.
+  const std::string bus_url = std::string(kDefaultLcmUrl) + "&recv_buf_size=4194304";
+  ASSERT_EQ(setenv("LCM_DEFAULT_URL", bus_url.c_str(), 1), 0);
+
   // The live stack, each process ready once it says it has subscribed.
   ChildProcess segmenter({Bin("slammtt-segmenter")}, dir.File("segmenter.txt"));
   ChildProcess estimator({Bin("slammtt-estimator")}, dir.File("estimator.txt"));
@@ -120,7 +120,7 @@ TEST(ReplayLiveTest, LivePlaybackEvaluatesLikeTheReplay) {
   // The logger is ready once a probe it receives reaches its file.
   ChildProcess logger(LcmTool("lcm-logger", {"-f", "--flush-interval=20", dir.File("live.lcm")}),
                       dir.File("logger.txt"));
-  const std::unique_ptr<lcm::LCM> bus = OpenLcm(kDefaultLcmUrl);
+  const std::unique_ptr<lcm::LCM> bus = OpenLcm(bus_url);
   const std::string probe = "ready?";
   ASSERT_TRUE(WaitFor(
       [&] {

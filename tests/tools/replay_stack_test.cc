@@ -14,19 +14,9 @@
 namespace slammtt {
 namespace {
 
-std::string Bin(const std::string& program) { return std::string(SLAMMTT_BIN_DIR) + "/" + program; }
+using testing::Shell;
 
-// Runs a shell command; returns its exit status and fills `output` with stdout and stderr.
-int Shell(const std::string& command, std::string* output = nullptr) {
-  std::FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  std::string out;
-  char buffer[4096];
-  size_t n = 0;
-  while ((n = std::fread(buffer, 1, sizeof(buffer), pipe)) > 0) out.append(buffer, n);
-  const int status = pclose(pipe);
-  if (output != nullptr) *output = out;
-  return status;
-}
+std::string Bin(const std::string& program) { return std::string(SLAMMTT_BIN_DIR) + "/" + program; }
 
 class ReplayStackTest : public ::testing::Test {
  protected:

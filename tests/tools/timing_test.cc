@@ -14,6 +14,8 @@
 namespace slammtt {
 namespace {
 
+using testing::RunCommand;
+
 TEST(TimingTableTest, NearestRankPercentiles) {
   std::vector<int64_t> values;
   for (int64_t v = 100; v >= 1; --v) values.push_back(v);  // any order
@@ -140,16 +142,6 @@ TEST(TimingLogTest, SkipsAndCountsBadMessages) {
   EXPECT_EQ(log.negative, 1);
   EXPECT_EQ(log.undecodable, 1);
   EXPECT_TRUE(log.read.problem.empty());
-}
-
-std::string RunCommand(const std::string& command, int* status) {
-  std::FILE* pipe = popen(command.c_str(), "r");
-  std::string out;
-  char buffer[4096];
-  size_t n = 0;
-  while ((n = std::fread(buffer, 1, sizeof(buffer), pipe)) > 0) out.append(buffer, n);
-  *status = pclose(pipe);
-  return out;
 }
 
 TEST(TimingProgramTest, PrintsJsonFromATimingLog) {
