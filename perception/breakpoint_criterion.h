@@ -23,9 +23,9 @@ double BreakpointThresholdM(double range_m, double dtheta_rad, double lambda_rad
 
 // The same test, cheap enough for the per-beam loop: no division, no square root and no libm
 // call (Taylor series: five terms when every tested angle is below 0.4 rad, as with the default
-// 5-degree gap bound, else trig_series.h). For dtheta below max_gap_rad, Splits(r_i, r_j, dtheta) is
-// |p_j - p_i| > BreakpointThresholdM(r_i, dtheta, lambda, sigma_r), except within ~1e-12 m of
-// the threshold.
+// 5-degree gap bound, else trig_series.h). For dtheta below max_gap_rad, Splits(r_i, r_j,
+// dtheta) is |p_j - p_i| > BreakpointThresholdM(r_i, dtheta, lambda, sigma_r), except within
+// ~1e-12 m of the threshold.
 class BreakpointCriterion {
  public:
   // max_gap_rad: beams further apart than this always split (SegmenterOptions::max_beam_gap_rad).

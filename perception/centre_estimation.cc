@@ -192,7 +192,8 @@ CentreEstimate CircleFitCentre(const ClusterView& cluster, double max_radius_m, 
     if (!(distance > 0.0)) return fallback;
     radius = std::clamp(radius, 1e-4, std::min(max_radius_m, 0.99 * distance));
     // Converged when nothing moves by more than 0.1 mm, far below any range noise.
-    if (std::abs(distance - previous_distance) < 1e-4 && std::abs(radius - previous_radius) < 1e-4 &&
+    if (std::abs(distance - previous_distance) < 1e-4 &&
+        std::abs(radius - previous_radius) < 1e-4 &&
         std::abs(bearing - previous_bearing) * distance < 1e-4) {
       break;
     }

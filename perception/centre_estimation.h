@@ -61,9 +61,9 @@ CentreEstimate RadiusCorrectedCentre(const ClusterView& cluster, double max_radi
 // tangents the start is consistent and ONE step is taken (Le Cam's one-step estimator: as
 // efficient as iterating to convergence; on tests/perception/centre_rule_test.cc's arcs the
 // median errors are equal within 0.4 mm, at half the cost). With a tangent missing the start is
-// biased, and up to three steps are taken (fewer when no parameter moves by 0.1 mm). A plain circle fit of a short noisy arc is poorly conditioned (the curvature of ten
-// points with 3 cm noise says little); the tangents are what pins the radius down, and the points
-// fix the range. With an occluded edge (the neighbouring beam is nearer: another object hides
+// biased, and up to three steps are taken (fewer when no parameter moves by 0.1 mm). A plain
+// circle fit of a short noisy arc is poorly conditioned (the curvature of ten points with 3 cm
+// noise says little); the tangents are what pins the radius down, and the points fix the range. With an occluded edge (the neighbouring beam is nearer: another object hides
 // part of this one) that tangent is dropped, so a partly hidden object keeps its true size.
 // Falls back (fell_back = true, RadiusCorrectedCentre()) when fewer than three measurements
 // remain or fewer than kMinCircleFitPoints points are left with no tangent at all, or when the

@@ -96,7 +96,8 @@ void ScoreScan(const slammtt_msgs::features_t& features, const TruthSnapshot& tr
   std::vector<const slammtt_msgs::feature_t*> source;
   for (const slammtt_msgs::feature_t& f : features.features) {
     source.push_back(&f);
-    found.push_back(Point{f.range_m * std::cos(f.bearing_rad), f.range_m * std::sin(f.bearing_rad)});
+    found.push_back(
+        Point{f.range_m * std::cos(f.bearing_rad), f.range_m * std::sin(f.bearing_rad)});
   }
   std::vector<std::tuple<double, size_t, size_t>> pairs;
   for (size_t i = 0; i < found.size(); ++i) {
@@ -178,14 +179,15 @@ std::vector<DetectionFigures> Evaluate(const std::string& scenario_name) {
   }
   for (size_t r = 0; r < figures.size(); ++r) {
     const DetectionFigures& f = figures[r];
-    std::printf("%s %-16s scans %lld, objects seen by >= 3 beams %lld, features %lld (ignored %lld): "
-                "recall %.4f, precision %.4f, centre error median %.4f m, p95 %.4f m, "
+    std::printf("%s %-16s scans %lld, objects seen by >= 3 beams %lld, features %lld "
+                "(ignored %lld): recall %.4f, precision %.4f, centre error median %.4f m, p95 %.4f m, "
                 "NEES mean %.2f p95 %.2f p99 %.2f\n",
                 scenario_name.c_str(), CentreRuleName(kRules[r]), static_cast<long long>(f.scans),
                 static_cast<long long>(f.truth_objects), static_cast<long long>(f.features),
                 static_cast<long long>(f.ignored_features), f.Recall(), f.Precision(),
                 f.MedianError(), f.P95Error(), Mean(f.nees),
-                testing_support::Percentile(f.nees, 0.95), testing_support::Percentile(f.nees, 0.99));
+                testing_support::Percentile(f.nees, 0.95),
+                testing_support::Percentile(f.nees, 0.99));
   }
   return figures;
 }

@@ -562,7 +562,9 @@ TEST(SegmenterTest, AnglesAreWrapped) {
   const std::vector<Feature> reference = segmenter.Segment(base.View());
   for (double turns : {1.0, -1.0, 7.0, -13.0}) {
     TestScan shifted = base;
-    for (float& a : shifted.angle_rad) a = static_cast<float>(static_cast<double>(a) + turns * 2.0 * M_PI);
+    for (float& a : shifted.angle_rad) {
+      a = static_cast<float>(static_cast<double>(a) + turns * 2.0 * M_PI);
+    }
     const std::vector<Feature> f = segmenter.Segment(shifted.View());
     ASSERT_EQ(f.size(), reference.size()) << turns;
     ExpectSane(f);
