@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "drivers/common/fault_schedule.h"
 #include "runtime/log.h"
 
 namespace slammtt {
@@ -35,21 +36,6 @@ const char* NameOf(P3dxEmulatorFault::Kind kind) {
   return "?";
 }
 
-double NumberOr(const std::string& text, double fallback, const std::string& fault) {
-  if (text.empty()) return fallback;
-  size_t used = 0;
-  double value = 0.0;
-  try {
-    value = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != text.size() || !std::isfinite(value) || value < 0.0) {
-    throw std::invalid_argument("fault '" + fault + "': '" + text + "' is not a number >= 0");
-  }
-  return value;
-}
-
 // "A,B" as two integers.
 std::pair<int, int> PairOr(const std::string& text, std::pair<int, int> fallback,
                            const std::string& fault) {
@@ -58,38 +44,22 @@ std::pair<int, int> PairOr(const std::string& text, std::pair<int, int> fallback
   if (comma == std::string::npos) {
     throw std::invalid_argument("fault '" + fault + "': expected LEFT,RIGHT, got '" + text + "'");
   }
-  return {static_cast<int>(NumberOr(text.substr(0, comma), 0, fault)),
-          static_cast<int>(NumberOr(text.substr(comma + 1), 0, fault))};
+  return {static_cast<int>(FaultNumber(text.substr(0, comma), 0, fault)),
+          static_cast<int>(FaultNumber(text.substr(comma + 1), 0, fault))};
 }
 
 }  // namespace
 
 P3dxEmulatorFault ParseP3dxEmulatorFault(const std::string& text) {
-  const size_t at = text.find('@');
-  if (at == std::string::npos) {
-    throw std::invalid_argument("fault '" + text + "': expected KIND@SECONDS[:ARG]");
-  }
+  std::vector<std::string> names;
+  for (const FaultName& entry : kFaultNames) names.push_back(entry.name);
+  const ScheduledFault parsed = ParseScheduledFault(text, names);
   P3dxEmulatorFault fault;
-  const std::string name = text.substr(0, at);
-  bool known = false;
   for (const FaultName& entry : kFaultNames) {
-    if (name == entry.name) {
-      fault.kind = entry.kind;
-      known = true;
-    }
+    if (parsed.kind == entry.name) fault.kind = entry.kind;
   }
-  if (!known) {
-    std::string names;
-    for (const FaultName& entry : kFaultNames) names += std::string(names.empty() ? "" : ", ") + entry.name;
-    throw std::invalid_argument("fault '" + text + "': unknown kind '" + name + "' (" + names + ")");
-  }
-  const std::string rest = text.substr(at + 1);
-  const size_t colon = rest.find(':');
-  fault.at_s = NumberOr(rest.substr(0, colon), -1.0, text);
-  if (rest.substr(0, colon).empty()) {
-    throw std::invalid_argument("fault '" + text + "': missing the time in seconds");
-  }
-  if (colon != std::string::npos) fault.argument = rest.substr(colon + 1);
+  fault.at_s = parsed.at_s;
+  fault.argument = parsed.argument;
   // Check the argument now rather than when the fault fires.
   switch (fault.kind) {
     case P3dxEmulatorFault::Kind::kBumper:
@@ -97,7 +67,7 @@ P3dxEmulatorFault ParseP3dxEmulatorFault(const std::string& text) {
       PairOr(fault.argument, {0, 0}, text);
       break;
     default:
-      NumberOr(fault.argument, 0.0, text);
+      FaultNumber(fault.argument, 0.0, text);
       break;
   }
   return fault;
@@ -141,25 +111,25 @@ void P3dxEmulator::ApplyDueFaults(int64_t now_us) {
     std::lock_guard<std::mutex> lock(mutex_);
     switch (fault.kind) {
       case P3dxEmulatorFault::Kind::kGarbage:
-        model_.InjectGarbage(static_cast<int>(NumberOr(arg, 64, arg)));
+        model_.InjectGarbage(static_cast<int>(FaultNumber(arg, 64, arg)));
         break;
       case P3dxEmulatorFault::Kind::kBadChecksum:
-        model_.CorruptNextChecksums(static_cast<int>(NumberOr(arg, 1, arg)));
+        model_.CorruptNextChecksums(static_cast<int>(FaultNumber(arg, 1, arg)));
         break;
       case P3dxEmulatorFault::Kind::kDrop:
-        model_.DropNextBytes(static_cast<int>(NumberOr(arg, 4, arg)));
+        model_.DropNextBytes(static_cast<int>(FaultNumber(arg, 4, arg)));
         break;
       case P3dxEmulatorFault::Kind::kShort:
-        model_.SendShortSips(static_cast<int>(NumberOr(arg, 1, arg)));
+        model_.SendShortSips(static_cast<int>(FaultNumber(arg, 1, arg)));
         break;
       case P3dxEmulatorFault::Kind::kTruncate:
-        model_.TruncateNextPackets(static_cast<int>(NumberOr(arg, 1, arg)));
+        model_.TruncateNextPackets(static_cast<int>(FaultNumber(arg, 1, arg)));
         break;
       case P3dxEmulatorFault::Kind::kSilence:
-        model_.SilenceFor(std::llround(NumberOr(arg, 3.0, arg) * 1e6), now_us);
+        model_.SilenceFor(std::llround(FaultNumber(arg, 3.0, arg) * 1e6), now_us);
         break;
       case P3dxEmulatorFault::Kind::kDisconnect:
-        Disconnect(now_us, std::llround(NumberOr(arg, 2.0, arg) * 1e6));
+        Disconnect(now_us, std::llround(FaultNumber(arg, 2.0, arg) * 1e6));
         break;
       case P3dxEmulatorFault::Kind::kBumper: {
         const auto bits = PairOr(arg, {1, 0}, arg);

@@ -1,6 +1,9 @@
 // slammtt-p3dx-emulator: a Pioneer P3-DX microcontroller on a pseudo-terminal or a TCP port.
+#include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <iostream>
+#include <string>
 
 #include "drivers/p3dx/p3dx_emulator.h"
 #include "runtime/command_line.h"
@@ -58,15 +61,22 @@ int Main(int argc, char** argv) {
   }
   robot.identity.name = cl.ValueOr("name", robot.identity.name);
   if (auto v = cl.DoubleValue("battery-v")) robot.battery_v = *v;
-  if (auto v = cl.IntValue("sip-cycle-ms")) robot.sip_cycle_ms = static_cast<int>(*v);
-  if (auto v = cl.IntValue("watchdog-ms")) robot.watchdog_ms = static_cast<int>(*v);
-  if (auto v = cl.IntValue("sonars")) robot.sonar_count = static_cast<int>(*v);
+  // Ranges are checked on the 64-bit value, before it is narrowed to int.
+  auto bounded = [&cl](const char* name, int64_t minimum, int64_t maximum, int* value) {
+    if (auto v = cl.IntValue(name)) {
+      if (*v < minimum || *v > maximum) {
+        throw UsageError(std::string("--") + name + ": " + std::to_string(minimum) + ".." +
+                         std::to_string(maximum));
+      }
+      *value = static_cast<int>(*v);
+    }
+  };
+  bounded("sip-cycle-ms", 10, 1000, &robot.sip_cycle_ms);
+  bounded("watchdog-ms", 100, 3600000, &robot.watchdog_ms);
+  bounded("sonars", 0, 32, &robot.sonar_count);
   if (auto v = cl.IntValue("seed")) robot.seed = static_cast<uint32_t>(*v);
   robot.signed_thpos = cl.Flag("signed-thpos");
   robot.extended_sip = !cl.Flag("short-sip");
-  if (robot.sip_cycle_ms < 10 || robot.sip_cycle_ms > 1000) throw UsageError("--sip-cycle-ms: 10..1000");
-  if (robot.watchdog_ms < 100) throw UsageError("--watchdog-ms: at least 100");
-  if (robot.sonar_count < 0 || robot.sonar_count > 32) throw UsageError("--sonars: 0..32");
   if (robot.battery_v < 0.0 || robot.battery_v > 25.5) throw UsageError("--battery-v: 0..25.5");
   for (const std::string& text : cl.Values("fault")) {
     try {
@@ -78,16 +88,26 @@ int Main(int argc, char** argv) {
 
   P3dxEmulator emulator(options);
   if (auto start = cl.Value("start-moving")) {
+    // Whole numbers of the text only, finite and within what the robot can do (a NaN here
+    // would become the robot's pose).
     const size_t comma = start->find(',');
-    double v = 0.0;
-    double w = 0.0;
-    try {
-      if (comma == std::string::npos) throw std::invalid_argument("no comma");
-      v = std::stod(start->substr(0, comma));
-      w = std::stod(start->substr(comma + 1));
-    } catch (const std::exception&) {
-      throw UsageError("--start-moving expects V,W, got '" + *start + "'");
-    }
+    auto number = [&start](const std::string& text, double limit) {
+      size_t used = 0;
+      double value = 0.0;
+      try {
+        value = std::stod(text, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used == 0 || used != text.size() || !std::isfinite(value) || std::abs(value) > limit) {
+        throw UsageError("--start-moving expects V,W (|V| <= 2 m/s, |W| <= 6 rad/s), got '" +
+                         *start + "'");
+      }
+      return value;
+    };
+    if (comma == std::string::npos) number("", 0.0);
+    const double v = number(start->substr(0, comma), 2.0);
+    const double w = number(start->substr(comma + 1), 6.0);
     emulator.WithModel([&](P3dxRobotModel& model) {
       model.StartConnected(v, w, P3dxEmulator::NowUs());
       return 0;

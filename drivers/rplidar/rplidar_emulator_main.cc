@@ -9,6 +9,7 @@
 #include <thread>
 #include <vector>
 
+#include "drivers/common/fault_schedule.h"
 #include "drivers/rplidar/rplidar_emulator_server.h"
 #include "runtime/log.h"
 #include "runtime/process.h"
@@ -19,48 +20,33 @@ namespace {
 using namespace slammtt;
 using namespace slammtt::rplidar;
 
-struct ScheduledFault {
-  std::string kind;   // garbage, bad-checksum, drop, silence, disconnect
-  double at_s = 0.0;
+// The emulator's faults (docs/rplidar.md) and their default arguments: bytes of garbage,
+// packets corrupted or cut, seconds of silence or of a pulled cable.
+const std::vector<std::string> kFaultKinds = {"garbage", "bad-checksum", "drop", "silence",
+                                              "disconnect"};
+
+double DefaultFaultArgument(const std::string& kind) {
+  if (kind == "garbage") return 100.0;
+  if (kind == "silence" || kind == "disconnect") return 3.0;
+  return 1.0;
+}
+
+struct PendingFault {
+  ScheduledFault fault;
   double argument = 0.0;
   bool done = false;
 };
 
-// KIND@SECONDS[:ARG]
-ScheduledFault ParseFault(const std::string& text) {
-  const size_t at = text.find('@');
-  if (at == std::string::npos) throw UsageError("--fault " + text + ": expected KIND@SECONDS[:ARG]");
-  ScheduledFault fault;
-  fault.kind = text.substr(0, at);
-  const std::string rest = text.substr(at + 1);
-  const size_t colon = rest.find(':');
+PendingFault ParseFault(const std::string& text) {
   try {
-    size_t used = 0;
-    const std::string when = rest.substr(0, colon);
-    fault.at_s = std::stod(when, &used);
-    if (used != when.size() || fault.at_s < 0.0) throw std::invalid_argument("time");
-    if (colon != std::string::npos) {
-      const std::string argument = rest.substr(colon + 1);
-      fault.argument = std::stod(argument, &used);
-      if (used != argument.size() || fault.argument < 0.0) throw std::invalid_argument("arg");
-    }
-  } catch (const std::exception&) {
-    throw UsageError("--fault " + text + ": expected KIND@SECONDS[:ARG] with numbers >= 0");
+    PendingFault pending;
+    pending.fault = ParseScheduledFault(text, kFaultKinds);
+    pending.argument = FaultNumber(pending.fault.argument,
+                                   DefaultFaultArgument(pending.fault.kind), text);
+    return pending;
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("--fault: ") + e.what());
   }
-  const std::vector<std::string> kinds = {"garbage", "bad-checksum", "drop", "silence",
-                                          "disconnect"};
-  bool known = false;
-  for (const std::string& kind : kinds) known = known || kind == fault.kind;
-  if (!known) {
-    throw UsageError("--fault " + text +
-                     ": KIND is garbage, bad-checksum, drop, silence or disconnect");
-  }
-  if (colon == std::string::npos) {
-    fault.argument = (fault.kind == "silence" || fault.kind == "disconnect") ? 3.0
-                     : fault.kind == "garbage"                              ? 100.0
-                                                                            : 1.0;
-  }
-  return fault;
 }
 
 DeviceHealth ParseHealth(const std::string& text) {
@@ -143,7 +129,7 @@ int main(int argc, char** argv) {
     device.accessory_board = command_line.Flag("accessory-board");
     if (auto health = command_line.Value("health")) device.health = ParseHealth(*health);
     device.health_persists_after_reset = command_line.Flag("health-persists");
-    std::vector<ScheduledFault> faults;
+    std::vector<PendingFault> faults;
     for (const std::string& text : command_line.Values("fault")) faults.push_back(ParseFault(text));
 
     EmulatorTransportOptions transport;
@@ -167,15 +153,17 @@ int main(int argc, char** argv) {
     while (!ShutdownRequested()) {
       const double elapsed_s =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      for (ScheduledFault& fault : faults) {
-        if (fault.done || elapsed_s < fault.at_s) continue;
-        fault.done = true;
-        LogInfo() << "fault: " << fault.kind << " (" << fault.argument << ")";
-        if (fault.kind == "garbage") server.InjectGarbage(static_cast<size_t>(fault.argument));
-        if (fault.kind == "bad-checksum") server.CorruptPackets(static_cast<int>(fault.argument));
-        if (fault.kind == "drop") server.DropBytes(static_cast<int>(fault.argument));
-        if (fault.kind == "silence") server.Silence(static_cast<int>(fault.argument * 1000));
-        if (fault.kind == "disconnect") server.Disconnect(static_cast<int>(fault.argument * 1000));
+      for (PendingFault& pending : faults) {
+        if (pending.done || elapsed_s < pending.fault.at_s) continue;
+        pending.done = true;
+        const std::string& kind = pending.fault.kind;
+        const double argument = pending.argument;
+        LogInfo() << "fault: " << kind << " (" << argument << ")";
+        if (kind == "garbage") server.InjectGarbage(static_cast<size_t>(argument));
+        if (kind == "bad-checksum") server.CorruptPackets(static_cast<int>(argument));
+        if (kind == "drop") server.DropBytes(static_cast<int>(argument));
+        if (kind == "silence") server.Silence(static_cast<int>(argument * 1000));
+        if (kind == "disconnect") server.Disconnect(static_cast<int>(argument * 1000));
       }
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }

@@ -1,0 +1,51 @@
+#include "drivers/common/fault_schedule.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace slammtt {
+
+double FaultNumber(const std::string& argument, double fallback, const std::string& text) {
+  if (argument.empty()) return fallback;
+  size_t used = 0;
+  double value = 0.0;
+  try {
+    value = std::stod(argument, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != argument.size() || !std::isfinite(value) || value < 0.0 || value > 1e6) {
+    throw std::invalid_argument("fault '" + text + "': '" + argument +
+                                "' is not a number from 0 to 1000000");
+  }
+  return value;
+}
+
+ScheduledFault ParseScheduledFault(const std::string& text,
+                                   const std::vector<std::string>& kinds) {
+  const size_t at = text.find('@');
+  if (at == std::string::npos) {
+    throw std::invalid_argument("fault '" + text + "': expected KIND@SECONDS[:ARG]");
+  }
+  ScheduledFault fault;
+  fault.kind = text.substr(0, at);
+  bool known = false;
+  std::string names;
+  for (const std::string& kind : kinds) {
+    known = known || kind == fault.kind;
+    names += (names.empty() ? "" : ", ") + kind;
+  }
+  if (!known) {
+    throw std::invalid_argument("fault '" + text + "': unknown kind '" + fault.kind + "' (" +
+                                names + ")");
+  }
+  const std::string rest = text.substr(at + 1);
+  const size_t colon = rest.find(':');
+  const std::string when = rest.substr(0, colon);
+  if (when.empty()) throw std::invalid_argument("fault '" + text + "': missing the time in seconds");
+  fault.at_s = FaultNumber(when, 0.0, text);
+  if (colon != std::string::npos) fault.argument = rest.substr(colon + 1);
+  return fault;
+}
+
+}  // namespace slammtt
