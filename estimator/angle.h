@@ -10,6 +10,9 @@ namespace slammtt {
 // it before it reaches a model).
 inline double WrapAngle(double angle_rad) {
   if (!std::isfinite(angle_rad)) return angle_rad;
+  // Within [-pi, pi] the remainder is the angle itself (|x / 2pi| <= 1/2 rounds to 0, ties to
+  // even): skip the libm call for the common case of a small innovation.
+  if (std::abs(angle_rad) <= M_PI) return angle_rad <= -M_PI ? angle_rad + 2.0 * M_PI : angle_rad;
   double wrapped = std::remainder(angle_rad, 2.0 * M_PI);  // in [-pi, pi]
   if (wrapped <= -M_PI) wrapped += 2.0 * M_PI;
   return wrapped;

@@ -1,19 +1,28 @@
 // build/bin/bench_estimator: per-scan cost of the estimator (docs/estimator.md).
 //   BM_TypicalScan      the s1-crossing setting: 180-degree laser, ~20 landmarks and 5 movers in
 //                       view, robot at 1.5 m/s, 8 Hz.
-//   BM_Crowded          300 static landmarks and 30 movers all in view (360 degrees, 30 m).
+//   BM_Crowded          300 static landmarks and 30 movers all in view (360 degrees, 30 m), by
+//                       update group size and per-scan budget of static-landmark updates
+//                       (-1: the default EstimatorOptions::max_static_updates_per_scan, 0: none).
 //   BM_UpdateBatch      one EKF update with every object observed, by update group size.
 // Each scan benchmark first runs the world until the objects are classified (warm-up, not
 // timed), then times consecutive scans of the same run; besides the mean it reports per-scan
 // percentiles around ProcessScan only (the world's frames are generated beforehand):
 // p50_ms, p99_ms, max_ms of the wall-clock time (steady clock) and cpu_p50_ms, cpu_p99_ms,
 // cpu_max_ms of the thread's CPU time (CLOCK_THREAD_CPUTIME_ID), which a busy machine's
-// preemptions do not inflate. Nearest-rank percentiles.
+// preemptions do not inflate. Nearest-rank percentiles. The mean CPU time of each sub-stage
+// (cpu_<substage>_ms) says where the time goes, and the accuracy over the timed scans says what
+// a setting costs: ate_m (RMSE of the robot position against the world's truth), landmark_m
+// (RMSE of the confirmed static landmarks at the last scan against their nearest true static
+// point) and landmarks (how many there are).
 #include <benchmark/benchmark.h>
 
 #include <time.h>
 
 #include <algorithm>
+#include <array>
+#include <limits>
+#include <string>
 #include <chrono>
 #include <cmath>
 #include <random>
@@ -43,6 +52,38 @@ double Rank(const std::vector<double>& sorted, double q) {
   return sorted[std::min(index, sorted.size() - 1)];
 }
 
+// Thread CPU time of each sub-stage, summed over the scans it observed.
+class SubstageClock : public StepObserver {
+ public:
+  void Start() { last_ms_ = ThreadCpuMs(); }
+  void SubstageDone(Substage substage) override {
+    const double now = ThreadCpuMs();
+    total_ms_[static_cast<size_t>(substage)] += now - last_ms_;
+    last_ms_ = now;
+  }
+  double total_ms(Substage substage) const { return total_ms_[static_cast<size_t>(substage)]; }
+
+ private:
+  double last_ms_ = 0.0;
+  std::array<double, 6> total_ms_{};
+};
+
+// RMSE of the confirmed static landmarks against their nearest true static point.
+double LandmarkRmse(const ScanResult& result, const WorldFrame& frame, int* count) {
+  double sum = 0.0;
+  *count = 0;
+  for (const ObjectEstimate& e : result.objects) {
+    if (e.object_class != ObjectClass::kStatic || !e.confirmed) continue;
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const testing::TruthObject& t : frame.objects) {
+      if (!t.mover) nearest = std::min(nearest, (t.position_m - e.position).squaredNorm());
+    }
+    sum += nearest;
+    ++*count;
+  }
+  return *count > 0 ? std::sqrt(sum / *count) : 0.0;
+}
+
 void RunScans(benchmark::State& state, const PointWorldOptions& world_options,
               const testing::RobotCommand& command, const std::vector<WorldObject>& objects,
               int warmup_scans, int timed_scans, const EstimatorOptions& options) {
@@ -52,6 +93,11 @@ void RunScans(benchmark::State& state, const PointWorldOptions& world_options,
   std::vector<double> durations_ms;
   std::vector<double> cpu_ms;
   size_t objects_total = 0;
+  SubstageClock clock;
+  std::array<double, 4> updates{};  // level 1, 2, 3, skipped by the budget
+  double squared_pose_error = 0.0;
+  double landmark_rmse = 0.0;
+  int landmarks = 0;
   for (auto _ : state) {
     state.PauseTiming();
     Estimator estimator(options);
@@ -66,12 +112,21 @@ void RunScans(benchmark::State& state, const PointWorldOptions& world_options,
       const double cpu_start = ThreadCpuMs();
       const auto start = std::chrono::steady_clock::now();
       for (const OdometryReading& r : frame.odometry) estimator.AddOdometry(r);
-      const ScanResult result = estimator.ProcessScan(frame.scan, &rng);
+      clock.Start();
+      const ScanResult result = estimator.ProcessScan(frame.scan, &rng, &clock);
       const auto end = std::chrono::steady_clock::now();
       cpu_ms.push_back(ThreadCpuMs() - cpu_start);
       durations_ms.push_back(std::chrono::duration<double, std::milli>(end - start).count());
       objects_total += result.objects.size();
       benchmark::DoNotOptimize(result.pose);
+      updates[0] += result.counts.level1_updates;
+      updates[1] += result.counts.level2_updates;
+      updates[2] += result.counts.level3_updates;
+      updates[3] += result.counts.static_updates_skipped;
+      squared_pose_error += (result.pose.head<2>() - frame.true_pose.head<2>()).squaredNorm();
+      if (k + 1 == warmup_scans + timed_scans) {
+        landmark_rmse = LandmarkRmse(result, frame, &landmarks);
+      }
     }
   }
   std::sort(durations_ms.begin(), durations_ms.end());
@@ -85,6 +140,18 @@ void RunScans(benchmark::State& state, const PointWorldOptions& world_options,
   state.counters["cpu_p50_ms"] = Rank(cpu_ms, 0.5);
   state.counters["cpu_p99_ms"] = Rank(cpu_ms, 0.99);
   state.counters["cpu_max_ms"] = cpu_ms.back();
+  const double scans = static_cast<double>(cpu_ms.size());
+  for (Substage s : {Substage::kPredict, Substage::kGating, Substage::kLevel1, Substage::kRansac,
+                     Substage::kLevel23, Substage::kTrackManagement}) {
+    state.counters[std::string("cpu_") + SubstageName(s) + "_ms"] = clock.total_ms(s) / scans;
+  }
+  state.counters["level1_updates"] = updates[0] / scans;
+  state.counters["level2_updates"] = updates[1] / scans;
+  state.counters["level3_updates"] = updates[2] / scans;
+  state.counters["skipped_updates"] = updates[3] / scans;
+  state.counters["ate_m"] = std::sqrt(squared_pose_error / scans);
+  state.counters["landmark_m"] = landmark_rmse;
+  state.counters["landmarks"] = landmarks;
   state.SetItemsProcessed(static_cast<int64_t>(durations_ms.size()));
 }
 
@@ -120,15 +187,25 @@ void BM_Crowded(benchmark::State& state) {
   options.field_of_view_rad = world_options.field_of_view_rad;
   options.max_objects = 1000;
   options.update_group_size = static_cast<int>(state.range(2));
+  if (state.range(3) >= 0) {
+    options.max_static_updates_per_scan = static_cast<int>(state.range(3));
+  }
   // 150 scans (15 s) of warm-up: the landmarks are static and the movers moving by then.
   RunScans(state, world_options, [](double) { return Eigen::Vector2d(0.25, 0.05); }, objects,
            150, 100, options);
 }
 BENCHMARK(BM_Crowded)
-    ->Args({300, 30, 32})
-    ->Args({300, 30, 128})
-    ->Args({100, 10, 32})
-    ->ArgNames({"landmarks", "movers", "group"})
+    ->Args({300, 30, 32, -1})
+    ->Args({300, 30, 32, 0})
+    ->Args({300, 30, 32, 120})
+    ->Args({300, 30, 32, 80})
+    ->Args({300, 30, 32, 60})
+    ->Args({300, 30, 32, 50})
+    ->Args({300, 30, 32, 40})
+    ->Args({300, 30, 32, 30})
+    ->Args({100, 10, 32, -1})
+    ->Args({100, 10, 32, 0})
+    ->ArgNames({"landmarks", "movers", "group", "budget"})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1);
 

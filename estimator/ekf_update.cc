@@ -50,8 +50,7 @@ bool ApplyGroup(const std::vector<Linearised>& group, SlamState* state) {
   auto mean = state->mean();
   mean.noalias() += v_transposed.transpose() * whitened;
   mean(2) = WrapAngle(mean(2));
-  cov.selfadjointView<Eigen::Lower>().rankUpdate(v_transposed.transpose(), -1.0);
-  state->MirrorLowerTriangle();
+  state->SubtractSymmetricProduct(v_transposed);
   return true;
 }
 

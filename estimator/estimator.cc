@@ -34,31 +34,66 @@ struct Assignment {
   }
 };
 
-// Applies `pairs` (gated by gate_chi2 at the current state) and records the applied ones.
+// Applies `pairs` (gated by gate_chi2 at the current state) and records the associated ones.
+// A pair whose object may not update this scan (may_update[object] == 0: the static-landmark
+// budget) is associated all the same but does not update the state.
 int ApplyPairs(const std::vector<Candidate>& pairs,
                const std::vector<PointMeasurement>& measurements, double gate_chi2,
+               const std::vector<uint8_t>& may_update, int64_t utime,
                const EstimatorOptions& options, SlamState* state, Assignment* assignment,
                StepCounts* counts) {
   // ApplyObservations skips gated-out pairs; gate here first so that the assignment records
-  // exactly the applied pairs.
+  // exactly the associated pairs.
   const std::vector<ObjectPrediction> predictions = PredictObservations(*state, options.sensor);
   std::vector<ObjectObservation> observations;
-  std::vector<Candidate> applied;
   for (const Candidate& c : pairs) {
     if (!assignment->MeasurementFree(c.measurement) || !assignment->ObjectFree(c.object)) continue;
     const PointMeasurement& z = measurements[static_cast<size_t>(c.measurement)];
     const double nis =
         NormalizedInnovationSquared(z, predictions[static_cast<size_t>(c.object)], gate_chi2);
     if (!(nis < gate_chi2)) continue;
-    observations.push_back({c.object, z});
-    applied.push_back(c);
     assignment->Set(c.measurement, c.object);
+    if (!may_update[static_cast<size_t>(c.object)]) {
+      ++counts->static_updates_skipped;
+      continue;
+    }
+    observations.push_back({c.object, z});
+    state->object(c.object).record.last_update_utime = utime;
   }
   if (observations.empty()) return 0;
   const UpdateStats stats = ApplyObservations(observations, options.sensor, kInfinity,
                                               options.update_group_size, state);
   counts->updates_failed += stats.failed;
   return stats.applied;
+}
+
+// Which objects may update the state this scan: all but the static landmarks beyond the
+// budget (EstimatorOptions::max_static_updates_per_scan). The landmarks that have a pair in
+// `gated` compete; the least recently updated win, ties to the lower index.
+std::vector<uint8_t> ObjectsThatMayUpdate(const SlamState& state,
+                                          const std::vector<Candidate>& gated, int budget) {
+  const size_t num_objects = static_cast<size_t>(state.num_objects());
+  std::vector<uint8_t> may_update(num_objects, 1);
+  if (budget <= 0) return may_update;
+  std::vector<uint8_t> listed(num_objects, 0);
+  std::vector<int> landmarks;
+  for (const Candidate& c : gated) {
+    const size_t j = static_cast<size_t>(c.object);
+    if (listed[j] || state.object(c.object).has_velocity()) continue;
+    listed[j] = 1;
+    landmarks.push_back(c.object);
+  }
+  if (static_cast<int>(landmarks.size()) <= budget) return may_update;
+  auto staler = [&state](int a, int b) {
+    const int64_t ta = state.object(a).record.last_update_utime;
+    const int64_t tb = state.object(b).record.last_update_utime;
+    return ta != tb ? ta < tb : a < b;
+  };
+  std::nth_element(landmarks.begin(), landmarks.begin() + budget, landmarks.end(), staler);
+  for (size_t k = static_cast<size_t>(budget); k < landmarks.size(); ++k) {
+    may_update[static_cast<size_t>(landmarks[k])] = 0;
+  }
+  return may_update;
 }
 
 // Greedy one-to-one choice among pairs in increasing NIS (global nearest neighbour, greedy).
@@ -158,6 +193,7 @@ std::string CheckEstimatorOptions(const EstimatorOptions& o) {
   if (o.ransac.max_hypotheses < 1) return "max_hypotheses must be >= 1";
   if (!positive(o.ransac.inlier_chi2)) return "ransac_inlier_chi2 must be > 0";
   if (o.update_group_size < 1) return "update_group_size must be >= 1";
+  if (o.max_static_updates_per_scan < 0) return "max_static_updates_per_scan must be >= 0";
   if (o.tracks.confirm_hits < 1) return "confirm_hits must be >= 1";
   if (!non_negative(o.tracks.prune_unseen_s) || !non_negative(o.tracks.tentative_prune_unseen_s) ||
       !non_negative(o.tracks.static_prune_unseen_in_view_s) ||
@@ -390,6 +426,8 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
   lap(Substage::kGating);
 
   Assignment assignment(num_measurements, num_objects_before);
+  const std::vector<uint8_t> may_update =
+      ObjectsThatMayUpdate(state_, gated, options_.max_static_updates_per_scan);
   if (options_.mode == AssociationMode::kStaticNearestNeighbour) {
     // --- nearest neighbour: each measurement's closest object in d1, one-to-one.
     std::vector<Candidate> nearest;
@@ -401,7 +439,8 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
       }
     }
     counts.level1_updates = ApplyPairs(GreedyOneToOne(nearest, assignment), measurements, d1,
-                                       options_, &state_, &assignment, &counts);
+                                       may_update, scan.utime, options_, &state_, &assignment,
+                                       &counts);
     lap(Substage::kLevel1);
     lap(Substage::kRansac);
   } else {
@@ -410,8 +449,8 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
       // --- level 1 (lines 5-6)
       const CompatibilitySplit split =
           SplitCompatibility(compatible, num_measurements, num_objects_before);
-      counts.level1_updates = ApplyPairs(split.unambiguous, measurements, d1, options_, &state_,
-                                         &assignment, &counts);
+      counts.level1_updates = ApplyPairs(split.unambiguous, measurements, d1, may_update,
+                                         scan.utime, options_, &state_, &assignment, &counts);
       lap(Substage::kLevel1);
       // --- RANSAC over what J leaves ambiguous (line 7), re-judged at the updated state.
       if (!split.ambiguous.empty()) {
@@ -446,8 +485,8 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
     counters_.hypotheses_generated += ransac.hypotheses;
     lap(Substage::kRansac);
     // --- level 2: the best hypothesis' pairs, gated by d1 (line 7.e)
-    counts.level2_updates =
-        ApplyPairs(ransac.consensus, measurements, d1, options_, &state_, &assignment, &counts);
+    counts.level2_updates = ApplyPairs(ransac.consensus, measurements, d1, may_update,
+                                       scan.utime, options_, &state_, &assignment, &counts);
   }
   // --- level 3 (line 9): what is left, with the wider gate d2
   if (options_.level3 && options_.mode != AssociationMode::kStaticNearestNeighbour) {
@@ -468,24 +507,42 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
       }
     }
     predictions = PredictObservations(state_, options_.sensor);
-    std::vector<Candidate> remaining;
+    std::vector<int> free_measurements;
+    std::vector<int> free_objects;
     for (int i = 0; i < num_measurements; ++i) {
-      if (!assignment.MeasurementFree(i)) continue;
-      for (int j = 0; j < num_objects_before; ++j) {
-        if (!assignment.ObjectFree(j)) continue;
-        const double nis = NormalizedInnovationSquared(measurements[static_cast<size_t>(i)],
-                                                       predictions[static_cast<size_t>(j)],
-                                                       options_.gate_d2_chi2);
-        if (nis < options_.gate_d2_chi2) remaining.push_back({i, j, nis});
+      if (assignment.MeasurementFree(i)) free_measurements.push_back(i);
+    }
+    for (int j = 0; j < num_objects_before; ++j) {
+      if (assignment.ObjectFree(j)) free_objects.push_back(j);
+    }
+    std::vector<Candidate> remaining;
+    if (free_measurements.size() * free_objects.size() <= kGatingBruteForcePairs) {
+      for (int i : free_measurements) {
+        for (int j : free_objects) {
+          const double nis = NormalizedInnovationSquared(measurements[static_cast<size_t>(i)],
+                                                         predictions[static_cast<size_t>(j)],
+                                                         options_.gate_d2_chi2);
+          if (nis < options_.gate_d2_chi2) remaining.push_back({i, j, nis});
+        }
+      }
+    } else {
+      // Same pairs, same order, looked up by bearing (gating.h).
+      for (const Candidate& c : GatePairs(measurements, predictions, options_.gate_d2_chi2)) {
+        if (assignment.MeasurementFree(c.measurement) && assignment.ObjectFree(c.object)) {
+          remaining.push_back(c);
+        }
       }
     }
     counts.level3_updates = ApplyPairs(GreedyOneToOne(remaining, assignment), measurements,
-                                       options_.gate_d2_chi2, options_, &state_, &assignment,
-                                       &counts);
+                                       options_.gate_d2_chi2, may_update, scan.utime, options_,
+                                       &state_, &assignment, &counts);
   }
   lap(Substage::kLevel23);
 
   // --- track management (lines 11-13)
+  // Baseline (a) is plain EKF-SLAM: every landmark is part of the map from its first sighting
+  // and stays in it; no miss accounting, classification or pruning.
+  const bool static_world = options_.mode == AssociationMode::kStaticNearestNeighbour;
   // Hits and misses; a miss counts towards pruning faster when the object should have been
   // seen (in view, not behind anything this scan saw).
   std::vector<Eigen::Vector3d> seen;
@@ -501,7 +558,7 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
     ObjectRecord& record = state_.object(j).record;
     if (!assignment.ObjectFree(j)) {
       RecordHit(scan.utime, options_.tracks, &record);
-    } else {
+    } else if (!static_world) {
       const ObjectPrediction& p = after_updates[static_cast<size_t>(j)];
       const StateObject& object = state_.object(j);
       const Eigen::Matrix2d position_cov =
@@ -518,7 +575,7 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
     }
   }
   // Classification (line 12).
-  if (options_.mode != AssociationMode::kStaticNearestNeighbour) {
+  if (!static_world) {
     // For static landmarks: the measurement that speaks about each (its own, or else the
     // nearest unassociated one inside gate dn), judged at the state after the updates.
     std::vector<int> landmark_measurement(static_cast<size_t>(num_objects_before), -1);
@@ -584,7 +641,7 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
   }
   // Pruning (line 11).
   std::vector<int> prune;
-  for (int j = 0; j < num_objects_before; ++j) {
+  for (int j = 0; j < (static_world ? 0 : num_objects_before); ++j) {
     const StateObject& object = state_.object(j);
     const ObjectPrediction& p = after_updates[static_cast<size_t>(j)];
     // Outside the sensor's geometry (not merely too far for the segmenter to see a person).
@@ -601,7 +658,6 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
   counts.pruned = static_cast<int>(prune.size());
   state_.RemoveObjects(prune);
   // New objects (line 13): unassigned measurements outside gate dn of every object.
-  const bool static_world = options_.mode == AssociationMode::kStaticNearestNeighbour;
   for (int i = 0; i < num_measurements; ++i) {
     if (!assignment.MeasurementFree(i) || nearest_nis[static_cast<size_t>(i)] < dn) continue;
     if (state_.num_objects() >= options_.max_objects) {
@@ -617,6 +673,7 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
     ObjectRecord record = NewObjectRecord(
         next_id_++, scan.utime, static_world ? ObjectClass::kStatic : ObjectClass::kUndecided);
     RestartStillWindow(position, scan.utime, &record);
+    record.confirmed = static_world;  // plain EKF-SLAM maps a landmark at its first sighting
     const int k = state_.AddObject(position, jacobian_robot,
                                    jacobian_measurement * z.covariance *
                                        jacobian_measurement.transpose(),
@@ -633,6 +690,7 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
           std::to_string(counts.objects_refused) + " new object(s) refused, cap of " +
           std::to_string(options_.max_objects) + " objects reached");
   }
+  counters_.static_updates_skipped += counts.static_updates_skipped;
   if (counts.updates_failed > 0) {
     counters_.updates_failed += counts.updates_failed;
     Event("scan at utime " + std::to_string(scan.utime) + ": " +

@@ -17,9 +17,13 @@
 //                outside gate dn of every object (line 13: moving, zero velocity, large
 //                velocity covariance; track_management.h).
 // Baselines, same code paths where they share them (Options::mode):
-//   kStaticNearestNeighbour  EKF-SLAM assuming a static world: every object is a static
-//                landmark, each measurement goes to its nearest object inside d1 (one-to-one,
-//                the closer measurement wins), no RANSAC, no classification;
+//   kStaticNearestNeighbour  plain EKF-SLAM assuming a static world (the paper's Fig. 5):
+//                every object is a static landmark, mapped from its first sighting and never
+//                removed; each measurement goes to its nearest landmark inside d1 (one-to-one,
+//                the closer measurement wins); a measurement outside gate dn of every landmark
+//                starts a new one. No RANSAC, no level 3, no classification, no miss
+//                accounting, no pruning, no confirmation. Shares the prediction, gating,
+//                update and new-landmark code;
 //   kRansacAllPairs          plain RANSAC: hypotheses drawn from every measurement-object pair
 //                and judged on every pair, with no compatibility matrix and no first level.
 //
@@ -102,6 +106,16 @@ struct EstimatorOptions {
   double new_object_gate_dn_chi2 = 20.0;
   RansacOptions ransac;
   int update_group_size = 32;                    // observations per batch update (ekf_update.h)
+  // Per-scan budget of static-landmark updates (0: no limit). Every measurement is still gated
+  // and associated (hits, misses, classification and new objects see every association), and
+  // objects with velocity states (moving, undecided) always update; but of the static
+  // landmarks that have a candidate pair this scan, only the K least recently updated may
+  // update the state (ties: lower object index). The choice depends on the state's
+  // book-keeping only, never on the measurements' values, so dropping the others keeps the
+  // filter consistent: it only gives up information. The dense update costs O(n^2) per
+  // observation, so this bounds the cost of a scan that sees hundreds of landmarks
+  // (docs/estimator.md, "Speed").
+  int max_static_updates_per_scan = 40;
 
   TrackManagementOptions tracks;
   MotionClassifierOptions classifier;
@@ -175,6 +189,7 @@ struct StepCounts {
   int became_static = 0;
   int started_moving = 0;
   int updates_failed = 0;
+  int static_updates_skipped = 0;  // associated landmarks left out by the per-scan budget
 };
 
 struct ScanResult {
@@ -198,6 +213,7 @@ struct EstimatorCounters {
   int64_t object_cap_hits = 0;
   int64_t hypotheses_generated = 0;
   int64_t updates_failed = 0;
+  int64_t static_updates_skipped = 0;
 };
 
 class Estimator {

@@ -123,6 +123,8 @@ EstimatorStageOptions ReadEstimatorOptions(const Config& s) {
   o.ransac.max_hypotheses = IntKey(s, "max_hypotheses", o.ransac.max_hypotheses, 1, 1000000);
   o.ransac.inlier_chi2 = Double(s, "ransac_inlier_chi2", o.ransac.inlier_chi2);
   o.update_group_size = IntKey(s, "update_group_size", o.update_group_size, 1, 4096);
+  o.max_static_updates_per_scan = IntKey(s, "max_static_updates_per_scan",
+                                         o.max_static_updates_per_scan, 0, 100000);
   o.tracks.confirm_hits = IntKey(s, "confirm_hits", o.tracks.confirm_hits, 1, 1000);
   o.tracks.prune_unseen_s = Double(s, "prune_unseen_s", o.tracks.prune_unseen_s);
   o.tracks.tentative_prune_unseen_s =
@@ -227,6 +229,9 @@ void EstimatorStage::HandleFeatures(const void* data, int size, MessageSink& out
   timer.Count("features", result.counts.features);
   timer.Count("objects", static_cast<int64_t>(result.objects.size()));
   timer.Count("hypotheses", result.counts.hypotheses);
+  timer.Count("updates", result.counts.level1_updates + result.counts.level2_updates +
+                             result.counts.level3_updates);
+  timer.Count("updates_skipped", result.counts.static_updates_skipped);
   const slammtt_msgs::stage_timing_t timing = timer.Finish();
 
   slammtt_msgs::pose_t pose;

@@ -1,7 +1,9 @@
 #include "estimator/gating.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "estimator/angle.h"
 
@@ -53,13 +55,62 @@ std::vector<Candidate> GatePairs(const std::vector<PointMeasurement>& measuremen
                                  const std::vector<ObjectPrediction>& predictions,
                                  double gate_chi2) {
   std::vector<Candidate> pairs;
-  for (size_t i = 0; i < measurements.size(); ++i) {
-    for (size_t j = 0; j < predictions.size(); ++j) {
-      const double nis = NormalizedInnovationSquared(measurements[i], predictions[j], gate_chi2);
-      if (nis < gate_chi2) {
-        pairs.push_back({static_cast<int>(i), static_cast<int>(j), nis});
-      }
+  const size_t num_measurements = measurements.size();
+  const size_t num_objects = predictions.size();
+  auto try_pair = [&](size_t i, size_t j) {
+    const double nis = NormalizedInnovationSquared(measurements[i], predictions[j], gate_chi2);
+    if (nis < gate_chi2) pairs.push_back({static_cast<int>(i), static_cast<int>(j), nis});
+  };
+  if (num_measurements * num_objects <= kGatingBruteForcePairs || !std::isfinite(gate_chi2)) {
+    for (size_t i = 0; i < num_measurements; ++i) {
+      for (size_t j = 0; j < num_objects; ++j) try_pair(i, j);
     }
+    return pairs;
+  }
+  // Bearing window: a pair passes only if nu_b^2 < gate * (H P H^T + R)_bb, so object j can
+  // only pair with measurements within w_j = sqrt(gate * (hph_bb + max R_bb)) of its predicted
+  // bearing. Objects with a window wider than kMaxGatingWindow_rad (close or very uncertain)
+  // are tried against every measurement; the others are sorted by bearing and looked up with
+  // the widest of their windows. The exact test below decides, so the result is the same as
+  // trying every pair (and in the same order).
+  double max_bearing_var = 0.0;
+  for (const PointMeasurement& z : measurements) {
+    max_bearing_var = std::max(max_bearing_var, z.covariance(1, 1));
+  }
+  std::vector<std::pair<double, int>> by_bearing;  // (predicted bearing, object)
+  std::vector<int> everywhere;
+  double window = 0.0;
+  for (size_t j = 0; j < num_objects; ++j) {
+    const ObjectPrediction& p = predictions[j];
+    if (!p.valid) continue;
+    // Slightly widened so that rounding in the exact test can never pass a pair outside it.
+    const double w = std::sqrt(gate_chi2 * (p.hph(1, 1) + max_bearing_var)) * (1.0 + 1e-9) + 1e-12;
+    const double bearing = p.range_bearing(1);
+    if (w <= kMaxGatingWindow_rad && std::abs(bearing) <= M_PI) {
+      by_bearing.emplace_back(bearing, static_cast<int>(j));
+      window = std::max(window, w);
+    } else {
+      everywhere.push_back(static_cast<int>(j));
+    }
+  }
+  std::sort(by_bearing.begin(), by_bearing.end());
+  std::vector<int> candidates;
+  auto add_range = [&](double from, double to) {
+    auto it = std::lower_bound(by_bearing.begin(), by_bearing.end(),
+                               std::make_pair(from, std::numeric_limits<int>::min()));
+    for (; it != by_bearing.end() && it->first <= to; ++it) candidates.push_back(it->second);
+  };
+  for (size_t i = 0; i < num_measurements; ++i) {
+    candidates.assign(everywhere.begin(), everywhere.end());
+    const double b = WrapAngle(measurements[i].range_bearing(1));
+    if (std::isfinite(b)) {
+      // [b - window, b + window] on the circle; window < pi / 2, so the pieces never overlap.
+      add_range(std::max(-M_PI, b - window), std::min(M_PI, b + window));
+      if (b - window < -M_PI) add_range(b - window + 2.0 * M_PI, M_PI);
+      if (b + window > M_PI) add_range(-M_PI, b + window - 2.0 * M_PI);
+    }
+    std::sort(candidates.begin(), candidates.end());
+    for (int j : candidates) try_pair(i, static_cast<size_t>(j));
   }
   return pairs;
 }

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstddef>
 #include <vector>
 
 #include "estimator/point_measurement.h"
@@ -46,6 +47,11 @@ double NormalizedInnovationSquared(const PointMeasurement& measurement,
                                    const ObjectPrediction& prediction, double gate_chi2);
 
 // Every pair (measurement i, object j) with NIS < gate_chi2, listed by measurement then object.
+// Above kGatingBruteForcePairs pairs, objects are looked up by predicted bearing instead of
+// trying every pair (a pair outside an object's bearing window cannot pass the gate; see the
+// implementation); the result is the same list.
+inline constexpr size_t kGatingBruteForcePairs = 1024;
+inline constexpr double kMaxGatingWindow_rad = 0.5;
 std::vector<Candidate> GatePairs(const std::vector<PointMeasurement>& measurements,
                                  const std::vector<ObjectPrediction>& predictions,
                                  double gate_chi2);

@@ -15,7 +15,14 @@ SlamState::SlamState(const Eigen::Vector3d& pose, const Eigen::Matrix3d& pose_co
 void SlamState::Reserve(int dim) {
   const Eigen::Index capacity = cov_.rows();
   if (dim <= capacity) return;
-  const Eigen::Index new_capacity = std::max<Eigen::Index>(dim, 2 * capacity);
+  Eigen::Index new_capacity = std::max<Eigen::Index>(dim, 2 * capacity);
+  // Column stride of a multiple of 4 KiB would map every element of a row to the same cache
+  // set (row reads of a 1024 x 1024 matrix then miss on every access): round up to whole cache
+  // lines and keep the stride an odd number of cache lines.
+  constexpr Eigen::Index kLine = 8;  // doubles per 64-byte cache line
+  new_capacity = (new_capacity + kLine - 1) / kLine;
+  if (new_capacity % 2 == 0) ++new_capacity;
+  new_capacity *= kLine;
   Eigen::VectorXd mean = Eigen::VectorXd::Zero(new_capacity);
   Eigen::MatrixXd cov = Eigen::MatrixXd::Zero(new_capacity, new_capacity);
   mean.head(dim_) = mean_.head(dim_);
@@ -97,9 +104,7 @@ void SlamState::RemoveVelocityAssumingZero(int k) {
     llt.matrixL().solveInPlace(w_transposed);
     const Eigen::Vector2d whitened = llt.matrixL().solve(mean_.segment<2>(v));
     mean_.head(dim_).noalias() -= w_transposed.transpose() * whitened;
-    auto cov = cov_.topLeftCorner(dim_, dim_);
-    cov.selfadjointView<Eigen::Lower>().rankUpdate(w_transposed.transpose(), -1.0);
-    MirrorLowerTriangle();
+    SubtractSymmetricProduct(w_transposed);
   }
   // (A non-positive-definite Pvv means the velocity is already known exactly: dropping the
   // states is then the whole operation.)
@@ -147,18 +152,20 @@ void SlamState::RemoveStates(const std::vector<int>& sorted_state_indices) {
     if (new_index[static_cast<size_t>(i)] == 0) new_index[static_cast<size_t>(i)] = next++;
   }
   const int new_dim = next;
-  // Compact columns, then rows; each destination index is <= its source, so in-place moves in
-  // increasing order never overwrite data still to be read.
+  // Column by column in increasing order, gathering the kept rows of each kept column: every
+  // destination (row and column) is at or before its source, so nothing still to be read is
+  // overwritten, and every access runs down a column (contiguous).
+  std::vector<int> kept;
+  kept.reserve(static_cast<size_t>(new_dim));
   for (int i = 0; i < dim_; ++i) {
-    const int to = new_index[static_cast<size_t>(i)];
-    if (to >= 0 && to != i) {
-      cov_.col(to).head(dim_) = cov_.col(i).head(dim_);
-      mean_(to) = mean_(i);
-    }
+    if (new_index[static_cast<size_t>(i)] >= 0) kept.push_back(i);
   }
-  for (int i = 0; i < dim_; ++i) {
-    const int to = new_index[static_cast<size_t>(i)];
-    if (to >= 0 && to != i) cov_.row(to).head(new_dim) = cov_.row(i).head(new_dim);
+  for (int to = 0; to < new_dim; ++to) {
+    const int from = kept[static_cast<size_t>(to)];
+    double* destination = cov_.col(to).data();
+    const double* source = cov_.col(from).data();
+    for (int r = 0; r < new_dim; ++r) destination[r] = source[kept[static_cast<size_t>(r)]];
+    mean_(to) = mean_(from);
   }
   dim_ = new_dim;
   for (StateObject& o : objects_) {
@@ -167,9 +174,31 @@ void SlamState::RemoveStates(const std::vector<int>& sorted_state_indices) {
   }
 }
 
+void SlamState::SubtractSymmetricProduct(const Eigen::MatrixXd& v_transposed) {
+  // Eigen's triangular product on the lower triangle, then the mirror: measured faster than
+  // column panels that compute and mirror each panel while it is in cache (bench_estimator
+  // BM_UpdateBatch, 330 observations: 21 ms against 22.5 ms CPU).
+  auto cov = cov_.topLeftCorner(dim_, dim_);
+  cov.selfadjointView<Eigen::Lower>().rankUpdate(v_transposed.transpose(), -1.0);
+  MirrorLowerTriangle();
+}
+
 void SlamState::MirrorLowerTriangle() {
-  for (int j = 1; j < dim_; ++j) {
-    cov_.col(j).head(j) = cov_.row(j).head(j).transpose();
+  // Tile by tile, so that the strided reads of rows stay within a few cache lines per tile
+  // (a row-at-a-time copy touches a new cache line on every element).
+  constexpr int kTile = 32;
+  for (int column_start = 0; column_start < dim_; column_start += kTile) {
+    const int columns = std::min(kTile, dim_ - column_start);
+    // Diagonal tile: element by element above its diagonal.
+    for (int j = column_start + 1; j < column_start + columns; ++j) {
+      for (int i = column_start; i < j; ++i) cov_(i, j) = cov_(j, i);
+    }
+    // Tiles above the diagonal tile in this column band, from their mirror images below.
+    for (int row_start = 0; row_start < column_start; row_start += kTile) {
+      const int rows = std::min(kTile, column_start - row_start);
+      cov_.block(row_start, column_start, rows, columns) =
+          cov_.block(column_start, row_start, columns, rows).transpose();
+    }
   }
 }
 

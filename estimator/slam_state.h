@@ -31,6 +31,7 @@ struct ObjectRecord {
   int hits = 0;                    // scans in which a measurement updated the object
   int64_t first_seen_utime = 0;
   int64_t last_seen_utime = 0;
+  int64_t last_update_utime = 0;   // last scan whose measurement updated the state
   double unseen_in_view_s = 0.0;   // time it should have been seen without a measurement
   double unseen_observable_s = 0.0;  // time without a measurement inside the sensor's geometry
   // Classification evidence (motion_classifier.h).
@@ -106,6 +107,11 @@ class SlamState {
   // Removes the listed objects (indices into objects(), any order, duplicates ignored) and
   // their states; the other objects keep their order.
   void RemoveObjects(std::vector<int> object_indices);
+
+  // P <- P - V V^T with V = v_transposed^T (dim x m): the covariance downdate of an update in
+  // factored form (ekf_update.h). Only the lower triangle is computed, then mirrored, so P
+  // stays exactly symmetric.
+  void SubtractSymmetricProduct(const Eigen::MatrixXd& v_transposed);
 
   // Copies the lower triangle onto the upper one.
   void MirrorLowerTriangle();

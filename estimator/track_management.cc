@@ -13,6 +13,7 @@ ObjectRecord NewObjectRecord(int64_t id, int64_t utime, ObjectClass object_class
   record.object_class = object_class;
   record.first_seen_utime = utime;
   record.last_seen_utime = utime;
+  record.last_update_utime = utime;
   record.class_change_utime = utime;
   record.hits = 1;
   return record;

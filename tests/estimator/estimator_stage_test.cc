@@ -79,7 +79,8 @@ TEST(EstimatorOptionsTest, DefaultsAndKeys) {
       "  bearing_sigma_deg: 1\n"
       "  initial_pose: [1, 2, 90]\n"
       "  level3: false\n"
-      "  max_hypotheses: 50\n",
+      "  max_hypotheses: 50\n"
+      "  max_static_updates_per_scan: 7\n",
       "test.yaml");
   const EstimatorStageOptions o = ReadEstimatorOptions(config.Child("estimator"));
   EXPECT_EQ(o.seed, 42u);
@@ -90,6 +91,7 @@ TEST(EstimatorOptionsTest, DefaultsAndKeys) {
   EXPECT_NEAR(o.estimator.initial_pose(2), M_PI / 2.0, 1e-12);
   EXPECT_FALSE(o.estimator.level3);
   EXPECT_EQ(o.estimator.ransac.max_hypotheses, 50);
+  EXPECT_EQ(o.estimator.max_static_updates_per_scan, 7);
 }
 
 TEST(EstimatorOptionsTest, MistakesNameTheKey) {
@@ -107,6 +109,9 @@ TEST(EstimatorOptionsTest, MistakesNameTheKey) {
   EXPECT_NE(error("estimator:\n  gate_d1: 20\n  gate_d2: 10\n").find("gate_d2"), std::string::npos);
   EXPECT_NE(error("estimator:\n  initial_pose: [1, 2]\n").find("initial_pose"), std::string::npos);
   EXPECT_NE(error("estimator:\n  range_sigma_m: -1\n"), "");
+  EXPECT_NE(error("estimator:\n  max_static_updates_per_scan: -1\n")
+                .find("max_static_updates_per_scan"),
+            std::string::npos);
 }
 
 TEST(EstimatorStageTest, PublishesEveryOutputWithTheFeaturesUtime) {
@@ -145,10 +150,12 @@ TEST(EstimatorStageTest, PublishesEveryOutputWithTheFeaturesUtime) {
   EXPECT_EQ(timing.stage, "estimator");
   EXPECT_EQ(timing.substage, (std::vector<std::string>{"predict", "gating", "level1", "ransac",
                                                         "level2_3", "track_management"}));
-  EXPECT_EQ(timing.counter_name,
-            (std::vector<std::string>{"features", "objects", "hypotheses"}));
+  EXPECT_EQ(timing.counter_name, (std::vector<std::string>{"features", "objects", "hypotheses",
+                                                            "updates", "updates_skipped"}));
   EXPECT_EQ(timing.counter_value[0], 2);
   EXPECT_EQ(timing.counter_value[1], 2);
+  EXPECT_EQ(timing.counter_value[3], 0);  // two new objects, nothing to update yet
+  EXPECT_EQ(timing.counter_value[4], 0);
 }
 
 TEST(EstimatorStageTest, StaticObjectsReachTheMap) {

@@ -147,6 +147,45 @@ TEST(ScenariosTest, StaticWorldBaselineMapsMoversAsStatic) {
   }
 }
 
+// Baseline (a) is plain EKF-SLAM: a landmark is in the map from its first sighting and never
+// leaves it, whatever it does; nothing is classified, coasted or pruned.
+TEST(ScenariosTest, StaticWorldBaselineIsPlainEkfSlam) {
+  PointWorldOptions world_options;  // 180 degrees: the landmarks behind the robot are unseen
+  std::vector<WorldObject> objects(4);
+  objects[0] = {1, {6.0, 2.0}, {}, false};
+  objects[1] = {2, {7.0, -2.5}, {}, false};
+  objects[2] = {3, {9.0, 5.0}, {{1e18, {-0.2, -0.9}}}, true};
+  objects[3] = {4, {4.0, -1.0}, {{1e18, {0.0, 0.0}}}, true};
+  objects[3].visible_until_s = 3.0;  // an object that is taken away
+  PointWorld world(world_options, SlowArc, objects);
+  EstimatorOptions options = DefaultOptions();
+  options.mode = AssociationMode::kStaticNearestNeighbour;
+  Estimator estimator(options);
+  std::mt19937_64 rng(1);
+  int previous_objects = 0;
+  for (int k = 0; k < 20 * 8; ++k) {
+    const testing::WorldFrame frame = world.Next();
+    for (const OdometryReading& r : frame.odometry) estimator.AddOdometry(r);
+    const ScanResult result = estimator.ProcessScan(frame.scan, &rng);
+    ASSERT_TRUE(result.processed);
+    EXPECT_EQ(result.counts.pruned, 0);
+    EXPECT_EQ(result.counts.level3_updates, 0);
+    EXPECT_EQ(result.counts.manoeuvres, 0);
+    EXPECT_EQ(result.counts.hypotheses, 0);
+    EXPECT_EQ(result.counts.became_moving + result.counts.became_static +
+                  result.counts.started_moving, 0);
+    EXPECT_EQ(static_cast<int>(result.objects.size()), previous_objects + result.counts.new_objects);
+    previous_objects = static_cast<int>(result.objects.size());
+    for (const ObjectEstimate& e : result.objects) {
+      EXPECT_EQ(e.object_class, ObjectClass::kStatic);
+      EXPECT_TRUE(e.confirmed);
+    }
+  }
+  // The walker left a trail of landmarks; the object taken away is still mapped.
+  EXPECT_GT(previous_objects, 4);
+  EXPECT_EQ(estimator.counters().hypotheses_generated, 0);
+}
+
 // Baseline (b), plain RANSAC over all pairs, reaches the same associations at a much higher
 // number of hypotheses.
 TEST(ScenariosTest, RansacOverAllPairsGeneratesFarMoreHypotheses) {
