@@ -192,8 +192,10 @@ TEST(EvalOptionsTest, ReadsTheEvalSectionAndNamesBadKeys) {
   EXPECT_DOUBLE_EQ(o.ospa_cutoff_m, 2.0);
   EXPECT_DOUBLE_EQ(o.ospa_order, 1.0);
   EXPECT_DOUBLE_EQ(o.gospa_alpha, 1.0);
-  for (const std::string key : {"match_threshold_m: 0", "ospa_cutoff_m: -1", "ospa_order: 0.5",
-                                "gospa_alpha: 3", "ospa_cutof_m: 1"}) {
+  for (const std::string key :
+       {"match_threshold_m: 0", "ospa_cutoff_m: -1", "ospa_order: 0.5", "gospa_alpha: 3",
+        "ospa_cutof_m: 1", "min_beams: 0", "min_beams: 2.5", "min_beams: 1000000",
+        "min_moving_speed_mps: -0.1", "min_moving_speed_mps: 101"}) {
     const std::string name = key.substr(0, key.find(':'));
     try {
       ReadEvalOptions(Config::FromString("eval:\n  " + key + "\n", "stack.yaml").Child("eval"));
