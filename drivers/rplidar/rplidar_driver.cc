@@ -98,6 +98,11 @@ void RplidarDriver::Run(const std::function<bool()>& should_stop) {
       LogWarning() << e.what() << "; reopening in " << delay_ms << " ms";
       SetState("reconnecting");
       SleepMs(delay_ms, should_stop);
+    } catch (...) {
+      // Anything else (the bus failing to publish, say) ends the process: the device must not
+      // go on scanning with its motor turning until someone restarts us.
+      if (stream) StopDevice(*stream);
+      throw;
     }
   }
   status_.connected = false;

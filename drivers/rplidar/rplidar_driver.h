@@ -55,7 +55,8 @@ class RplidarDriver {
 
   // Runs until should_stop() returns true (checked at least every 50 ms), then stops the scan
   // and the motor if the link is up. Never throws for device or link trouble: it reports and
-  // retries.
+  // retries. Any other exception (from the sink, say) is passed on after the scan and the
+  // motor were stopped.
   void Run(const std::function<bool()>& should_stop);
 
   const slammtt_msgs::lidar_status_t& status() const { return status_; }

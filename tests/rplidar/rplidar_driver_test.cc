@@ -8,6 +8,7 @@
 
 #include <functional>
 #include <memory>
+#include <stdexcept>
 
 #include "rplidar_test_support.h"
 
@@ -332,6 +333,21 @@ TEST(RplidarDriverTest, StopEndsTheScanAndStopsTheMotor) {
     EXPECT_EQ(rig.final_status.state, "stopped");
     EXPECT_FALSE(rig.final_status.connected);
   }
+}
+
+TEST(RplidarDriverTest, AnUnexpectedErrorStillStopsTheScanAndTheMotor) {
+  Rig rig;
+  EXPECT_THROW(rig.Run([&]() -> bool {
+                 if (rig.sink.scan_count() >= 3) {
+                   throw std::runtime_error("LCM publish on LASER_SCAN failed");
+                 }
+                 return false;
+               }),
+               std::runtime_error);
+  const RplidarDeviceStats& stats = rig.model.stats();
+  EXPECT_FALSE(stats.scanning);
+  EXPECT_FALSE(stats.motor_running);
+  EXPECT_EQ(stats.requests.at(kStop), 2);
 }
 
 TEST(RplidarDriverTest, FirmwareWithoutExpressScanGetsTheStandardScan) {
