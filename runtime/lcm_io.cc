@@ -1,5 +1,7 @@
 #include "runtime/lcm_io.h"
 
+#include "runtime/log.h"
+
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -55,8 +57,11 @@ std::unique_ptr<lcm::LCM> OpenLcm(const std::string& url) {
 }
 
 void LcmSink::Publish(const std::string& channel, const void* data, int size) {
-  if (lcm_->publish(channel, data, static_cast<unsigned int>(size)) != 0) {
-    throw std::runtime_error("LCM publish on " + channel + " failed");
+  if (lcm_->publish(channel, data, static_cast<unsigned int>(size)) == 0) return;
+  ++failed_publishes_;
+  if (IsReportable(failed_publishes_)) {
+    LogWarning() << "LCM publish on " << channel << " failed (" << failed_publishes_
+                 << " failed publishes so far); the message is lost";
   }
 }
 

@@ -78,13 +78,18 @@ class MessageSink {
 };
 
 // Publishes on a live bus.
+// Publishes on a live bus. A publish that fails (a transient UDP send error, a full socket
+// buffer) loses that one message: it is counted and reported on the 1st, 10th, 100th, ...
+// failure, and the process goes on (a driver must not die and stop its device over it).
 class LcmSink : public MessageSink {
  public:
   explicit LcmSink(lcm::LCM* lcm) : lcm_(lcm) {}
   void Publish(const std::string& channel, const void* data, int size) override;
+  int64_t failed_publishes() const { return failed_publishes_; }
 
  private:
   lcm::LCM* lcm_;
+  int64_t failed_publishes_ = 0;
 };
 
 // Writes an LCM event log (lcm-logger's format, playable by lcm-logplayer). The log is written

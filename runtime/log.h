@@ -4,6 +4,7 @@
 // interleave. Logging is for people: nothing a stage computes depends on it.
 #pragma once
 
+#include <cstdint>
 #include <sstream>
 #include <string>
 
@@ -39,6 +40,9 @@ class Log {
   LogLevel level_;
   std::ostringstream stream_;
 };
+
+// True for the 1st, 10th, 100th, ... occurrence: how often a repeated problem is reported.
+bool IsReportable(int64_t count);
 
 inline Log LogDebug() { return Log(LogLevel::kDebug); }
 inline Log LogInfo() { return Log(LogLevel::kInfo); }

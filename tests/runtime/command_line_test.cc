@@ -6,6 +6,7 @@
 
 #include <stdexcept>
 
+#include "runtime/log.h"
 #include "runtime/process.h"
 #include "runtime/shutdown.h"
 
@@ -56,6 +57,14 @@ TEST(CommandLineTest, HelpReturnsFalse) {
   EXPECT_FALSE(cl.Parse(2, argv));
   const std::string help = testing::internal::GetCapturedStdout();
   EXPECT_NE(help.find("--seed N"), std::string::npos);
+}
+
+TEST(LogTest, RepeatedProblemsAreReportedAtPowersOfTen) {
+  std::vector<int64_t> reported;
+  for (int64_t n = -1; n <= 1000; ++n) {
+    if (IsReportable(n)) reported.push_back(n);
+  }
+  EXPECT_EQ(reported, (std::vector<int64_t>{1, 10, 100, 1000}));
 }
 
 TEST(ProcessMainTest, MapsErrorsToExitStatus) {
