@@ -12,10 +12,15 @@
 #include <thread>
 #include <vector>
 
-#include "child_process.h"
+#include "tests/support/child_process.h"
 
 namespace slammtt {
 namespace {
+
+using testing::ChildProcess;
+using testing::MakeTempDirectory;
+using testing::ReadWholeFile;
+using testing::RemoveDirectoryTree;
 
 size_t Count(const std::string& text, const std::string& what) {
   size_t n = 0;

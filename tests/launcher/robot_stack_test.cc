@@ -15,14 +15,19 @@
 #include <thread>
 #include <vector>
 
-#include "child_process.h"
 #include "runtime/lcm_io.h"
 #include "slammtt_msgs/base_status_t.hpp"
 #include "slammtt_msgs/laser_scan_t.hpp"
 #include "slammtt_msgs/odometry_t.hpp"
+#include "tests/support/child_process.h"
 
 namespace slammtt {
 namespace {
+
+using testing::ChildProcess;
+using testing::MakeTempDirectory;
+using testing::ReadWholeFile;
+using testing::RemoveDirectoryTree;
 
 std::string Replace(std::string text, const std::string& from, const std::string& to) {
   const size_t at = text.find(from);

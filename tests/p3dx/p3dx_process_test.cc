@@ -15,16 +15,21 @@
 #include <mutex>
 #include <thread>
 
-#include "child_process.h"
 #include "drivers/p3dx/p3dx_commands.h"
 #include "drivers/p3dx/p3dx_emulator.h"
 #include "runtime/lcm_io.h"
 #include "slammtt_msgs/base_status_t.hpp"
 #include "slammtt_msgs/odometry_t.hpp"
 #include "slammtt_msgs/velocity_command_t.hpp"
+#include "tests/support/child_process.h"
 
 namespace slammtt {
 namespace {
+
+using testing::ChildProcess;
+using testing::MakeTempDirectory;
+using testing::ReadWholeFile;
+using testing::RemoveDirectoryTree;
 
 namespace cmd = p3dx_command;
 using Clock = std::chrono::steady_clock;

@@ -9,15 +9,20 @@
 #include <string>
 #include <vector>
 
-#include "child_process.h"
 #include "runtime/lcm_io.h"
 #include "slammtt_msgs/features_t.hpp"
 #include "slammtt_msgs/laser_scan_t.hpp"
 #include "slammtt_msgs/stage_timing_t.hpp"
 #include "tests/perception/scan_message.h"
+#include "tests/support/child_process.h"
 
 namespace slammtt {
 namespace {
+
+using testing::ChildProcess;
+using testing::MakeTempDirectory;
+using testing::ReadWholeFile;
+using testing::RemoveDirectoryTree;
 
 const std::string kProgram = std::string(SLAMMTT_BIN_DIR) + "/slammtt-segmenter";
 

@@ -14,15 +14,16 @@
 #include <string>
 #include <thread>
 
-#include "child_process.h"  // tests/launcher: slammtt_test_child_process
 #include "drivers/rplidar/rplidar_emulator_server.h"
 #include "rplidar_test_support.h"
 #include "runtime/lcm_io.h"
+#include "tests/support/child_process.h"
 
 namespace slammtt {
 namespace rplidar {
 namespace {
 
+using testing::ChildProcess;
 using testing_support::CountBeamsDisagreeingWithRoom;
 using testing_support::RecordingSink;
 
@@ -59,15 +60,9 @@ class RplidarProcessTest : public ::testing::Test {
           sink->Publish(channel, buffer->data, static_cast<int>(buffer->data_size));
         },
         &sink_);
-    char directory[] = "/tmp/slammtt-rplidar-test-XXXXXX";
-    ASSERT_NE(mkdtemp(directory), nullptr);
-    directory_ = directory;
+    directory_ = testing::MakeTempDirectory("slammtt-rplidar-test");
   }
-  void TearDown() override {
-    unlink((directory_ + "/lidar").c_str());
-    unlink((directory_ + "/endpoint").c_str());
-    rmdir(directory_.c_str());
-  }
+  void TearDown() override { testing::RemoveDirectoryTree(directory_); }
 
   std::unique_ptr<ChildProcess> StartDriver(const std::string& port, const std::string& mode) {
     return std::make_unique<ChildProcess>(std::vector<std::string>{

@@ -34,20 +34,22 @@
 #include <thread>
 #include <vector>
 
-#include "child_process.h"
 #include "runtime/lcm_io.h"
+#include "tests/support/child_process.h"
 #include "tests/tools/log_test_util.h"
 
 namespace slammtt {
 namespace {
 
+using testing::ChildProcess;
+using testing::ReadWholeFile;
 using testing::Shell;
 
 std::string Bin(const std::string& program) { return std::string(SLAMMTT_BIN_DIR) + "/" + program; }
 
-// LCM's own programs, found on PATH.
+// LCM's own programs, found on PATH (ChildProcess looks a bare name up there).
 std::vector<std::string> LcmTool(const std::string& name, std::vector<std::string> args) {
-  args.insert(args.begin(), {"/usr/bin/env", name});
+  args.insert(args.begin(), name);
   return args;
 }
 

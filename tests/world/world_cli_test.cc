@@ -2,6 +2,7 @@
 // (channels, order, utime = event timestamp, sequence numbers), the options, and bad scenarios
 // rejected with one line naming file, line and key, leaving no log and no partial file.
 #include <gtest/gtest.h>
+#include <signal.h>
 
 #include <algorithm>
 #include <cmath>
@@ -16,15 +17,16 @@
 #include "slammtt_msgs/ground_truth_t.hpp"
 #include "slammtt_msgs/laser_scan_t.hpp"
 #include "slammtt_msgs/odometry_t.hpp"
-#include "tests/world/process_runner.h"
+#include "tests/support/child_process.h"
 
 namespace slammtt {
 namespace {
 
 namespace fs = std::filesystem;
-using testing_world::ProcessResult;
-using testing_world::ReadWholeFile;
-using testing_world::RunProcess;
+using testing::ChildProcess;
+using testing::ProcessResult;
+using testing::ReadWholeFile;
+using testing::RunProcess;
 
 const std::string kWorld = std::string(SLAMMTT_BIN_DIR) + "/slammtt-world";
 constexpr int64_t kEpoch = 1700000000000000;
@@ -280,12 +282,12 @@ TEST_F(WorldCliTest, UnknownScenarioAndBadOptions) {
 
 TEST_F(WorldCliTest, InterruptedLogRunLeavesNothing) {
   // 10^5 simulated seconds take tens of seconds: the run is still going when SIGINT comes.
-  const pid_t pid = testing_world::StartProcess(
+  ChildProcess world(
       {kWorld, "--scenario", "s1-crossing", "--duration", "100000", "--log", Path("long.lcm")},
       Path("long.out"), Path("long.err"));
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
-  kill(pid, SIGINT);
-  EXPECT_EQ(testing_world::WaitProcess(pid), 1);
+  world.Signal(SIGINT);
+  EXPECT_EQ(world.Wait(30000), 1);
   EXPECT_EQ(ReadWholeFile(Path("long.err")), "slammtt-world: error: interrupted: no log written\n");
   // Only the process's own output files remain: no log, no partial log (whatever its suffix).
   std::vector<std::string> left = LeftFiles();

@@ -4,11 +4,14 @@
 // the log written as fast as possible (only utime differs: live runs start at the wall clock).
 // Also: lcm-logplayer plays a fast-mode log; SIGINT and SIGTERM end a live run with status 0.
 #include <gtest/gtest.h>
+#include <signal.h>
 
 #include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <memory>
+#include <optional>
 #include <thread>
 
 #include "runtime/lcm_io.h"
@@ -17,13 +20,16 @@
 #include "slammtt_msgs/laser_scan_t.hpp"
 #include "slammtt_msgs/odometry_t.hpp"
 #include "slammtt_msgs/velocity_command_t.hpp"
-#include "tests/world/process_runner.h"
+#include "tests/support/child_process.h"
 
 namespace slammtt {
 namespace {
 
 namespace fs = std::filesystem;
-using namespace testing_world;
+using testing::ChildProcess;
+using testing::ProcessResult;
+using testing::ReadWholeFile;
+using testing::RunProcess;
 
 const std::string kWorld = std::string(SLAMMTT_BIN_DIR) + "/slammtt-world";
 const std::string kUrl = "udpm://239.255.76.67:7667?ttl=0";
@@ -97,18 +103,16 @@ class WorldLcmTest : public ::testing::Test {
     lcm_ = OpenLcm(kUrl);
   }
   void TearDown() override {
-    if (logger_ > 0) {
-      kill(logger_, SIGKILL);
-      WaitProcess(logger_);
-    }
+    logger_.reset();  // killed if still running
     fs::remove_all(dir_);
   }
   std::string Path(const std::string& name) const { return (dir_ / name).string(); }
 
   // Starts lcm-logger on the bus and waits until it records (a PROBE message reaches its file).
   void StartLogger(const std::string& path) {
-    logger_ = StartProcess(
-        {"lcm-logger", "-q", "-f", "--flush-interval=20", "--lcm-url=" + kUrl, path},
+    logger_ = std::make_unique<ChildProcess>(
+        std::vector<std::string>{"lcm-logger", "-q", "-f", "--flush-interval=20",
+                                 "--lcm-url=" + kUrl, path},
         Path("logger.out"), Path("logger.err"));
     WaitForMarker(path, "PROBE_START");
   }
@@ -126,14 +130,14 @@ class WorldLcmTest : public ::testing::Test {
   // Marks the end (every earlier message has reached the logger once the marker has) and stops it.
   void StopLogger(const std::string& path) {
     WaitForMarker(path, "PROBE_END");
-    kill(logger_, SIGINT);
-    EXPECT_EQ(WaitProcess(logger_), 0);
-    logger_ = -1;
+    logger_->Signal(SIGINT);
+    EXPECT_EQ(logger_->Wait(20000), 0);
+    logger_.reset();
   }
 
   fs::path dir_;
   std::unique_ptr<lcm::LCM> lcm_;
-  pid_t logger_ = -1;
+  std::unique_ptr<ChildProcess> logger_;
 };
 
 TEST_F(WorldLcmTest, LoggerInAnotherProcessReceivesEveryMessageInOrder) {
@@ -219,9 +223,9 @@ TEST_F(WorldLcmTest, FollowCommandsDrivesTheRobotAndStopsWhenCommandsStop) {
   lcm_->subscribeFunction("GROUND_TRUTH", &OnTruth, &truth);
   // Real time, 4 s: commands at 20 Hz during the first wall second only (after the world is
   // up); the robot must move forward and then stop (0.5 s command timeout).
-  const pid_t world = StartProcess({kWorld, "--scenario", "rplidar-a2", "--duration", "4",
-                                    "--follow-commands", "--lcm-url", kUrl},
-                                   Path("world.out"), Path("world.err"));
+  ChildProcess world({kWorld, "--scenario", "rplidar-a2", "--duration", "4", "--follow-commands",
+                      "--lcm-url", kUrl},
+                     Path("world.out"), Path("world.err"));
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
   while (truth.messages.empty() && std::chrono::steady_clock::now() < deadline) {
     lcm_->handleTimeout(50);
@@ -235,21 +239,15 @@ TEST_F(WorldLcmTest, FollowCommandsDrivesTheRobotAndStopsWhenCommandsStop) {
     lcm_->publish("VELOCITY_COMMAND", &command);
     lcm_->handleTimeout(50);
   }
-  bool exited = false;
-  while (!exited && std::chrono::steady_clock::now() < deadline) {
+  std::optional<int> exit_code;
+  while (!exit_code && std::chrono::steady_clock::now() < deadline) {
     lcm_->handleTimeout(50);
-    int status = 0;
-    if (waitpid(world, &status, WNOHANG) == world) {
-      exited = true;
-      EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0)
-          << ReadWholeFile(Path("world.err"));
-    }
+    exit_code = world.Wait(0);
   }
-  if (!exited) {
-    kill(world, SIGKILL);
-    WaitProcess(world);
-    FAIL() << "slammtt-world did not end: " << ReadWholeFile(Path("world.err"));
-  }
+  // (Still running: killed by ChildProcess's destructor.)
+  ASSERT_TRUE(exit_code.has_value()) << "slammtt-world did not end: "
+                                     << ReadWholeFile(Path("world.err"));
+  EXPECT_EQ(*exit_code, 0) << ReadWholeFile(Path("world.err"));
   for (int i = 0; i < 5; ++i) lcm_->handleTimeout(20);
   ASSERT_GE(truth.messages.size(), 20u);
   const slammtt_msgs::ground_truth_t& first = truth.messages.front();
@@ -268,23 +266,6 @@ TEST_F(WorldLcmTest, FollowCommandsDrivesTheRobotAndStopsWhenCommandsStop) {
   EXPECT_NEAR(last.robot_heading_rad, 0.0, 1e-9);
 }
 
-// Waits up to `seconds` for `pid` to end; its exit status (as WaitProcess), or -1 after killing
-// it when it did not end in time.
-int WaitWithDeadline(pid_t pid, int seconds) {
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(seconds);
-  while (std::chrono::steady_clock::now() < deadline) {
-    int status = 0;
-    if (waitpid(pid, &status, WNOHANG) == pid) {
-      if (WIFEXITED(status)) return WEXITSTATUS(status);
-      return WIFSIGNALED(status) ? 128 + WTERMSIG(status) : -1;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  kill(pid, SIGKILL);
-  WaitProcess(pid);
-  return -1;
-}
-
 TEST_F(WorldLcmTest, LiveRunStopsCleanlyOnSigintAndSigterm) {
   // Real time, with and without --follow-commands (which waits in LCM's select: the signal
   // interrupts it and must read as a shutdown request, not as a failed bus).
@@ -297,7 +278,10 @@ TEST_F(WorldLcmTest, LiveRunStopsCleanlyOnSigintAndSigterm) {
       std::vector<std::string> argv = {kWorld, "--scenario", "rplidar-a2", "--duration", "3600",
                                        "--lcm-url", kUrl};
       if (follow) argv.push_back("--follow-commands");
-      const pid_t world = StartProcess(argv, Path("world.out"), Path("world.err"));
+      // ChildProcess appends: world.err must hold this run's lines only.
+      fs::remove(Path("world.out"));
+      fs::remove(Path("world.err"));
+      ChildProcess world(argv, Path("world.out"), Path("world.err"));
       // Running its loop once it publishes.
       const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
       while (truth.messages.size() < 3 && std::chrono::steady_clock::now() < deadline) {
@@ -305,8 +289,8 @@ TEST_F(WorldLcmTest, LiveRunStopsCleanlyOnSigintAndSigterm) {
       }
       lcm_->unsubscribe(subscription);
       ASSERT_GE(truth.messages.size(), 3u) << ReadWholeFile(Path("world.err"));
-      kill(world, signal_number);
-      EXPECT_EQ(WaitWithDeadline(world, 10), 0);
+      world.Signal(signal_number);
+      EXPECT_EQ(world.Wait(10000).value_or(-1), 0);
       const std::string err = ReadWholeFile(Path("world.err"));
       EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
       EXPECT_EQ(err.rfind("slammtt-world: info: rplidar-a2 seed 1: ", 0), 0u) << err;
