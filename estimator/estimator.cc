@@ -491,19 +491,30 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
   // --- level 3 (line 9): what is left, with the wider gate d2
   if (options_.level3 && options_.mode != AssociationMode::kStaticNearestNeighbour) {
     // Manoeuvres: an unassigned MOVING object with an unassigned measurement inside its gate
-    // dn (undecided objects still have their wide velocity prior).
+    // dn as it would be after the velocity jump (undecided objects still have their wide
+    // velocity prior). The jump adds (sigma dt)^2 I to the position covariance (ekf_prediction.h:
+    // AddVelocityJump), so the gate is judged with that added: a person who stops dead is
+    // outside the gate of the steady walk within a few scans, inside the manoeuvre's.
     if (options_.manoeuvre_velocity_sigma_mps > 0.0 && dt > 0.0) {
-      std::vector<uint8_t> jumped(static_cast<size_t>(num_objects_before), 0);
-      for (const Candidate& c : gated) {
-        const size_t j = static_cast<size_t>(c.object);
-        if (jumped[j] || c.nis >= dn || !assignment.MeasurementFree(c.measurement) ||
-            !assignment.ObjectFree(c.object) || !state_.object(c.object).has_velocity() ||
-            state_.object(c.object).record.object_class != ObjectClass::kMoving) {
+      const double jump_m = options_.manoeuvre_velocity_sigma_mps * dt;
+      const std::vector<ObjectPrediction> now = PredictObservations(state_, options_.sensor);
+      for (int j = 0; j < num_objects_before; ++j) {
+        const StateObject& object = state_.object(j);
+        const ObjectPrediction& p = now[static_cast<size_t>(j)];
+        if (!assignment.ObjectFree(j) || !object.has_velocity() || !p.valid ||
+            object.record.object_class != ObjectClass::kMoving) {
           continue;
         }
-        AddVelocityJump(c.object, dt, options_.manoeuvre_velocity_sigma_mps, &state_);
-        jumped[j] = 1;
-        ++counts.manoeuvres;
+        ObjectPrediction widened = p;
+        widened.hph += jump_m * jump_m * p.jacobian_position * p.jacobian_position.transpose();
+        for (int i = 0; i < num_measurements; ++i) {
+          if (!assignment.MeasurementFree(i)) continue;
+          if (NormalizedInnovationSquared(measurements[static_cast<size_t>(i)], widened, dn) < dn) {
+            AddVelocityJump(j, dt, options_.manoeuvre_velocity_sigma_mps, &state_);
+            ++counts.manoeuvres;
+            break;
+          }
+        }
       }
     }
     predictions = PredictObservations(state_, options_.sensor);
@@ -600,9 +611,11 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
       if (object.has_velocity()) {
         const Eigen::Matrix2d velocity_cov =
             state_.covariance().block<2, 2>(object.velocity_index, object.velocity_index);
-        const ClassChange change = ClassifyMover(state_.position(j), state_.velocity(j),
-                                                 velocity_cov, scan.utime, options_.classifier,
-                                                 &record);
+        const Eigen::Matrix2d position_cov =
+            state_.covariance().block<2, 2>(object.position_index, object.position_index);
+        const ClassChange change =
+            ClassifyMover(state_.position(j), position_cov, state_.velocity(j), velocity_cov,
+                          scan.utime, options_.classifier, &record);
         if (change == ClassChange::kBecameMoving) {
           record.class_change_utime = scan.utime;
           ++counts.became_moving;
@@ -634,7 +647,11 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
         r.object_class = ObjectClass::kUndecided;
         r.class_change_utime = scan.utime;
         r.moving_evidence_scans = 0;
-        RestartStillWindow(state_.position(j), scan.utime, &r);
+        RestartStillWindow(
+            state_.position(j),
+            LargestEigenvalue(state_.covariance().block<2, 2>(object.position_index,
+                                                              object.position_index)),
+            scan.utime, &r);
         ++counts.started_moving;
       }
     }
@@ -672,7 +689,7 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
         &jacobian_measurement);
     ObjectRecord record = NewObjectRecord(
         next_id_++, scan.utime, static_world ? ObjectClass::kStatic : ObjectClass::kUndecided);
-    RestartStillWindow(position, scan.utime, &record);
+    RestartStillWindow(position, kInfinity, scan.utime, &record);
     record.confirmed = static_world;  // plain EKF-SLAM maps a landmark at its first sighting
     const int k = state_.AddObject(position, jacobian_robot,
                                    jacobian_measurement * z.covariance *

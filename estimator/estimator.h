@@ -82,7 +82,7 @@ struct EstimatorOptions {
   // judged, so that its velocity covariance does not become overconfident about a static
   // object seen from a drifting robot.
   double mover_acceleration_sigma_mps2 = 0.02;
-  double undecided_acceleration_sigma_mps2 = 0.5;
+  double undecided_acceleration_sigma_mps2 = 0.2;
   double new_object_velocity_sigma_mps = 1.0;    // prior of a new object's velocity
   // Manoeuvres: a MOVING object with no measurement after level 2 while an
   // unassigned measurement lies inside its gate dn gets a velocity jump of this standard

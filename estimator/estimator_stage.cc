@@ -143,6 +143,9 @@ EstimatorStageOptions ReadEstimatorOptions(const Config& s) {
   c.moving_min_speed_mps = Double(s, "moving_min_speed_mps", c.moving_min_speed_mps);
   c.moving_confirm_scans = IntKey(s, "moving_confirm_scans", c.moving_confirm_scans, 1, 1000);
   c.still_max_speed_mps = Double(s, "still_max_speed_mps", c.still_max_speed_mps);
+  c.still_velocity_chi2 = Double(s, "still_velocity_chi2", c.still_velocity_chi2);
+  c.still_restart_variance_ratio =
+      Double(s, "still_restart_variance_ratio", c.still_restart_variance_ratio);
   c.still_hold_s = Double(s, "still_hold_s", c.still_hold_s);
   c.started_moving_chi2 = Double(s, "started_moving_chi2", c.started_moving_chi2);
   s.CheckUnused();
@@ -300,6 +303,9 @@ void EstimatorStage::PublishStatus(int64_t utime, MessageSink& out) {
   status.num_moving = estimator_.NumObjectsOfClass(ObjectClass::kMoving, false);
   status.num_tentative = estimator_.NumTentative();
   status.last_event = estimator_.last_event();
+  status.odometry_rejected = c.odometry_rejected;
+  status.messages_undecodable = counters_.messages_undecodable;
+  status.updates_failed = c.updates_failed;
   out.PublishMessage(status_channel_, status);
 }
 

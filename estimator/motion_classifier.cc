@@ -5,9 +5,17 @@
 
 namespace slammtt {
 
-ClassChange ClassifyMover(const Eigen::Vector2d& position, const Eigen::Vector2d& velocity,
-                          const Eigen::Matrix2d& velocity_cov, int64_t utime,
-                          const MotionClassifierOptions& options, ObjectRecord* record) {
+double LargestEigenvalue(const Eigen::Matrix2d& m) {
+  const double half_trace = 0.5 * (m(0, 0) + m(1, 1));
+  const double det = m(0, 0) * m(1, 1) - m(0, 1) * m(1, 0);
+  return half_trace + std::sqrt(std::max(0.0, half_trace * half_trace - det));
+}
+
+ClassChange ClassifyMover(const Eigen::Vector2d& position, const Eigen::Matrix2d& position_cov,
+                          const Eigen::Vector2d& velocity, const Eigen::Matrix2d& velocity_cov,
+                          int64_t utime, const MotionClassifierOptions& options,
+                          ObjectRecord* record) {
+  const double position_variance = LargestEigenvalue(position_cov);
   const double speed = velocity.norm();
   const Eigen::Matrix2d cov = 0.5 * (velocity_cov + velocity_cov.transpose());
   const double det = cov(0, 0) * cov(1, 1) - cov(0, 1) * cov(1, 0);
@@ -21,7 +29,7 @@ ClassChange ClassifyMover(const Eigen::Vector2d& position, const Eigen::Vector2d
   const bool moving = mahalanobis > options.moving_chi2 && speed > options.moving_min_speed_mps;
   if (moving) {
     ++record->moving_evidence_scans;
-    RestartStillWindow(position, utime, record);
+    RestartStillWindow(position, position_variance, utime, record);
   } else {
     record->moving_evidence_scans = 0;
   }
@@ -30,18 +38,37 @@ ClassChange ClassifyMover(const Eigen::Vector2d& position, const Eigen::Vector2d
     record->object_class = ObjectClass::kMoving;
     return ClassChange::kBecameMoving;
   }
+  if (moving) return ClassChange::kNone;
+  // The window's anchor is only as good as the estimate was then: once the position variance
+  // has fallen below a fraction of the largest it has been since the window opened (the first
+  // estimates of a far object, the end of a coasting), reopen the window here.
+  record->still_anchor_variance_m2 = std::max(record->still_anchor_variance_m2, position_variance);
+  if (options.still_restart_variance_ratio > 0.0 &&
+      position_variance < options.still_restart_variance_ratio * record->still_anchor_variance_m2) {
+    RestartStillWindow(position, position_variance, utime, record);
+  }
   const double window_s = 1e-6 * static_cast<double>(utime - record->still_anchor_utime);
   const double displacement_m = (position - record->still_anchor_m).norm();
-  if (!moving && window_s >= options.still_hold_s &&
+  if (window_s >= options.still_hold_s &&
       displacement_m <= options.still_max_speed_mps * window_s) {
+    return ClassChange::kBecameStatic;
+  }
+  // The velocity is known to be slow: its confidence region (still_velocity_chi2) lies within
+  // moving_min_speed_mps. |v| + sqrt(chi2 lambda_max) bounds the largest speed in the region.
+  const double with_velocity_s = 1e-6 * static_cast<double>(utime - record->class_change_utime);
+  if (options.still_velocity_chi2 > 0.0 && det > 0.0 && with_velocity_s >= options.still_hold_s &&
+      speed + std::sqrt(options.still_velocity_chi2 * LargestEigenvalue(cov)) <=
+          options.moving_min_speed_mps) {
     return ClassChange::kBecameStatic;
   }
   return ClassChange::kNone;
 }
 
-void RestartStillWindow(const Eigen::Vector2d& position, int64_t utime, ObjectRecord* record) {
+void RestartStillWindow(const Eigen::Vector2d& position, double position_variance_m2,
+                        int64_t utime, ObjectRecord* record) {
   record->still_anchor_m = position;
   record->still_anchor_utime = utime;
+  record->still_anchor_variance_m2 = position_variance_m2;
 }
 
 ClassChange ClassifyLandmark(const Eigen::Vector2d& offset_m, const Eigen::Matrix2d& covariance,

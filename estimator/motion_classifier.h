@@ -36,8 +36,14 @@
 namespace slammtt {
 
 struct MotionClassifierOptions {
-  double moving_chi2 = 9.21;              // 99 % for 2 dof
+  double moving_chi2 = 13.82;             // 99.9 % for 2 dof
   double moving_min_speed_mps = 0.3;
+  // > 0: "still" evidence also when the velocity's confidence region at this chi-square
+  // (2 dof) lies within speed moving_min_speed_mps.
+  double still_velocity_chi2 = 5.99;
+  // > 0: the still window reopens at the current estimate whenever the position variance has
+  // fallen below this fraction of the largest it has been since the window opened.
+  double still_restart_variance_ratio = 0.5;
   int moving_confirm_scans = 2;
   double still_max_speed_mps = 0.15;
   double still_hold_s = 1.5;
@@ -54,12 +60,19 @@ enum class ClassChange {
 // Judges an object with velocity states at utime and updates its evidence. Returns the class
 // change to apply (the record's object_class is updated for kBecameMoving; the caller updates
 // it for kBecameStatic once the state is changed).
-ClassChange ClassifyMover(const Eigen::Vector2d& position, const Eigen::Vector2d& velocity,
-                          const Eigen::Matrix2d& velocity_cov, int64_t utime,
-                          const MotionClassifierOptions& options, ObjectRecord* record);
+ClassChange ClassifyMover(const Eigen::Vector2d& position, const Eigen::Matrix2d& position_cov,
+                          const Eigen::Vector2d& velocity, const Eigen::Matrix2d& velocity_cov,
+                          int64_t utime, const MotionClassifierOptions& options,
+                          ObjectRecord* record);
 
 // Opens a new "still" window at the object's current position (creation, new velocity states).
-void RestartStillWindow(const Eigen::Vector2d& position, int64_t utime, ObjectRecord* record);
+// position_variance_m2: largest eigenvalue of its position covariance (+infinity: unknown, the
+// window restarts at the next judgement).
+void RestartStillWindow(const Eigen::Vector2d& position, double position_variance_m2,
+                        int64_t utime, ObjectRecord* record);
+
+// Largest eigenvalue of a symmetric 2x2 matrix.
+double LargestEigenvalue(const Eigen::Matrix2d& symmetric);
 
 // Adds one offset of a measured point from a static landmark (map frame, with covariance) and
 // judges the window. Returns kStartedMoving (and clears the window) when the landmark moved.

@@ -40,6 +40,7 @@ struct ObjectRecord {
   // it gained velocity states and at every scan of moving evidence).
   Eigen::Vector2d still_anchor_m = Eigen::Vector2d::Zero();
   int64_t still_anchor_utime = 0;
+  double still_anchor_variance_m2 = 0.0;  // largest eigenvalue of its position covariance then
   // Static landmark: its last measurements' offsets from it in the map frame (measured point
   // minus estimate) with their covariances, a ring of kOffsetWindow (motion_classifier.h).
   static constexpr int kOffsetWindow = 4;

@@ -161,6 +161,7 @@ bool PlausibleEstimatorStatus(const void* data, int size) {
   // scans_without_odometry, object_cap_hits, hypotheses_generated; num_landmarks/moving/tentative
   w.Fixed(kFingerprint + 9 * kInt64 + 3 * kInt32);
   w.String();  // last_event
+  w.Fixed(3 * kInt64);  // odometry_rejected, messages_undecodable, updates_failed
   return w.End();
 }
 

@@ -198,12 +198,17 @@ TEST(EstimatorStageTest, BadMessagesAreCountedAndDroppedOnesReported) {
   EXPECT_EQ(status.utime, 100000);
   EXPECT_EQ(status.messages_out_of_order, 1);
   EXPECT_NE(status.last_event.find("dropped"), std::string::npos);
-  // A NaN odometry: a status message says so.
+  EXPECT_EQ(status.messages_undecodable, 3);
+  EXPECT_EQ(status.odometry_rejected, 0);
+  EXPECT_EQ(status.updates_failed, 0);
+  // A NaN odometry: a status message says so and counts it.
   out.messages.clear();
   Feed(&stage, "ODOMETRY", OdometryBytes(300000, std::nan(""), 0.0), out);
   ASSERT_EQ(out.messages.size(), 1u);
-  EXPECT_NE(out.Get<slammtt_msgs::estimator_status_t>(0).last_event.find("not finite"),
-            std::string::npos);
+  const auto rejected = out.Get<slammtt_msgs::estimator_status_t>(0);
+  EXPECT_NE(rejected.last_event.find("not finite"), std::string::npos);
+  EXPECT_EQ(rejected.odometry_rejected, 1);
+  EXPECT_EQ(rejected.messages_undecodable, 3);
   // Messages on other channels are ignored.
   out.messages.clear();
   Feed(&stage, "LASER_SCAN", garbage, out);

@@ -340,6 +340,9 @@ struct Sample<slammtt_msgs::estimator_status_t> {
     m.num_moving = 5;
     m.num_tentative = 1;
     m.last_event = "odometry older than the last processed scan dropped";
+    m.odometry_rejected = 3;
+    m.messages_undecodable = 4;
+    m.updates_failed = 5;
     return m;
   }
   static std::vector<CountField> Counts(const slammtt_msgs::estimator_status_t& m) {
