@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <cstdint>
-#include <limits>
 #include <utility>
 
 #include "runtime/lcm_io.h"
@@ -109,9 +108,7 @@ void SegmenterStage::Reject(const std::string& reason) {
   ++counters_.scans_rejected;
   const int64_t n = counters_.scans_rejected;
   // 1st, 10th, 100th, ...: visible, but a flood of bad messages cannot flood the log.
-  int64_t power = 1;
-  while (power < n && power <= std::numeric_limits<int64_t>::max() / 10) power *= 10;
-  if (power == n) {
+  if (IsReportable(n)) {
     LogWarning() << "segmenter: rejected message on " << laser_scan_channel_ << ": " << reason
                  << " (" << n << " rejected so far)";
   }

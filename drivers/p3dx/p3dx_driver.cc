@@ -428,7 +428,7 @@ void P3dxDriver::HandleVelocityCommand(const slammtt_msgs::velocity_command_t& c
   if (!std::isfinite(command.linear_mps) || !std::isfinite(command.angular_radps)) {
     ++commands_skipped_;
     last_error_ = "VELOCITY_COMMAND with a non-finite value skipped";
-    if (commands_skipped_ == 1 || commands_skipped_ % 100 == 0) {
+    if (IsReportable(commands_skipped_)) {
       LogWarning() << last_error_ << " (" << commands_skipped_ << " so far)";
     }
     return;

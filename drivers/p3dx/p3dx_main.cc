@@ -62,7 +62,7 @@ int Main(int argc, char** argv) {
       +[](const lcm::ReceiveBuffer* buffer, const std::string& channel, Context* c) {
         slammtt_msgs::velocity_command_t command;
         if (!Decode(buffer->data, static_cast<int>(buffer->data_size), &command)) {
-          if (c->undecodable++ % 100 == 0) {
+          if (IsReportable(++c->undecodable)) {
             LogWarning() << channel << ": undecodable message skipped (" << c->undecodable
                          << " so far)";
           }

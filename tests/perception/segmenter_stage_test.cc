@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -190,6 +191,23 @@ TEST(SegmenterStageTest, MalformedMessagesAreCountedNotThrownNorPublished) {
   stage.Handle("LASER_SCAN", good.data(), static_cast<int>(good.size()), sink);
   EXPECT_EQ(sink.messages.size(), 2u);
   EXPECT_EQ(stage.counters().scans_handled, 1);
+}
+
+// A flood of bad messages is counted in full but reported only the 1st, 10th, 100th, ... time
+// (runtime/log.h IsReportable), one line each.
+TEST(SegmenterStageTest, RejectionsAreReportedAtPowersOfTen) {
+  SegmenterStage stage = MakeStage();
+  CapturingSink sink;
+  const uint8_t garbage[5] = {1, 2, 3, 4, 5};
+  ::testing::internal::CaptureStderr();
+  for (int i = 0; i < 120; ++i) stage.Handle("LASER_SCAN", garbage, 5, sink);
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  EXPECT_EQ(stage.counters().scans_rejected, 120);
+  EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 3) << err;
+  EXPECT_NE(err.find("(1 rejected so far)\n"), std::string::npos) << err;
+  EXPECT_NE(err.find("(10 rejected so far)\n"), std::string::npos) << err;
+  EXPECT_NE(err.find("(100 rejected so far)\n"), std::string::npos) << err;
+  EXPECT_TRUE(sink.messages.empty());
 }
 
 TEST(SegmenterStageTest, ReadsOptionsFromTheSegmenterSection) {

@@ -70,8 +70,10 @@ void OnVelocityCommand(const lcm::ReceiveBuffer* rbuf, const std::string& /*chan
   if (!Decode(rbuf->data, static_cast<int>(rbuf->data_size), &msg) ||
       !std::isfinite(msg.linear_mps) || !std::isfinite(msg.angular_radps)) {
     ++listener->bad_messages;
-    LogWarning() << "ignored a malformed VELOCITY_COMMAND (" << listener->bad_messages
-                 << " so far)";
+    if (IsReportable(listener->bad_messages)) {
+      LogWarning() << "ignored a malformed VELOCITY_COMMAND (" << listener->bad_messages
+                   << " so far)";
+    }
     return;
   }
   listener->have_command = true;
