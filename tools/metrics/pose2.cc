@@ -7,14 +7,6 @@
 
 namespace slammtt {
 
-double WrapAngle(double angle_rad) {
-  const double two_pi = 2.0 * M_PI;
-  double wrapped = std::fmod(angle_rad, two_pi);  // (-2pi, 2pi)
-  if (wrapped <= -M_PI) wrapped += two_pi;
-  if (wrapped > M_PI) wrapped -= two_pi;
-  return wrapped;
-}
-
 Pose2 Compose(const Pose2& a, const Pose2& b) {
   const double c = std::cos(a.heading_rad);
   const double s = std::sin(a.heading_rad);

@@ -10,6 +10,8 @@
 #include <optional>
 #include <vector>
 
+#include "common/angle.h"  // WrapAngle
+
 namespace slammtt {
 
 struct Pose2 {
@@ -17,9 +19,6 @@ struct Pose2 {
   double y_m = 0.0;
   double heading_rad = 0.0;
 };
-
-// Wraps an angle to (-pi, pi].
-double WrapAngle(double angle_rad);
 
 // a * b: the pose b, given in the frame of a, expressed in a's parent frame.
 Pose2 Compose(const Pose2& a, const Pose2& b);

@@ -4,12 +4,6 @@
 
 namespace slammtt {
 
-double WrapAngle(double angle_rad) {
-  double wrapped = std::remainder(angle_rad, 2.0 * M_PI);  // [-pi, pi]
-  if (wrapped <= -M_PI) wrapped += 2.0 * M_PI;
-  return wrapped;
-}
-
 Pose2D SensorPoseFromRobot(const Pose2D& robot, double mount_a_m, double mount_b_m) {
   const double c = std::cos(robot.heading_rad);
   const double s = std::sin(robot.heading_rad);

@@ -5,6 +5,8 @@
 // mount (a forward, b left), paper eq. 11.
 #pragma once
 
+#include "common/angle.h"  // WrapAngle
+
 namespace slammtt {
 
 struct Pose2D {
@@ -12,9 +14,6 @@ struct Pose2D {
   double y_m = 0.0;
   double heading_rad = 0.0;  // wrapped to (-pi, pi]
 };
-
-// Wraps an angle to (-pi, pi].
-double WrapAngle(double angle_rad);
 
 // Position of the observation device for a robot pose, paper eq. 11:
 //   x_v = x + a cos(phi) - b sin(phi),  y_v = y + a sin(phi) + b cos(phi),
