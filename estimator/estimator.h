@@ -115,7 +115,7 @@ struct EstimatorOptions {
   // filter consistent: it only gives up information. The dense update costs O(n^2) per
   // observation, so this bounds the cost of a scan that sees hundreds of landmarks
   // (docs/estimator.md, "Speed").
-  int max_static_updates_per_scan = 40;
+  int max_static_updates_per_scan = 32;
 
   TrackManagementOptions tracks;
   MotionClassifierOptions classifier;

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -28,16 +29,21 @@ class PipelineRunner {
 
   // Runs scenario/seed in `mode` (ml_ransac, static_nn, ransac_all_pairs). `extra_yaml` lines go
   // into the estimator section ("key: value"). Throws std::runtime_error naming the failing
-  // command.
-  PipelineRun Run(const std::string& scenario, int seed, const std::string& mode,
-                  const std::vector<std::string>& extra_yaml = {});
+  // command. The same arguments run once per runner (the pipeline is deterministic): later
+  // calls return the first run.
+  const PipelineRun& Run(const std::string& scenario, int seed, const std::string& mode,
+                         const std::vector<std::string>& extra_yaml = {});
 
   static bool ScanScenario(const std::string& scenario);
 
  private:
   std::string WorldLog(const std::string& scenario, int seed);
   std::string directory_;
+  std::map<std::string, PipelineRun> runs_;
 };
+
+// One runner for the whole test program (its directory is removed at exit).
+PipelineRunner& SharedPipelineRunner();
 
 // "name value" lines of the report's headline metrics, for logs and the docs.
 std::string Headline(const nlohmann::json& report);
