@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "common/angle.h"
 #include "perception/centre_estimation.h"
 #include "perception/trig_series.h"
 
@@ -27,20 +28,6 @@ const SegmenterOptions& Checked(const SegmenterOptions& options) {
 }
 
 }  // namespace
-
-double Segmenter::WrapBearingSlow(double angle_rad) {
-  double a = angle_rad;
-  if (a > M_PI && a <= 3.0 * M_PI) {
-    a -= kTwoPi;
-  } else if (a <= -M_PI && a > -3.0 * M_PI) {
-    a += kTwoPi;
-  } else {
-    a = std::remainder(a, kTwoPi);
-  }
-  if (a <= -M_PI) a += kTwoPi;
-  if (a > M_PI) a -= kTwoPi;
-  return a;
-}
 
 Segmenter::Segmenter(const SegmenterOptions& options)
     : options_(Checked(options)),
@@ -108,7 +95,7 @@ void Segmenter::CollectBeams(const ScanView& scan) {
       usable = true;
     }
     if (!std::isfinite(angle)) continue;
-    beams_.push_back(Beam{WrapBearing(angle), usable ? range : 0.0, index, usable ? 0 : kMarker});
+    beams_.push_back(Beam{WrapAngle(angle), usable ? range : 0.0, index, usable ? 0 : kMarker});
   }
   if (n < scan.num_beams) stats_.beams_non_finite += static_cast<int64_t>(scan.num_beams - n);
 }
@@ -341,7 +328,7 @@ void Segmenter::MakeFeature(const Cluster& c) {
   const double lateral = f * radius / centre.range_m;
   Feature feature;
   feature.range_m = centre.range_m;
-  feature.bearing_rad = WrapBearing(reference_bearing + centre.bearing_rad);
+  feature.bearing_rad = WrapAngle(reference_bearing + centre.bearing_rad);
   feature.width_m = width;
   feature.num_points = static_cast<int>(count);
   feature.radius_m = centre.radius_m;

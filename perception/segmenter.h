@@ -91,11 +91,6 @@ class Segmenter {
   const std::vector<Feature>& MakeFeatures();
 
   const SegmentationStats& stats() const { return stats_; }
-  // An angle wrapped to (-pi, pi] (a member, so that it cannot clash with the other modules'
-  // free WrapAngle functions in namespace slammtt).
-  static double WrapBearing(double angle_rad) {
-    return angle_rad > -M_PI && angle_rad <= M_PI ? angle_rad : WrapBearingSlow(angle_rad);
-  }
   const SegmenterOptions& options() const { return options_; }
 
  private:
@@ -106,7 +101,6 @@ class Segmenter {
     int32_t unusable_before;  // beams without a usable return between it and the previous
                               // usable beam, in angle order; -1 marks such a beam itself
   };
-  static double WrapBearingSlow(double angle_rad);
   struct Cluster {
     size_t ring_start;  // ring index of the first point
     size_t count;

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "common/angle.h"
+
 namespace slammtt {
 namespace {
 constexpr double kPi = 3.14159265358979323846;
@@ -26,16 +28,10 @@ int P3dxPositionDelta(uint16_t from, uint16_t to) {
   return delta;
 }
 
-double WrapAngleRad(double angle_rad) {
-  double wrapped = std::remainder(angle_rad, 2.0 * kPi);  // [-pi, pi]
-  if (wrapped <= -kPi) wrapped += 2.0 * kPi;
-  return wrapped;
-}
-
 double P3dxHeadingRad(int16_t th_pos, const P3dxConversion& conversion) {
   // Modulo 4096 first, so that the angle does not depend on how the firmware signs THPOS.
   const int units = ((static_cast<int>(th_pos) % 4096) + 4096) % 4096;
-  return WrapAngleRad(units * conversion.angle_conv_rad);
+  return WrapAngle(units * conversion.angle_conv_rad);
 }
 
 P3dxOdometryIntegrator::P3dxOdometryIntegrator(const P3dxConversion& conversion)
@@ -58,7 +54,7 @@ P3dxOdometry P3dxOdometryIntegrator::Update(const P3dxStandardSip& sip) {
   }
   last_x_pos_ = sip.x_pos;
   last_y_pos_ = sip.y_pos;
-  odometry.heading_rad = WrapAngleRad(firmware_heading + frame_rotation_rad_);
+  odometry.heading_rad = WrapAngle(firmware_heading + frame_rotation_rad_);
 
   odometry.left_wheel_velocity_mps = sip.left_vel * conversion_.vel_conv / 1000.0;
   odometry.right_wheel_velocity_mps = sip.right_vel * conversion_.vel_conv / 1000.0;

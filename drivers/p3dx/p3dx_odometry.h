@@ -48,9 +48,6 @@ std::optional<P3dxConversion> P3dxConversionForSubclass(const std::string& subcl
 int P3dxPositionDelta(uint16_t from, uint16_t to);
 // THPOS as an angle in (-pi, pi].
 double P3dxHeadingRad(int16_t th_pos, const P3dxConversion& conversion);
-// An angle wrapped into (-pi, pi].
-double WrapAngleRad(double angle_rad);
-
 struct P3dxOdometry {
   double x_m = 0.0;
   double y_m = 0.0;

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "common/angle.h"
+
 namespace slammtt {
 namespace {
 
@@ -131,7 +133,7 @@ void P3dxRobotModel::Integrate(int64_t to_us) {
     const double next_heading = heading_rad_ + w * dt;
     x_mm_ += v / w * (std::sin(next_heading) - std::sin(heading_rad_));
     y_mm_ -= v / w * (std::cos(next_heading) - std::cos(heading_rad_));
-    heading_rad_ = WrapAngleRad(next_heading);
+    heading_rad_ = WrapAngle(next_heading);
   }
 }
 

@@ -2,24 +2,20 @@
 
 #include <cmath>
 
+#include "common/angle.h"
+
 namespace slammtt {
 namespace rplidar {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-double WrapToPi(double angle_rad) {
-  double wrapped = std::remainder(angle_rad, 2.0 * kPi);  // [-pi, pi]
-  if (wrapped <= -kPi) wrapped += 2.0 * kPi;
-  return wrapped;
-}
-
 }  // namespace
 
 double DeviceAngleToSensorRad(double device_angle_deg, const BeamConversionOptions& options) {
   const double degrees = options.upside_down ? options.angle_offset_deg + device_angle_deg
                                              : options.angle_offset_deg - device_angle_deg;
-  return WrapToPi(degrees * kPi / 180.0);
+  return WrapAngle(degrees * kPi / 180.0);
 }
 
 Beams ConvertRevolution(const std::vector<ScanSample>& samples,

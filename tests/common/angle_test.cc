@@ -18,7 +18,7 @@ namespace {
 
 // The earlier implementations, as they were written (tools/world/planar_pose.cc,
 // drivers/rplidar/rplidar_beams.cc and drivers/p3dx/p3dx_odometry.cc; tools/metrics/pose2.cc;
-// perception/segmenter.cc).
+// estimator/angle.h; perception/segmenter.cc).
 double RemainderForm(double a) {
   double wrapped = std::remainder(a, 2.0 * M_PI);
   if (wrapped <= -M_PI) wrapped += 2.0 * M_PI;
@@ -30,6 +30,14 @@ double FmodForm(double a) {
   double wrapped = std::fmod(a, two_pi);
   if (wrapped <= -M_PI) wrapped += two_pi;
   if (wrapped > M_PI) wrapped -= two_pi;
+  return wrapped;
+}
+
+double EstimatorForm(double a) {  // estimator/angle.h, which has its own copy until it uses this one
+  if (!std::isfinite(a)) return a;
+  if (std::abs(a) <= M_PI) return a <= -M_PI ? a + 2.0 * M_PI : a;
+  double wrapped = std::remainder(a, 2.0 * M_PI);
+  if (wrapped <= -M_PI) wrapped += 2.0 * M_PI;
   return wrapped;
 }
 
@@ -97,6 +105,7 @@ TEST(WrapAngleTest, NonFiniteInputIsReturnedUnchanged) {
   EXPECT_EQ(WrapAngle(inf), inf);
   EXPECT_EQ(WrapAngle(-inf), -inf);
   EXPECT_TRUE(std::isnan(WrapAngle(std::numeric_limits<double>::quiet_NaN())));
+  EXPECT_EQ(EstimatorForm(inf), inf);
 }
 
 TEST(WrapAngleTest, BitForBitTheSameAsTheEarlierImplementationsOnFiniteInput) {
@@ -105,12 +114,15 @@ TEST(WrapAngleTest, BitForBitTheSameAsTheEarlierImplementationsOnFiniteInput) {
     const uint64_t wrapped = Bits(WrapAngle(a));
     ASSERT_EQ(wrapped, Bits(RemainderForm(a))) << a;
     ASSERT_EQ(wrapped, Bits(FmodForm(a))) << a;
+    ASSERT_EQ(wrapped, Bits(EstimatorForm(a))) << a;
     // The one exception: the segmenter's form gave +0 for exactly -2 pi (-2pi + 2pi), remainder
     // gives -0 (the sign of x); equal as numbers.
     if (a == -2.0 * M_PI) continue;
     ASSERT_EQ(wrapped, Bits(SubtractOnceForm(a))) << a;
   }
   EXPECT_EQ(Bits(WrapAngle(-2.0 * M_PI)), Bits(-0.0));
+  EXPECT_EQ(Bits(WrapAngle(2.0 * M_PI)), Bits(0.0));
+  EXPECT_EQ(WrapAngle(-3.0 * M_PI), M_PI);
   EXPECT_EQ(Bits(SubtractOnceForm(-2.0 * M_PI)), Bits(0.0));
 }
 

@@ -8,6 +8,7 @@
 #include <limits>
 #include <memory>
 
+#include "common/angle.h"
 #include "drivers/p3dx/p3dx_commands.h"
 #include "drivers/p3dx/p3dx_driver.h"
 #include "simulated_robot_link.h"
@@ -359,7 +360,7 @@ void ExpectOdometryTracksTheRobot(const RecordingSink& sink, SimulatedRobot& rob
     EXPECT_NEAR(sink.odometry.back().x_m, robot.model().x_mm() / 1000.0, 0.002);
     EXPECT_NEAR(sink.odometry.back().y_m, robot.model().y_mm() / 1000.0, 0.002);
     // One THPOS unit (2 pi / 4096 rad) of rounding.
-    EXPECT_NEAR(WrapAngleRad(sink.odometry.back().heading_rad - robot.model().heading_rad()), 0.0,
+    EXPECT_NEAR(WrapAngle(sink.odometry.back().heading_rad - robot.model().heading_rad()), 0.0,
                 0.0016);
   }
   for (size_t i = 1; i < sink.odometry.size(); ++i) {

@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "common/angle.h"
 #include "tests/perception/synthetic_scan.h"
 
 namespace slammtt {
@@ -146,7 +147,7 @@ TEST(SegmenterTest, DroppedBeamInsideAnObjectDoesNotSplitIt) {
   ASSERT_GT(hits.size(), 15u);
   // The object straddles the 0/2 pi seam of this scan: pick beams inside it by angle.
   std::sort(hits.begin(), hits.end(), [&](size_t a, size_t b) {
-    return Segmenter::WrapBearing(angles[a]) < Segmenter::WrapBearing(angles[b]);
+    return WrapAngle(angles[a]) < WrapAngle(angles[b]);
   });
   const size_t middle = hits[hits.size() / 2];
   scan.valid[middle] = 0;
@@ -573,10 +574,10 @@ TEST(SegmenterTest, AnglesAreWrapped) {
       EXPECT_NEAR(f[i].bearing_rad, reference[i].bearing_rad, 2e-5) << turns;
     }
   }
-  EXPECT_DOUBLE_EQ(Segmenter::WrapBearing(M_PI), M_PI);
-  EXPECT_DOUBLE_EQ(Segmenter::WrapBearing(-M_PI), M_PI);
-  EXPECT_NEAR(Segmenter::WrapBearing(3.0 * M_PI + 0.1), -M_PI + 0.1, 1e-12);
-  EXPECT_NEAR(Segmenter::WrapBearing(1e6), std::remainder(1e6, 2.0 * M_PI), 1e-9);
+  EXPECT_DOUBLE_EQ(WrapAngle(M_PI), M_PI);
+  EXPECT_DOUBLE_EQ(WrapAngle(-M_PI), M_PI);
+  EXPECT_NEAR(WrapAngle(3.0 * M_PI + 0.1), -M_PI + 0.1, 1e-12);
+  EXPECT_NEAR(WrapAngle(1e6), std::remainder(1e6, 2.0 * M_PI), 1e-9);
 }
 
 // Random junk: random angles (some NaN), random ranges (some negative, zero, huge, inf),
