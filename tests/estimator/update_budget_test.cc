@@ -1,7 +1,7 @@
 // The parts that keep a crowded scan cheap: the bearing lookup of the gating (same pairs as
-// trying every pair), the fast path of WrapAngle (same bits as the remainder), the per-scan
-// budget of static-landmark updates (at most K, every landmark in turn, movers always, the
-// filter stays consistent) and the state's tiled mirror and compaction on large states.
+// trying every pair), the per-scan budget of static-landmark updates (at most K, every landmark
+// in turn, movers always, the filter stays consistent) and the state's tiled mirror and
+// compaction on large states.
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -12,7 +12,7 @@
 #include <random>
 #include <set>
 
-#include "estimator/angle.h"
+#include "common/angle.h"
 #include "estimator/estimator.h"
 #include "estimator/gating.h"
 #include "estimator/testing/point_world.h"
@@ -75,27 +75,6 @@ TEST(GatingTest, BearingLookupFindsExactlyThePairsOfTheFullLoop) {
         EXPECT_EQ(found[k].nis, expected[k].nis);
       }
     }
-  }
-}
-
-TEST(AngleTest, FastPathGivesTheRemaindersBits) {
-  auto reference = [](double a) {
-    double wrapped = std::remainder(a, 2.0 * M_PI);
-    if (wrapped <= -M_PI) wrapped += 2.0 * M_PI;
-    return wrapped;
-  };
-  std::vector<double> angles = {0.0, -0.0, M_PI, -M_PI, std::nextafter(M_PI, 0.0),
-                                std::nextafter(M_PI, 4.0), std::nextafter(-M_PI, 0.0),
-                                std::nextafter(-M_PI, -4.0), 2.0 * M_PI, -2.0 * M_PI, 3.0 * M_PI,
-                                1e-300, -1e-300, 1e6, -1e6};
-  std::mt19937_64 rng(8);
-  std::uniform_real_distribution<double> uniform(-10.0, 10.0);
-  for (int k = 0; k < 10000; ++k) angles.push_back(uniform(rng));
-  for (double a : angles) {
-    const double expected = reference(a);
-    const double got = WrapAngle(a);
-    EXPECT_EQ(std::signbit(got), std::signbit(expected)) << a;
-    EXPECT_EQ(got, expected) << a;
   }
 }
 
