@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -347,6 +348,78 @@ TEST(EvalOptionsTest, ReadsTheVisibilityAndStandingRules) {
   bad = EvalOptions();
   bad.min_moving_speed_mps = -1.0;
   EXPECT_THROW(Evaluate(input, bad), std::invalid_argument);
+}
+
+// min_beams follows segmenter.min_points unless the eval section sets it: eval.min_beams, then
+// segmenter.min_points, then 3 (the command line, tested below, comes before all of them).
+TEST(EvalOptionsTest, MinBeamsFollowsTheSegmentersMinPoints) {
+  EXPECT_EQ(ReadStackEvalOptions(Config()).min_beams, 3);
+  EXPECT_EQ(ReadStackEvalOptions(Config::FromString("segmenter:\n  min_points: 5\n")).min_beams,
+            5);
+  EXPECT_EQ(ReadStackEvalOptions(Config::FromString("segmenter:\n  min_points: 5\n"
+                                                    "eval:\n  min_beams: 4\n"))
+                .min_beams,
+            4);
+  EXPECT_EQ(ReadStackEvalOptions(Config::FromString("segmenter:\n  lambda_deg: 15\n"
+                                                    "eval:\n  min_moving_speed_mps: 0\n"))
+                .min_beams,
+            3);
+  // The rest of the eval section is read as ReadEvalOptions reads it.
+  const EvalOptions o = ReadStackEvalOptions(
+      Config::FromString("segmenter:\n  min_points: 2\neval:\n  match_threshold_m: 0.5\n"));
+  EXPECT_EQ(o.min_beams, 2);
+  EXPECT_DOUBLE_EQ(o.match_threshold_m, 0.5);
+  EXPECT_THROW(ReadStackEvalOptions(Config::FromString("eval:\n  min_beam: 2\n")), ConfigError);
+  // A bad min_points is an error naming it (the segmenter would reject it too).
+  for (const std::string bad : {"0", "2.5", "1000000", "three"}) {
+    try {
+      ReadStackEvalOptions(
+          Config::FromString("segmenter:\n  min_points: " + bad + "\n", "stack.yaml"));
+      ADD_FAILURE() << "accepted min_points " << bad;
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find("stack.yaml:2"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("segmenter.min_points"), std::string::npos)
+          << e.what();
+    }
+  }
+  // With eval.min_beams set, segmenter.min_points is not the evaluation's business.
+  EXPECT_EQ(ReadStackEvalOptions(Config::FromString("segmenter:\n  min_points: 0\n"
+                                                    "eval:\n  min_beams: 3\n"))
+                .min_beams,
+            3);
+}
+
+TEST(EvalProgramTest, MinBeamsFollowsTheSegmenterSectionOfTheConfig) {
+  testing::TempDir dir;
+  WriteTwoBeamLog(dir.File("scans.lcm"), true);
+  const std::string program = std::string(SLAMMTT_BIN_DIR) + "/slammtt-eval ";
+  const std::string config = dir.File("stack.yaml");
+  testing::WriteFileBytes(config, "segmenter:\n  min_points: 2\n");
+  int status = 0;
+  std::string out = RunCommand(program + dir.File("scans.lcm") + " --config " + config +
+                                   " --json " + dir.File("two.json") + " 2>&1",
+                               &status);
+  ASSERT_EQ(status, 0) << out;
+  const nlohmann::json two = nlohmann::json::parse(testing::FileBytes(dir.File("two.json")));
+  EXPECT_EQ(two["detail"]["options"]["min_beams"], 2);
+  EXPECT_DOUBLE_EQ(two["mota"].get<double>(), 0.75);  // as with --min-beams 2 below
+  // The command line still wins.
+  out = RunCommand(program + dir.File("scans.lcm") + " --config " + config + " --min-beams 3" +
+                       " --json " + dir.File("three.json") + " 2>&1",
+                   &status);
+  ASSERT_EQ(status, 0) << out;
+  const nlohmann::json three = nlohmann::json::parse(testing::FileBytes(dir.File("three.json")));
+  EXPECT_EQ(three["detail"]["options"]["min_beams"], 3);
+  EXPECT_DOUBLE_EQ(three["mota"].get<double>(), 1.0);
+  // A bad value is a one-line error naming the key, and no report.
+  testing::WriteFileBytes(config, "segmenter:\n  min_points: 0\n");
+  out = RunCommand(program + dir.File("scans.lcm") + " --config " + config + " --json " +
+                       dir.File("bad.json") + " 2>&1",
+                   &status);
+  EXPECT_NE(status, 0) << out;
+  EXPECT_NE(out.find("segmenter.min_points"), std::string::npos) << out;
+  EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), 1) << out;
+  EXPECT_FALSE(testing::FileExists(dir.File("bad.json")));
 }
 
 TEST(EvalProgramTest, CommandLineOverridesTheRules) {

@@ -210,10 +210,26 @@ EvalOptions ReadEvalOptions(const Config& section) {
   return options;
 }
 
+EvalOptions ReadStackEvalOptions(const Config& stack) {
+  const Config eval = stack.Child("eval");
+  const bool eval_sets_min_beams = eval.Has("min_beams");
+  EvalOptions options = ReadEvalOptions(eval);
+  const Config segmenter = stack.Child("segmenter");
+  if (!eval_sets_min_beams && segmenter.Has("min_points")) {
+    const int64_t min_points = segmenter.GetInt("min_points", options.min_beams);
+    if (min_points < 1 || min_points > kMaxMinBeams) {
+      segmenter.FailKey("min_points", "must be in [1, " + std::to_string(kMaxMinBeams) +
+                                          "] (eval.min_beams follows it)");
+    }
+    options.min_beams = static_cast<int>(min_points);
+  }
+  return options;
+}
+
 void AddEvalCommandLineOptions(CommandLine* command_line) {
   command_line->AddOption("min-beams", "N",
                           "in a log with LASER_SCAN, an object is visible at a scan when at least "
-                          "N beams hit it (eval.min_beams, default 3)");
+                          "N beams hit it (eval.min_beams, else segmenter.min_points, else 3)");
   command_line->AddOption("min-moving-speed-mps", "MPS",
                           "a mover slower than this stands still: don't care for tracking "
                           "(eval.min_moving_speed_mps, default 0.2; 0 turns it off)");

@@ -31,6 +31,13 @@ EvalInput ReadEvalInput(const std::string& path, const Channels& channels, LogRe
 // file, line and key for an unknown key or a value outside the range Evaluate() accepts.
 EvalOptions ReadEvalOptions(const Config& section);
 
+// The options of slammtt-eval from a whole-stack configuration: its `eval:` section
+// (ReadEvalOptions), except that when that section does not set min_beams and the stack sets
+// segmenter.min_points, min_beams follows it: one number says how many beams make an object
+// (the segmenter makes no feature from fewer points, so the scoring must not expect one).
+// ConfigError naming segmenter.min_points for a value outside [1, kMaxMinBeams].
+EvalOptions ReadStackEvalOptions(const Config& stack);
+
 // Declares --min-beams N and --min-moving-speed-mps MPS, which override the `eval:` section.
 void AddEvalCommandLineOptions(CommandLine* command_line);
 // Applies them to `options`; UsageError naming the option for a value out of range.

@@ -31,7 +31,7 @@ int Run(int argc, char** argv) {
   if (!cl.Parse(argc, argv)) return 0;
   const std::string path = *cl.Positional("LOG.lcm");
   const ProcessSettings settings = LoadProcessSettings(cl);
-  EvalOptions options = ReadEvalOptions(settings.config.Child("eval"));
+  EvalOptions options = ReadStackEvalOptions(settings.config);
   ApplyEvalCommandLine(cl, &options);
 
   LogReadResult read;

@@ -45,8 +45,9 @@ struct EvalOptions {
   double ospa_order = 2.0;         // p of OSPA and GOSPA
   double gospa_alpha = 2.0;
   // Visibility in a log with LASER_SCAN: beams_on_object >= min_beams. Default: the segmenter's
-  // default minimum cluster size (perception/segmenter_options.h, min_points = 3); a stack that
-  // changes segmenter.min_points should set the same here. 1 gives the world's own flag back.
+  // default minimum cluster size (perception/segmenter_options.h, min_points = 3); slammtt-eval
+  // takes segmenter.min_points of the stack configuration when eval.min_beams is not set
+  // (ReadStackEvalOptions, eval_log.h). 1 gives the world's own flag back.
   int min_beams = 3;
   // A MOVING object slower than this (true speed, m/s) stands still at that scan. 0 turns the
   // rule off.
