@@ -29,6 +29,8 @@ namespace {
 
 using testing_samples::CountField;
 using testing_samples::Sample;
+using testing_samples::SampledTypeNames;
+using testing_samples::SampledTypes;
 
 int32_t ReadInt32(const std::vector<uint8_t>& bytes, size_t offset) {
   uint32_t v = 0;
@@ -52,20 +54,7 @@ bool Plausible(const std::vector<uint8_t>& bytes, int size) {
 template <class Msg>
 class MessageChecksTest : public ::testing::Test {};
 
-using CheckedTypes =
-    ::testing::Types<slammtt_msgs::laser_scan_t, slammtt_msgs::features_t,
-                     slammtt_msgs::ground_truth_t, slammtt_msgs::tracks_t, slammtt_msgs::map_t,
-                     slammtt_msgs::stage_timing_t, slammtt_msgs::lidar_status_t,
-                     slammtt_msgs::base_status_t, slammtt_msgs::estimator_status_t>;
-
-class TypeNames {
- public:
-  template <class Msg>
-  static std::string GetName(int) {
-    return Msg::getTypeName();
-  }
-};
-TYPED_TEST_SUITE(MessageChecksTest, CheckedTypes, TypeNames);
+TYPED_TEST_SUITE(MessageChecksTest, SampledTypes, SampledTypeNames);
 
 // The hand-computed layout of the checks and of the samples agrees with lcm-gen's encoder: a
 // valid message passes the check, decodes, and encodes back to the same bytes.
@@ -246,7 +235,7 @@ std::set<std::string> TypesWithVariableLength(const std::string& lcm_dir) {
 }
 
 // A new type with an array or a string needs a check in runtime/message_checks.h, an overload of
-// PlausibleEncoding, a Sample in message_samples.h and a place in CheckedTypes above.
+// PlausibleEncoding, a Sample in message_samples.h and a place in its SampledTypes.
 TEST(MessageChecksCoverageTest, EveryTypeWithAnArrayOrAStringIsChecked) {
   const std::set<std::string> expected = {
       "laser_scan_t", "features_t",     "ground_truth_t", "tracks_t",          "map_t",

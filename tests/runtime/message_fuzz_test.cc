@@ -19,6 +19,8 @@ namespace {
 
 using testing_samples::CountField;
 using testing_samples::Sample;
+using testing_samples::SampledTypeNames;
+using testing_samples::SampledTypes;
 
 int CasesPerType() {
   const char* long_tests = std::getenv("SLAMMTT_LONG_TESTS");
@@ -87,20 +89,7 @@ std::vector<uint8_t> Damaged(const std::vector<uint8_t>& valid,
 template <class Msg>
 class MessageFuzzTest : public ::testing::Test {};
 
-using CheckedTypes =
-    ::testing::Types<slammtt_msgs::laser_scan_t, slammtt_msgs::features_t,
-                     slammtt_msgs::ground_truth_t, slammtt_msgs::tracks_t, slammtt_msgs::map_t,
-                     slammtt_msgs::stage_timing_t, slammtt_msgs::lidar_status_t,
-                     slammtt_msgs::base_status_t, slammtt_msgs::estimator_status_t>;
-
-class TypeNames {
- public:
-  template <class Msg>
-  static std::string GetName(int) {
-    return Msg::getTypeName();
-  }
-};
-TYPED_TEST_SUITE(MessageFuzzTest, CheckedTypes, TypeNames);
+TYPED_TEST_SUITE(MessageFuzzTest, SampledTypes, SampledTypeNames);
 
 TYPED_TEST(MessageFuzzTest, DamagedMessagesAreRejectedOrWholeNeverThrown) {
   using Msg = TypeParam;

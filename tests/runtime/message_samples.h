@@ -8,6 +8,8 @@
 // expectation naming the field rather than as a silently meaningless test.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -352,6 +354,23 @@ struct Sample<slammtt_msgs::estimator_status_t> {
     return fields;
   }
   static bool ArraysMatchCounts(const slammtt_msgs::estimator_status_t&) { return true; }
+};
+
+// Every type with a Sample above, for the typed tests of the checks and of the fuzzer: a new
+// type is added here once.
+using SampledTypes =
+    ::testing::Types<slammtt_msgs::laser_scan_t, slammtt_msgs::features_t,
+                     slammtt_msgs::ground_truth_t, slammtt_msgs::tracks_t, slammtt_msgs::map_t,
+                     slammtt_msgs::stage_timing_t, slammtt_msgs::lidar_status_t,
+                     slammtt_msgs::base_status_t, slammtt_msgs::estimator_status_t>;
+
+// Names each typed test after its message type ("laser_scan_t") instead of a number.
+class SampledTypeNames {
+ public:
+  template <class Msg>
+  static std::string GetName(int) {
+    return Msg::getTypeName();
+  }
 };
 
 }  // namespace testing_samples
