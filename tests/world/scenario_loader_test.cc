@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "tests/support/child_process.h"
 #include "tools/world/scenario_loader.h"
 
 namespace slammtt {
@@ -15,15 +16,6 @@ namespace fs = std::filesystem;
 
 class ScenarioLoaderTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("slammtt_world_loader_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   std::string Write(const std::string& name, const std::string& text) {
     const fs::path path = dir_ / name;
     std::ofstream(path) << text;
@@ -41,7 +33,8 @@ class ScenarioLoaderTest : public ::testing::Test {
   }
   std::string BadPath() const { return (dir_ / "bad.yaml").string(); }
 
-  fs::path dir_;
+  testing::TempDir temp_{"slammtt-world-loader"};  // removed with its content after the test
+  const fs::path dir_ = temp_.path();
 };
 
 TEST_F(ScenarioLoaderTest, ReadsEveryKindOfObjectWithDefaults) {

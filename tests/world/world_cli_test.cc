@@ -33,15 +33,6 @@ constexpr int64_t kEpoch = 1700000000000000;
 
 class WorldCliTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("slammtt_world_cli_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   ProcessResult World(std::vector<std::string> args) {
     args.insert(args.begin(), kWorld);
     return RunProcess(args, dir_.string());
@@ -64,7 +55,8 @@ class WorldCliTest : public ::testing::Test {
     return names;
   }
 
-  fs::path dir_;
+  testing::TempDir temp_{"slammtt-world-cli"};  // removed with its content after the test
+  const fs::path dir_ = temp_.path();
 };
 
 TEST_F(WorldCliTest, SameSeedGivesIdenticalBytesAndAnotherSeedDoesNot) {

@@ -94,18 +94,8 @@ std::vector<uint8_t> Unshift(const LogEvent& e, int64_t offset, int64_t* utime, 
 
 class WorldLcmTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("slammtt_world_lcm_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-    lcm_ = OpenLcm(kUrl);
-  }
-  void TearDown() override {
-    logger_.reset();  // killed if still running
-    fs::remove_all(dir_);
-  }
+  void SetUp() override { lcm_ = OpenLcm(kUrl); }
+  void TearDown() override { logger_.reset(); }  // killed if still running
   std::string Path(const std::string& name) const { return (dir_ / name).string(); }
 
   // Starts lcm-logger on the bus and waits until it records (a PROBE message reaches its file).
@@ -135,7 +125,8 @@ class WorldLcmTest : public ::testing::Test {
     logger_.reset();
   }
 
-  fs::path dir_;
+  testing::TempDir temp_{"slammtt-world-lcm"};  // removed with its content after the test
+  const fs::path dir_ = temp_.path();
   std::unique_ptr<lcm::LCM> lcm_;
   std::unique_ptr<ChildProcess> logger_;
 };
