@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "byte_stream_test_util.h"
+#include "tests/support/child_process.h"
 
 namespace slammtt {
 namespace {
@@ -68,9 +69,8 @@ TEST(PtyDeviceTest, DestroyingTheDeviceHangsUpTheHost) {
 }
 
 TEST(PtyDeviceTest, PublishLinkPointsAStableNameAtTheCurrentPty) {
-  char directory_template[] = "/tmp/slammtt-pty-test-XXXXXX";
-  ASSERT_NE(mkdtemp(directory_template), nullptr);
-  const std::string link = std::string(directory_template) + "/lidar";
+  const testing::TempDir directory("slammtt-pty-test");
+  const std::string link = directory.File("lidar");
   std::string first_path;
   {
     PtyDevice first;
@@ -85,17 +85,14 @@ TEST(PtyDeviceTest, PublishLinkPointsAStableNameAtTheCurrentPty) {
   char target[PATH_MAX] = {};
   ASSERT_GT(readlink(link.c_str(), target, sizeof target - 1), 0);
   EXPECT_EQ(std::string(target), second.slave_path());
-  unlink(link.c_str());
-  rmdir(directory_template);
 }
 
 // Like udev removing /dev/rplidar when the adapter is pulled: a host retrying the name must
 // never reach a /dev/pts/N that the kernel has meanwhile given to another program (pty numbers
 // are shared by the whole machine; parallel tests once stole each other's bytes that way).
 TEST(PtyDeviceTest, TheLinkGoesWithItsDeviceButNeverTakesANewerOneWithIt) {
-  char directory_template[] = "/tmp/slammtt-pty-test-XXXXXX";
-  ASSERT_NE(mkdtemp(directory_template), nullptr);
-  const std::string link = std::string(directory_template) + "/lidar";
+  const testing::TempDir directory("slammtt-pty-test");
+  const std::string link = directory.File("lidar");
   {
     PtyDevice device;
     device.PublishLink(link);
@@ -112,8 +109,6 @@ TEST(PtyDeviceTest, TheLinkGoesWithItsDeviceButNeverTakesANewerOneWithIt) {
   char target[PATH_MAX] = {};
   ASSERT_GT(readlink(link.c_str(), target, sizeof target - 1), 0);
   EXPECT_EQ(std::string(target), newer.slave_path());
-  unlink(link.c_str());
-  rmdir(directory_template);
 }
 
 TEST(PtyDeviceTest, HostDtrIsUnknownWithoutTheShimState) {

@@ -13,6 +13,7 @@
 #include "drivers/common/byte_stream.h"
 #include "drivers/common/pty_device.h"
 #include "byte_stream_test_util.h"
+#include "tests/support/child_process.h"
 
 namespace slammtt {
 namespace {
@@ -88,9 +89,8 @@ TEST_F(SerialPtyTest, NonStandardAndLowBaudRatesAreAccepted) {
 }
 
 TEST_F(SerialPtyTest, UnpluggedDeviceIsALinkErrorAndTheLinkNameFindsTheNewOne) {
-  char directory_template[] = "/tmp/slammtt-serial-pty-XXXXXX";
-  ASSERT_NE(mkdtemp(directory_template), nullptr);
-  const std::string link = std::string(directory_template) + "/lidar";
+  const testing::TempDir directory("slammtt-serial-pty");
+  const std::string link = directory.File("lidar");
 
   auto device = std::make_unique<PtyDevice>();
   device->PublishLink(link);
@@ -112,8 +112,6 @@ TEST_F(SerialPtyTest, UnpluggedDeviceIsALinkErrorAndTheLinkNameFindsTheNewOne) {
   const uint8_t byte = 0x5A;
   device->stream().Write(&byte, 1);
   EXPECT_EQ(ReadExactly(*host, 1), std::vector<uint8_t>({0x5A}));
-  unlink(link.c_str());
-  rmdir(directory_template);
 }
 
 }  // namespace
