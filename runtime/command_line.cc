@@ -1,11 +1,11 @@
 #include "runtime/command_line.h"
 
-#include <cerrno>
-#include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <iostream>
+#include <optional>
 #include <sstream>
+
+#include "common/number_text.h"
 
 namespace slammtt {
 
@@ -135,25 +135,19 @@ std::optional<std::string> CommandLine::Positional(const std::string& name) cons
 std::optional<double> CommandLine::DoubleValue(const std::string& name) const {
   const auto text = Value(name);
   if (!text) return std::nullopt;
-  char* end = nullptr;
-  errno = 0;
-  const double value = std::strtod(text->c_str(), &end);
-  if (text->empty() || *end != '\0' || errno != 0 || !std::isfinite(value)) {
-    throw UsageError("option --" + name + ": expected a number, got '" + *text + "'");
-  }
+  const std::optional<double> value = ParseFiniteDouble(*text);
+  if (!value) throw UsageError("option --" + name + ": expected a number, got '" + *text + "'");
   return value;
 }
 
 std::optional<int64_t> CommandLine::IntValue(const std::string& name) const {
   const auto text = Value(name);
   if (!text) return std::nullopt;
-  char* end = nullptr;
-  errno = 0;
-  const long long value = std::strtoll(text->c_str(), &end, 10);
-  if (text->empty() || *end != '\0' || errno != 0) {
+  const std::optional<int64_t> value = ParseWholeNumber(*text);
+  if (!value) {
     throw UsageError("option --" + name + ": expected a whole number, got '" + *text + "'");
   }
-  return static_cast<int64_t>(value);
+  return value;
 }
 
 std::string CommandLine::Help() const {

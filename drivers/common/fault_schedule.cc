@@ -1,24 +1,20 @@
 #include "drivers/common/fault_schedule.h"
 
-#include <cmath>
+#include <optional>
 #include <stdexcept>
+
+#include "common/number_text.h"
 
 namespace slammtt {
 
 double FaultNumber(const std::string& argument, double fallback, const std::string& text) {
   if (argument.empty()) return fallback;
-  size_t used = 0;
-  double value = 0.0;
-  try {
-    value = std::stod(argument, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != argument.size() || !std::isfinite(value) || value < 0.0 || value > 1e6) {
+  const std::optional<double> value = ParseFiniteDouble(argument);
+  if (!value || *value < 0.0 || *value > 1e6) {
     throw std::invalid_argument("fault '" + text + "': '" + argument +
                                 "' is not a number from 0 to 1000000");
   }
-  return value;
+  return *value;
 }
 
 ScheduledFault ParseScheduledFault(const std::string& text,

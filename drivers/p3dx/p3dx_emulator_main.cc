@@ -3,7 +3,10 @@
 #include <cstdint>
 #include <cstdio>
 #include <iostream>
+#include <optional>
 #include <string>
+
+#include "common/number_text.h"
 
 #include "drivers/p3dx/p3dx_emulator.h"
 #include "runtime/command_line.h"
@@ -92,18 +95,12 @@ int Main(int argc, char** argv) {
     // would become the robot's pose).
     const size_t comma = start->find(',');
     auto number = [&start](const std::string& text, double limit) {
-      size_t used = 0;
-      double value = 0.0;
-      try {
-        value = std::stod(text, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used == 0 || used != text.size() || !std::isfinite(value) || std::abs(value) > limit) {
+      const std::optional<double> value = ParseFiniteDouble(text);
+      if (!value || std::abs(*value) > limit) {
         throw UsageError("--start-moving expects V,W (|V| <= 2 m/s, |W| <= 6 rad/s), got '" +
                          *start + "'");
       }
-      return value;
+      return *value;
     };
     if (comma == std::string::npos) number("", 0.0);
     const double v = number(start->substr(0, comma), 2.0);

@@ -1,13 +1,15 @@
 #include "tools/world/scenario_loader.h"
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
+
+#include "common/number_text.h"
 
 namespace slammtt {
 
@@ -350,22 +352,6 @@ class ScenarioReader {
   Locations locations_;
 };
 
-bool ParseNumber(const std::string& text, double* value) {
-  if (text.empty()) return false;
-  errno = 0;
-  char* end = nullptr;
-  *value = std::strtod(text.c_str(), &end);
-  return errno == 0 && end == text.c_str() + text.size() && std::isfinite(*value);
-}
-
-bool ParseWhole(const std::string& text, int64_t* value) {
-  if (text.empty()) return false;
-  errno = 0;
-  char* end = nullptr;
-  *value = std::strtoll(text.c_str(), &end, 10);
-  return errno == 0 && end == text.c_str() + text.size();
-}
-
 }  // namespace
 
 namespace {
@@ -424,12 +410,20 @@ std::vector<RecordedTrack> ReadRecordedTracks(const std::string& path) {
     std::stringstream row(line);
     std::string field;
     while (std::getline(row, field, '\t')) fields.push_back(field);
-    TimedPoint point;
-    int64_t id = 0;
-    if (fields.size() != 4 || !ParseNumber(fields[0], &point.t_s) || !ParseWhole(fields[1], &id) ||
-        !ParseNumber(fields[2], &point.x_m) || !ParseNumber(fields[3], &point.y_m)) {
-      fail("expected four tab-separated numbers t_s, id, x_m, y_m");
+    std::optional<double> t_s, x_m, y_m;
+    std::optional<int64_t> whole_id;
+    if (fields.size() == 4) {
+      t_s = ParseFiniteDouble(fields[0]);
+      whole_id = ParseWholeNumber(fields[1]);
+      x_m = ParseFiniteDouble(fields[2]);
+      y_m = ParseFiniteDouble(fields[3]);
     }
+    if (!t_s || !whole_id || !x_m || !y_m) {
+      fail("expected four tab-separated numbers t_s, id, x_m, y_m");
+      continue;  // (fail throws)
+    }
+    const TimedPoint point{*t_s, *x_m, *y_m};
+    const int64_t id = *whole_id;
     if (std::abs(id) > kMaxRecordedId) fail("person id must be within +-1e15");
     RecordedTrack& track = by_id[id];
     track.id = id;
