@@ -28,21 +28,11 @@ namespace slammtt {
 namespace {
 
 using testing_samples::CountField;
+using testing_samples::ReadInt32;
 using testing_samples::Sample;
 using testing_samples::SampledTypeNames;
 using testing_samples::SampledTypes;
-
-int32_t ReadInt32(const std::vector<uint8_t>& bytes, size_t offset) {
-  uint32_t v = 0;
-  for (int k = 0; k < 4; ++k) v = (v << 8) | bytes.at(offset + k);
-  return static_cast<int32_t>(v);
-}
-
-void WriteInt32(std::vector<uint8_t>* bytes, size_t offset, int32_t value) {
-  for (int k = 0; k < 4; ++k) {
-    bytes->at(offset + k) = static_cast<uint8_t>(static_cast<uint32_t>(value) >> (24 - 8 * k));
-  }
-}
+using testing_samples::WriteInt32;
 
 int Size(const std::vector<uint8_t>& bytes) { return static_cast<int>(bytes.size()); }
 

@@ -21,16 +21,11 @@ using testing_samples::CountField;
 using testing_samples::Sample;
 using testing_samples::SampledTypeNames;
 using testing_samples::SampledTypes;
+using testing_samples::WriteInt32;
 
 int CasesPerType() {
   const char* long_tests = std::getenv("SLAMMTT_LONG_TESTS");
   return long_tests != nullptr && std::string(long_tests) == "1" ? 400000 : 4000;
-}
-
-void WriteInt32(std::vector<uint8_t>* bytes, size_t offset, int32_t value) {
-  for (int k = 0; k < 4; ++k) {
-    (*bytes)[offset + k] = static_cast<uint8_t>(static_cast<uint32_t>(value) >> (24 - 8 * k));
-  }
 }
 
 // A count or length an attacker or a bit error would produce: near the true value, small,

@@ -46,6 +46,20 @@ inline void AddString(std::vector<CountField>* fields, const std::string& name,
 
 constexpr size_t kFingerprint = 8;
 
+// The big-endian int32 at `offset` of an encoding (LCM's byte order), as a count field holds it.
+inline int32_t ReadInt32(const std::vector<uint8_t>& bytes, size_t offset) {
+  uint32_t v = 0;
+  for (size_t k = 0; k < 4; ++k) v = (v << 8) | bytes.at(offset + k);
+  return static_cast<int32_t>(v);
+}
+
+// Overwrites the big-endian int32 at `offset`: how the tests damage a count or a length.
+inline void WriteInt32(std::vector<uint8_t>* bytes, size_t offset, int32_t value) {
+  for (size_t k = 0; k < 4; ++k) {
+    bytes->at(offset + k) = static_cast<uint8_t>(static_cast<uint32_t>(value) >> (24 - 8 * k));
+  }
+}
+
 // Sample<Msg>::Make() builds a valid message with every array non-empty, distinct values and
 // at least one empty string where the type has strings; Counts() lists its count fields;
 // ArraysMatchCounts() is what a consumer relies on after a successful decode.
