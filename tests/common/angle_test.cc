@@ -33,7 +33,8 @@ double FmodForm(double a) {
   return wrapped;
 }
 
-double EstimatorForm(double a) {  // estimator/angle.h, which has its own copy until it uses this one
+// estimator/angle.h before it included common/angle.h.
+double EstimatorForm(double a) {
   if (!std::isfinite(a)) return a;
   if (std::abs(a) <= M_PI) return a <= -M_PI ? a + 2.0 * M_PI : a;
   double wrapped = std::remainder(a, 2.0 * M_PI);

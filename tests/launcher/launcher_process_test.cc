@@ -18,9 +18,7 @@ namespace slammtt {
 namespace {
 
 using testing::ChildProcess;
-using testing::MakeTempDirectory;
 using testing::ReadWholeFile;
-using testing::RemoveDirectoryTree;
 
 size_t Count(const std::string& text, const std::string& what) {
   size_t n = 0;
@@ -30,13 +28,13 @@ size_t Count(const std::string& text, const std::string& what) {
 
 class LauncherProcessTest : public ::testing::Test {
  protected:
-  void SetUp() override { directory_ = MakeTempDirectory("launcher-test"); }
+  void SetUp() override { directory_ = testing::MakeTempDirectory("launcher-test"); }
   void TearDown() override {
     if (HasFailure()) {
       std::cerr << "stdout:\n" << ReadWholeFile(out_) << "stderr:\n" << ReadWholeFile(err_);
     } else {
       launcher_.reset();
-      RemoveDirectoryTree(directory_);
+      testing::RemoveDirectoryTree(directory_);
     }
   }
 

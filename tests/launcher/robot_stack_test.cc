@@ -25,9 +25,7 @@ namespace slammtt {
 namespace {
 
 using testing::ChildProcess;
-using testing::MakeTempDirectory;
 using testing::ReadWholeFile;
-using testing::RemoveDirectoryTree;
 
 std::string Replace(std::string text, const std::string& from, const std::string& to) {
   const size_t at = text.find(from);
@@ -52,7 +50,8 @@ std::vector<std::string> FilesIn(const std::string& directory) {
 // slammtt-launch running in a temporary directory (its logs/ land there).
 class RobotStack {
  public:
-  RobotStack() : directory_(MakeTempDirectory("robot-stack-test")), bin_(SLAMMTT_BIN_DIR) {
+  RobotStack()
+      : directory_(testing::MakeTempDirectory("robot-stack-test")), bin_(SLAMMTT_BIN_DIR) {
     std::string config = ReadWholeFile(std::string(SLAMMTT_SOURCE_DIR) + "/config/robot.yaml");
     EXPECT_FALSE(config.empty());
     config = Replace(config, "port: /dev/p3dx ", "port: tcp://127.0.0.1:5101 ");
@@ -77,7 +76,7 @@ class RobotStack {
     laser_->Signal(SIGINT);
     EXPECT_EQ(base_->Wait(5000), 0);
     EXPECT_EQ(laser_->Wait(5000), 0);
-    if (!::testing::Test::HasFailure()) RemoveDirectoryTree(directory_);
+    if (!::testing::Test::HasFailure()) testing::RemoveDirectoryTree(directory_);
   }
 
   // Ctrl-C: SIGINT to the launcher; its exit status, nullopt if it did not end in 30 s.

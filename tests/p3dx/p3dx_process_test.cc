@@ -27,9 +27,7 @@ namespace slammtt {
 namespace {
 
 using testing::ChildProcess;
-using testing::MakeTempDirectory;
 using testing::ReadWholeFile;
-using testing::RemoveDirectoryTree;
 
 namespace cmd = p3dx_command;
 using Clock = std::chrono::steady_clock;
@@ -39,7 +37,7 @@ enum class Transport { kTcp, kPty };
 class P3dxProcessTest : public ::testing::TestWithParam<Transport> {
  protected:
   void SetUp() override {
-    directory_ = MakeTempDirectory("p3dx-process-test");
+    directory_ = testing::MakeTempDirectory("p3dx-process-test");
     lcm_ = OpenLcm(kDefaultLcmUrl);
     lcm_->subscribeFunction("ODOMETRY", &P3dxProcessTest::OnOdometry, this);
     lcm_->subscribeFunction("BASE_STATUS", &P3dxProcessTest::OnStatus, this);
@@ -52,7 +50,7 @@ class P3dxProcessTest : public ::testing::TestWithParam<Transport> {
     if (HasFailure()) {
       std::cerr << "driver output:\n" << ReadWholeFile(directory_ + "/driver.log");
     } else {
-      RemoveDirectoryTree(directory_);
+      testing::RemoveDirectoryTree(directory_);
     }
   }
 
@@ -275,7 +273,7 @@ INSTANTIATE_TEST_SUITE_P(Transports, P3dxProcessTest,
                          });
 
 TEST(P3dxProcessOptionsTest, BadOptionsAreOneLineErrors) {
-  const std::string directory = MakeTempDirectory("p3dx-options-test");
+  const std::string directory = testing::MakeTempDirectory("p3dx-options-test");
   const std::string bin = std::string(SLAMMTT_BIN_DIR) + "/slammtt-p3dx";
   {
     ChildProcess p({bin, "--port", "ttyUSB0"}, directory + "/a.log");
@@ -301,7 +299,7 @@ TEST(P3dxProcessOptionsTest, BadOptionsAreOneLineErrors) {
   for (const std::string* text : {&a, &b, &c}) {
     EXPECT_EQ(std::count(text->begin(), text->end(), '\n'), 1) << *text;
   }
-  if (!::testing::Test::HasFailure()) RemoveDirectoryTree(directory);
+  if (!::testing::Test::HasFailure()) testing::RemoveDirectoryTree(directory);
 }
 
 }  // namespace

@@ -20,9 +20,7 @@ namespace slammtt {
 namespace {
 
 using testing::ChildProcess;
-using testing::MakeTempDirectory;
 using testing::ReadWholeFile;
-using testing::RemoveDirectoryTree;
 
 const std::string kProgram = std::string(SLAMMTT_BIN_DIR) + "/slammtt-segmenter";
 
@@ -36,9 +34,9 @@ slammtt_msgs::laser_scan_t Scan(int64_t sequence) {
 // A temporary directory for one test, removed when the test passes.
 class SegmenterProcessTest : public ::testing::Test {
  protected:
-  void SetUp() override { dir_ = MakeTempDirectory("perception_process"); }
+  void SetUp() override { dir_ = testing::MakeTempDirectory("perception_process"); }
   void TearDown() override {
-    if (!HasFailure()) RemoveDirectoryTree(dir_);
+    if (!HasFailure()) testing::RemoveDirectoryTree(dir_);
   }
   std::string File(const std::string& name) const { return dir_ + "/" + name; }
   std::string dir_;

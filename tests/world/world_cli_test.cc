@@ -23,7 +23,6 @@ namespace slammtt {
 namespace {
 
 namespace fs = std::filesystem;
-using testing::ChildProcess;
 using testing::ProcessResult;
 using testing::ReadWholeFile;
 using testing::RunProcess;
@@ -274,7 +273,7 @@ TEST_F(WorldCliTest, UnknownScenarioAndBadOptions) {
 
 TEST_F(WorldCliTest, InterruptedLogRunLeavesNothing) {
   // 10^5 simulated seconds take tens of seconds: the run is still going when SIGINT comes.
-  ChildProcess world(
+  testing::ChildProcess world(
       {kWorld, "--scenario", "s1-crossing", "--duration", "100000", "--log", Path("long.lcm")},
       Path("long.out"), Path("long.err"));
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
