@@ -158,6 +158,7 @@ std::string CheckEstimatorOptions(const EstimatorOptions& o) {
     return "need 0 <= min_range_m < max_range_m";
   }
   if (!non_negative(o.detection_range_m)) return "detection_range_m must be >= 0";
+  if (!non_negative(o.edge_of_view_sigma_m)) return "edge_of_view_sigma_m must be >= 0";
   if (!positive(o.field_of_view_rad) || o.field_of_view_rad > 2.0 * M_PI + 1e-9) {
     return "field_of_view_deg must be in (0, 360]";
   }
@@ -370,8 +371,20 @@ std::vector<PointMeasurement> Estimator::ValidateFeatures(
     } else {
       m.covariance << default_range_var, 0.0, 0.0, default_bearing_var;
     }
+    const double width = std::isfinite(f.width_m) && f.width_m > 0.0 ? f.width_m : 0.0;
+    if (options_.edge_of_view_sigma_m > 0.0 && options_.field_of_view_rad < 2.0 * M_PI) {
+      const double range = m.range_bearing(0);
+      const double extent = std::atan2(0.5 * width, range);
+      if (std::abs(m.range_bearing(1)) + extent + kEdgeOfViewMargin_rad >=
+          0.5 * options_.field_of_view_rad) {
+        const double s = options_.edge_of_view_sigma_m;
+        m.covariance(0, 0) += s * s;
+        m.covariance(1, 1) += (s / range) * (s / range);
+        ++counts->features_at_edge_of_view;
+      }
+    }
     measurements.push_back(m);
-    widths->push_back(std::isfinite(f.width_m) && f.width_m > 0.0 ? f.width_m : 0.0);
+    widths->push_back(width);
   }
   if (rejected > 0) {
     counts->features_rejected = rejected;

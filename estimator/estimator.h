@@ -36,6 +36,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cmath>
 #include <cstdint>
 #include <deque>
 #include <optional>
@@ -56,6 +57,11 @@ namespace slammtt {
 
 enum class AssociationMode { kMlRansac, kStaticNearestNeighbour, kRansacAllPairs };
 
+// How close to the edge of the field of view a feature's angular extent must come to count as
+// cut by it (EstimatorOptions::edge_of_view_sigma_m): two beams of the paper's 0.5-degree laser,
+// as the outermost beam that hit the object may be up to one spacing inside the edge.
+inline constexpr double kEdgeOfViewMargin_rad = 1.0 * M_PI / 180.0;
+
 struct EstimatorOptions {
   AssociationMode mode = AssociationMode::kMlRansac;
   Eigen::Vector3d initial_pose = Eigen::Vector3d::Zero();  // map frame = start pose
@@ -74,6 +80,14 @@ struct EstimatorOptions {
   // With raw scans the segmenter needs a few beams on an object, so a 0.5 m person is detected
   // up to about 0.5 m / (min_points * resolution): 19 m at 0.5 degrees and 3 points.
   double detection_range_m = 0.0;
+  // A cluster that reaches the edge of a limited field of view is only the visible part of its
+  // object: the rest lies beyond the edge, so its centre can be off by up to about one object
+  // radius, along the range and across it (a person leaving a 180-degree view beside the robot:
+  // 0.15-0.25 m on s2-lobby). Such a feature gets this standard deviation added in both
+  // directions (range variance + s^2, bearing variance + (s / range)^2). A feature is at the
+  // edge when its angular extent, atan(width / 2 / range) either side of its bearing, comes
+  // within kEdgeOfViewMargin_rad of the edge. 0 disables it.
+  double edge_of_view_sigma_m = 0.3;
 
   // Motion models.
   OdometryNoiseOptions odometry_noise;
@@ -177,6 +191,7 @@ struct ObjectEstimate {
 struct StepCounts {
   int features = 0;             // received
   int features_rejected = 0;
+  int features_at_edge_of_view = 0;  // cut by the edge of the field of view (R inflated)
   int level1_updates = 0;
   int level2_updates = 0;
   int level3_updates = 0;

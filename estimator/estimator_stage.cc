@@ -89,6 +89,7 @@ EstimatorStageOptions ReadEstimatorOptions(const Config& s) {
   o.max_range_m = Double(s, "max_range_m", o.max_range_m);
   o.field_of_view_rad = Degrees(s, "field_of_view_deg", o.field_of_view_rad);
   o.detection_range_m = Double(s, "detection_range_m", o.detection_range_m);
+  o.edge_of_view_sigma_m = Double(s, "edge_of_view_sigma_m", o.edge_of_view_sigma_m);
   OdometryNoiseOptions& n = o.odometry_noise;
   n.distance_var_per_m = Double(s, "odometry_distance_var_per_m", n.distance_var_per_m);
   n.rotation_var_per_rad = Double(s, "odometry_rotation_var_per_rad", n.rotation_var_per_rad);

@@ -47,9 +47,14 @@ ClassChange ClassifyMover(const Eigen::Vector2d& position, const Eigen::Matrix2d
       position_variance < options.still_restart_variance_ratio * record->still_anchor_variance_m2) {
     RestartStillWindow(position, position_variance, utime, record);
   }
+  // The displacement is evidence only when a measurement has just pulled the estimate to where
+  // the object is: between measurements the estimate moves with its own velocity, so an object
+  // measured once and then unseen (a walker at the edge of detection, seen on one scan in ten,
+  // with a velocity estimate near zero) would look still while it walks on.
+  const bool measured_now = record->last_seen_utime == utime;
   const double window_s = 1e-6 * static_cast<double>(utime - record->still_anchor_utime);
   const double displacement_m = (position - record->still_anchor_m).norm();
-  if (window_s >= options.still_hold_s &&
+  if (measured_now && window_s >= options.still_hold_s &&
       displacement_m <= options.still_max_speed_mps * window_s) {
     return ClassChange::kBecameStatic;
   }

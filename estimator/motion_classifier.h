@@ -7,7 +7,10 @@
 //                      from zero) and |v| > moving_min_speed_mps;
 //   "still" evidence:  since the last moving evidence (or since the object got its velocity
 //                      states), at least still_hold_s have passed and the position estimate
-//                      has moved by at most still_max_speed_mps times that time.
+//                      has moved by at most still_max_speed_mps times that time, judged only
+//                      at a scan in which the object got a measurement (record->last_seen_utime
+//                      == utime: between measurements the estimate moves with its own velocity
+//                      estimate, which says nothing about the object).
 // The still test looks at the displacement over a window that grows, not at the instantaneous
 // velocity estimate: with the process noise movers need (sigma_Q), a static object's velocity
 // estimate keeps a standard deviation of about 0.2 m/s at the paper's sensor noise, while the
