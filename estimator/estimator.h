@@ -198,6 +198,7 @@ struct StepCounts {
   int manoeuvres = 0;           // movers given a velocity jump before level 3
   int hypotheses = 0;
   int new_objects = 0;
+  int reacquired = 0;           // lost movers seen again (identity taken over, track_management.h)
   int objects_refused = 0;      // by the object cap
   int pruned = 0;
   int became_moving = 0;

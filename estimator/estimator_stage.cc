@@ -139,6 +139,8 @@ EstimatorStageOptions ReadEstimatorOptions(const Config& s) {
   o.tracks.coast_unseen_s = Double(s, "coast_unseen_s", o.tracks.coast_unseen_s);
   o.tracks.prune_out_of_view_s = Double(s, "prune_out_of_view_s", o.tracks.prune_out_of_view_s);
   o.tracks.max_coast_sigma_m = Double(s, "max_coast_sigma_m", o.tracks.max_coast_sigma_m);
+  o.tracks.reacquire_speed_mps =
+      Double(s, "reacquire_speed_mps", o.tracks.reacquire_speed_mps);
   MotionClassifierOptions& c = o.classifier;
   c.moving_chi2 = Double(s, "moving_chi2", c.moving_chi2);
   c.moving_min_speed_mps = Double(s, "moving_min_speed_mps", c.moving_min_speed_mps);

@@ -51,6 +51,14 @@ double NormalizedInnovationSquared(const PointMeasurement& measurement,
          det;
 }
 
+double PairCost(const PointMeasurement& measurement, const ObjectPrediction& prediction,
+                double nis) {
+  const Eigen::Matrix2d s = prediction.hph + measurement.covariance;
+  const double det = s(0, 0) * s(1, 1) - s(0, 1) * s(1, 0);
+  if (!(det > 0.0) || !prediction.valid) return std::numeric_limits<double>::infinity();
+  return nis + std::log(det);
+}
+
 std::vector<Candidate> GatePairs(const std::vector<PointMeasurement>& measurements,
                                  const std::vector<ObjectPrediction>& predictions,
                                  double gate_chi2) {

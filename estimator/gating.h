@@ -40,6 +40,16 @@ struct Candidate {
   double nis = 0.0;
 };
 
+// What choosing a pair costs: its negative log-likelihood up to a constant, NIS + ln det S with
+// S = H P H^T + R (the "generalized distance" of global-nearest-neighbour association, Blackman
+// and Popoli 1999, section 6.3; the likelihood MLESAC scores with, Torr and Zisserman 2000).
+// Choices between pairs that share a measurement use it rather than the NIS alone: the NIS of
+// an object known to 2 m (a track coasting unseen, a one-scan-old object) is small for any
+// measurement nearby, so by the NIS it would beat the landmark known to 2 cm that the
+// measurement really belongs to. +infinity when S is not positive definite.
+double PairCost(const PointMeasurement& measurement, const ObjectPrediction& prediction,
+                double nis);
+
 // NIS of measurement z (with covariance R) against a prediction; +infinity when the prediction
 // is invalid. `gate_chi2` only enables the cheap lower-bound rejection (returns +infinity for
 // pairs proven to be >= gate_chi2); pass +infinity to always compute the exact value.

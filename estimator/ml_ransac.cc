@@ -47,6 +47,11 @@ double Nis(const Eigen::Vector2d& nu, const Eigen::Matrix2d& s) {
          det;
 }
 
+double LogDet(const Eigen::Matrix2d& s) {
+  const double det = s(0, 0) * s(1, 1) - s(0, 1) * s(1, 0);
+  return det > 0.0 ? std::log(det) : std::numeric_limits<double>::infinity();
+}
+
 }  // namespace
 
 RansacOutcome RunOnePointRansac(const SlamState& state,
@@ -87,6 +92,8 @@ RansacOutcome RunOnePointRansac(const SlamState& state,
   std::vector<Eigen::Vector2d> predicted(involved.size());
   std::vector<Eigen::Matrix2d> conditioned_hph(involved.size());
   std::vector<Candidate> inliers;
+  std::vector<double> inlier_cost;  // PairCost of each inlier at the hypothesis' state
+  std::vector<size_t> inlier_order;
   std::vector<uint8_t> measurement_used(measurements.size(), 0);
   std::vector<uint8_t> object_used(static_cast<size_t>(state.num_objects()), 0);
 
@@ -121,6 +128,7 @@ RansacOutcome RunOnePointRansac(const SlamState& state,
       conditioned_hph[k] = pk.hph - g * s_inverse * g.transpose();
     }
     inliers.clear();
+    inlier_cost.clear();
     for (const Candidate& c : evaluation) {
       if (c.measurement == h.measurement || c.object == h.object) continue;
       const size_t k = static_cast<size_t>((row_of[static_cast<size_t>(c.object)] - 3) / 2);
@@ -128,18 +136,25 @@ RansacOutcome RunOnePointRansac(const SlamState& state,
       const PointMeasurement& z = measurements[static_cast<size_t>(c.measurement)];
       Eigen::Vector2d innovation = z.range_bearing - predicted[k];
       innovation(1) = WrapAngle(innovation(1));
-      const double nis = Nis(innovation, conditioned_hph[k] + z.covariance);
-      if (nis < options.inlier_chi2) inliers.push_back({c.measurement, c.object, nis});
+      const Eigen::Matrix2d s_c = conditioned_hph[k] + z.covariance;
+      const double nis = Nis(innovation, s_c);
+      if (nis < options.inlier_chi2) {
+        inliers.push_back({c.measurement, c.object, nis});
+        inlier_cost.push_back(nis + LogDet(s_c));
+      }
     }
-    std::stable_sort(inliers.begin(), inliers.end(),
-                     [](const Candidate& a, const Candidate& b) { return a.nis < b.nis; });
+    inlier_order.resize(inliers.size());
+    for (size_t k = 0; k < inlier_order.size(); ++k) inlier_order[k] = k;
+    std::stable_sort(inlier_order.begin(), inlier_order.end(),
+                     [&](size_t a, size_t b) { return inlier_cost[a] < inlier_cost[b]; });
     Hypothesis hypothesis;
     hypothesis.pair = pair_index;
     hypothesis.pairs.push_back(h);
-    hypothesis.cost = h.nis;
+    hypothesis.cost = h.nis + LogDet(s);
     measurement_used[static_cast<size_t>(h.measurement)] = 1;
     object_used[static_cast<size_t>(h.object)] = 1;
-    for (const Candidate& c : inliers) {
+    for (size_t k : inlier_order) {
+      const Candidate& c = inliers[k];
       if (measurement_used[static_cast<size_t>(c.measurement)] ||
           object_used[static_cast<size_t>(c.object)]) {
         continue;
@@ -147,7 +162,7 @@ RansacOutcome RunOnePointRansac(const SlamState& state,
       measurement_used[static_cast<size_t>(c.measurement)] = 1;
       object_used[static_cast<size_t>(c.object)] = 1;
       hypothesis.pairs.push_back(c);
-      hypothesis.cost += c.nis;
+      hypothesis.cost += inlier_cost[k];
     }
     for (const Candidate& c : hypothesis.pairs) {
       measurement_used[static_cast<size_t>(c.measurement)] = 0;

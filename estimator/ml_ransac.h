@@ -10,11 +10,13 @@
 //     covariance conditioned on the hypothesis (S_h = H P_h H^T + R, where P_h = P - W S^-1 W^T
 //     restricted to the 5 states the pair touches: exact for the linearised model);
 //   - takes, one-to-one (each measurement and each object at most once, the hypothesis' own
-//     pair first), the pairs with NIS under `inlier_chi2` in increasing NIS order: that set is
-//     the consensus.
-// The best hypothesis has the largest consensus; ties go to the smaller total NIS (the MSAC
-// score of Torr and Zisserman, 2000), then to the earlier pair in the input, so the winner
-// does not depend on the drawing order when every pair gets drawn.
+//     pair first), the pairs with NIS under `inlier_chi2` in increasing cost, NIS + ln det S
+//     (PairCost, gating.h): that set is the consensus.
+// The best hypothesis has the largest consensus; ties go to the smaller total cost (the
+// inliers' negative log-likelihood, as MLESAC scores, Torr and Zisserman 2000: with the NIS
+// alone, the hypothesis that gives a measurement to a poorly known object beats the one that
+// gives it to the landmark it belongs to), then to the earlier pair in the input, so the
+// winner does not depend on the drawing order when every pair gets drawn.
 // Hypotheses are drawn without replacement (a pair drawn twice gives the same hypothesis), so
 // at most |sample space| are generated. Their number adapts by eq. 16 with m = 1:
 // n_hyp = log(1 - p) / log(eps), eps = 1 - N_in / N_IC, where N_in is the best consensus and

@@ -31,6 +31,7 @@ struct ObjectRecord {
   int hits = 0;                    // scans in which a measurement updated the object
   int64_t first_seen_utime = 0;
   int64_t last_seen_utime = 0;
+  Eigen::Vector2d last_seen_m = Eigen::Vector2d::Zero();  // position estimate after that scan
   int64_t last_update_utime = 0;   // last scan whose measurement updated the state
   double unseen_in_view_s = 0.0;   // time it should have been seen without a measurement
   double unseen_observable_s = 0.0;  // time without a measurement inside the sensor's geometry
@@ -49,6 +50,9 @@ struct ObjectRecord {
   int num_offsets = 0;             // valid entries (at most kOffsetWindow)
   int next_offset = 0;             // where the next one goes
   int64_t class_change_utime = 0;  // last change of object_class
+  // A tentative object that may be a lost mover seen again: that track's id (0: none;
+  // track_management.h, ChooseReacquisitions).
+  int64_t continues_id = 0;
 };
 
 struct StateObject {
