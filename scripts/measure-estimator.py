@@ -1,0 +1,156 @@
+#!/usr/bin/env python3
+"""Measures every figure of the estimator's issue (issue 6) with the shipped programs.
+
+    scripts/measure-estimator.py OUTDIR [--seeds 1-5] [--scenarios s1-crossing,...]
+
+For each scenario and seed it runs exactly what the target tests run
+(tests/estimator/pipeline_runner.cc):
+
+    slammtt-world --scenario S --seed N --log world.lcm
+    { cat estimator/config/S.yaml; echo "  mode: MODE"; } > MODE.yaml
+    slammtt-replay world.lcm -o out.lcm --config MODE.yaml [--stage segmenter] --stage estimator
+    slammtt-eval out.lcm --json report.json
+    slammtt-timing --json out.lcm.timing.lcm
+
+in mode ml_ransac everywhere, static_nn (baseline a) on s1-crossing and ransac_all_pairs
+(baseline b) on s1-crossing and s2-lobby. ml_ransac runs are also scored without the two
+evaluation rules of docs/evaluation.md (--min-beams 1 --min-moving-speed-mps 0), column
+"MOTA norules". The pseudo-scenario s1-static-only is s1-crossing with its five movers taken out
+(the same landmarks, robot path and sensor): the robot error EKF-SLAM reaches when nothing moves.
+
+Prints one Markdown table row per run; every file stays in OUTDIR. Needs a build (build/bin) and
+python3 with no extra modules. Per-scan times depend on the machine's load: quote them from a
+quiet machine.
+"""
+import argparse
+import json
+import os
+import re
+import subprocess
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+BIN = os.path.join(ROOT, "build", "bin")
+SCENARIOS = ["s1-crossing", "s1-static-only", "s2-lobby", "s3-no-static", "rplidar-a2",
+             "crowd-zara02"]
+
+
+def modes_of(scenario):
+    if scenario in ("s1-crossing", "s1-static-only"):
+        return ["ml_ransac", "static_nn"] + (["ransac_all_pairs"] if scenario == "s1-crossing"
+                                             else [])
+    if scenario == "s2-lobby":
+        return ["ml_ransac", "ransac_all_pairs"]
+    return ["ml_ransac"]
+
+
+def run(command):
+    result = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    if result.returncode != 0:
+        last_line = (result.stderr.strip().splitlines() or ["exit " + str(result.returncode)])[-1]
+        sys.exit(f"measure-estimator: {' '.join(command)}: {last_line}")
+    return result.stdout
+
+
+def static_only_scenario(outdir):
+    """s1-crossing without its movers: the text up to 'movers:', then 'movers: []', then the
+    statics (the same as sed '/^movers:/,/^statics:/{/^statics:/!d}')."""
+    with open(os.path.join(ROOT, "config", "scenarios", "s1-crossing.yaml")) as f:
+        text = f.read()
+    cut = re.search(r"^movers:.*?(?=^statics:)", text, re.M | re.S)
+    if cut is None:
+        sys.exit("measure-estimator: s1-crossing.yaml has no 'movers:' before 'statics:'")
+    path = os.path.join(outdir, "s1-static-only.yaml")
+    with open(path, "w") as f:
+        f.write(text[:cut.start()] + "movers: []\n" + text[cut.end():])
+    return path
+
+
+def timing(timing_log):
+    stages = json.loads(run([os.path.join(BIN, "slammtt-timing"), "--json", timing_log]))
+    estimator = [s for s in stages["stages"] if s["stage"] == "estimator"][0]
+    hypotheses = [c["value"] for c in estimator["counters"] if c["name"] == "hypotheses"][0]
+    return (estimator["total_ns"]["median"] / 1000.0, estimator["total_ns"]["p99"] / 1000.0,
+            round(hypotheses["mean"] * hypotheses["count"]))
+
+
+def fmt(value, digits=3):
+    if value is None:
+        return "-"
+    if isinstance(value, float):
+        return f"{value:.{digits}f}"
+    return str(value)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("outdir")
+    parser.add_argument("--seeds", default="1-5", help="first-last (default 1-5)")
+    parser.add_argument("--scenarios", default=",".join(SCENARIOS))
+    args = parser.parse_args()
+    first, _, last = args.seeds.partition("-")
+    seeds = range(int(first), int(last or first) + 1)
+    scenarios = args.scenarios.split(",")
+    for scenario in scenarios:
+        if scenario not in SCENARIOS:
+            sys.exit(f"measure-estimator: unknown scenario '{scenario}' "
+                     f"(known: {', '.join(SCENARIOS)})")
+    os.makedirs(args.outdir, exist_ok=True)
+    columns = ["scenario", "seed", "mode", "MOTA", "MOTA norules", "MOTP m", "IDSW", "frag",
+               "OSPA m", "GOSPA m", "ATE m", "odom ATE m", "movers in map", "landmark RMSE m",
+               "static recall", "class. acc.", "mean delay s", "max delay s", "hypotheses",
+               "p50 us", "p99 us"]
+    print("| " + " | ".join(columns) + " |")
+    print("|" + "---|" * len(columns))
+    for scenario in scenarios:
+        source = scenario
+        config_name = scenario
+        if scenario == "s1-static-only":
+            source = static_only_scenario(args.outdir)
+            config_name = "s1-crossing"
+        with open(os.path.join(ROOT, "estimator", "config", config_name + ".yaml")) as f:
+            shipped_config = f.read()
+        stages = ["--stage", "estimator"]
+        if scenario not in ("s1-crossing", "s1-static-only"):
+            stages = ["--stage", "segmenter"] + stages
+        for seed in seeds:
+            stem = os.path.join(args.outdir, f"{scenario}-{seed}")
+            world = stem + ".world.lcm"
+            if not os.path.exists(world):
+                run([os.path.join(BIN, "slammtt-world"), "--quiet", "--scenario", source,
+                     "--seed", str(seed), "--log", world])
+            for mode in modes_of(scenario):
+                config = f"{stem}-{mode}.yaml"
+                with open(config, "w") as f:
+                    f.write(shipped_config + f"  mode: {mode}\n")
+                out = f"{stem}-{mode}.out.lcm"
+                run([os.path.join(BIN, "slammtt-replay"), "--quiet", world, "-o", out,
+                     "--config", config] + stages)
+                report_path = f"{stem}-{mode}.json"
+                run([os.path.join(BIN, "slammtt-eval"), "--quiet", out, "--json", report_path])
+                with open(report_path) as f:
+                    report = json.load(f)
+                norules = "-"
+                if mode == "ml_ransac":
+                    norules_path = f"{stem}-{mode}.norules.json"
+                    run([os.path.join(BIN, "slammtt-eval"), "--quiet", out, "--json",
+                         norules_path, "--min-beams", "1", "--min-moving-speed-mps", "0"])
+                    with open(norules_path) as f:
+                        norules = fmt(json.load(f)["mota"])
+                p50, p99, hypotheses = timing(out + ".timing.lcm")
+                classification = report["detail"]["classification"]
+                row = [scenario, str(seed), mode, fmt(report["mota"]), norules,
+                       fmt(report["motp_m"]), fmt(report["id_switches"]),
+                       fmt(report["fragmentations"]), fmt(report["ospa_mean_m"]),
+                       fmt(report["gospa_mean_m"]), fmt(report["ate_rmse_m"]),
+                       fmt(report["odometry_ate_rmse_m"]), fmt(report["movers_in_static_map"]),
+                       fmt(report["landmark_rmse_m"]), fmt(report["static_recall"]),
+                       fmt(report["classification_accuracy"]),
+                       fmt(classification.get("mean_delay_s"), 2),
+                       fmt(classification.get("max_delay_s"), 2), str(hypotheses),
+                       fmt(p50, 0), fmt(p99, 0)]
+                print("| " + " | ".join(row) + " |", flush=True)
+
+
+if __name__ == "__main__":
+    main()
