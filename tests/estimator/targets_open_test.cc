@@ -24,15 +24,6 @@ TEST(S1CrossingOpenTargetsTest, RobotAteFiveTimesLowerThanBaselineA) {
   }
 }
 
-TEST(S2LobbyOpenTargetsTest, MotaAtLeast085) {
-  for (int seed : kTargetSeeds) {
-    SCOPED_TRACE("s2-lobby seed " + std::to_string(seed));
-    const testing::PipelineRun& ml = TargetRun("s2-lobby", seed, "ml_ransac");
-    Print("s2-lobby seed " + std::to_string(seed) + " ml_ransac", ml);
-    EXPECT_GE(Number(ml.report, "mota"), 0.85);
-  }
-}
-
 TEST(S3NoStaticOpenTargetsTest, EveryMoverTrackedMotaAtLeast09) {
   for (int seed : kTargetSeeds) {
     SCOPED_TRACE("s3-no-static seed " + std::to_string(seed));

@@ -86,6 +86,15 @@ TEST(S1CrossingTargetsTest, TenTimesFewerHypothesesThanPlainRansac) {
   }
 }
 
+TEST(S2LobbyTargetsTest, MotaAtLeast085) {
+  for (int seed : kTargetSeeds) {
+    SCOPED_TRACE("s2-lobby seed " + std::to_string(seed));
+    const testing::PipelineRun& ml = TargetRun("s2-lobby", seed, "ml_ransac");
+    Print("s2-lobby seed " + std::to_string(seed) + " ml_ransac", ml);
+    EXPECT_GE(Number(ml.report, "mota"), 0.85);
+  }
+}
+
 TEST(S2LobbyTargetsTest, TenTimesFewerHypothesesThanPlainRansac) {
   for (int seed : kTargetSeeds) {
     SCOPED_TRACE("s2-lobby seed " + std::to_string(seed));
