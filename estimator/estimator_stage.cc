@@ -187,9 +187,7 @@ void EstimatorStage::Handle(const std::string& channel, const void* data, int si
 void EstimatorStage::Undecodable(const std::string& what) {
   const int64_t n = ++counters_.messages_undecodable;
   // The 1st, 10th, 100th, ... occurrence: visible without flooding the log.
-  int64_t power = 1;
-  while (power < n) power *= 10;
-  if (power == n) LogWarning() << "estimator: " << what << " (" << n << " so far)";
+  if (IsReportable(n)) LogWarning() << "estimator: " << what << " (" << n << " so far)";
 }
 
 void EstimatorStage::HandleOdometry(const void* data, int size, MessageSink& out) {

@@ -1,8 +1,5 @@
 #include "tests/estimator/pipeline_runner.h"
 
-#include <unistd.h>
-
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -18,32 +15,22 @@ namespace {
 std::string Quote(const std::string& text) { return "'" + text + "'"; }
 
 void Execute(const std::string& command) {
-  const int status = std::system(command.c_str());
+  std::string output;
+  const int status = Shell(command, &output);
   if (status != 0) {
-    throw std::runtime_error("command failed (" + std::to_string(status) + "): " + command);
+    throw std::runtime_error("command failed (" + std::to_string(status) + "): " + command +
+                             "\n" + output);
   }
 }
 
 }  // namespace
-
-PipelineRunner::PipelineRunner() {
-  const char* tmp = std::getenv("TMPDIR");
-  std::string pattern = std::string(tmp != nullptr ? tmp : "/tmp") + "/slammtt-targets-XXXXXX";
-  if (mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed");
-  directory_ = pattern;
-}
-
-PipelineRunner::~PipelineRunner() {
-  std::error_code ignored;
-  std::filesystem::remove_all(directory_, ignored);
-}
 
 bool PipelineRunner::ScanScenario(const std::string& scenario) {
   return scenario != "s1-crossing";
 }
 
 std::string PipelineRunner::WorldLog(const std::string& scenario, int seed) {
-  const std::string log = directory_ + "/" + scenario + "-" + std::to_string(seed) + ".lcm";
+  const std::string log = directory_.File(scenario + "-" + std::to_string(seed) + ".lcm");
   if (!std::filesystem::exists(log)) {
     Execute(std::string(SLAMMTT_BIN_DIR) + "/slammtt-world --quiet --scenario " + scenario +
             " --seed " + std::to_string(seed) + " --log " + Quote(log));
@@ -65,7 +52,7 @@ const PipelineRun& PipelineRunner::Run(const std::string& scenario, int seed,
   const std::string input = WorldLog(scenario, seed);
   const std::string name =
       scenario + "-" + std::to_string(seed) + "-" + mode + "-" + std::to_string(runs_.size());
-  const std::string config = directory_ + "/" + name + ".yaml";
+  const std::string config = directory_.File(name + ".yaml");
   {
     std::ifstream shipped(std::string(SLAMMTT_SOURCE_DIR) + "/estimator/config/" + scenario +
                           ".yaml");
@@ -77,8 +64,8 @@ const PipelineRun& PipelineRunner::Run(const std::string& scenario, int seed,
     for (const std::string& line : extra_yaml) out << "  " << line << "\n";
   }
   PipelineRun run;
-  run.output_log = directory_ + "/" + name + ".out.lcm";
-  const std::string report = directory_ + "/" + name + ".json";
+  run.output_log = directory_.File(name + ".out.lcm");
+  const std::string report = directory_.File(name + ".json");
   std::string stages = " --stage estimator";
   if (ScanScenario(scenario)) stages = " --stage segmenter" + stages;
   Execute(std::string(SLAMMTT_BIN_DIR) + "/slammtt-replay --quiet " + Quote(input) + " -o " +

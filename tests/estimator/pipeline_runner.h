@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/child_process.h"
+
 namespace slammtt::testing {
 
 struct PipelineRun {
@@ -21,9 +23,8 @@ struct PipelineRun {
 
 class PipelineRunner {
  public:
-  // A fresh temporary directory (removed by the destructor).
-  PipelineRunner();
-  ~PipelineRunner();
+  // Works in a fresh temporary directory, removed with the runner (testing::TempDir).
+  PipelineRunner() = default;
   PipelineRunner(const PipelineRunner&) = delete;
   PipelineRunner& operator=(const PipelineRunner&) = delete;
 
@@ -38,7 +39,7 @@ class PipelineRunner {
 
  private:
   std::string WorldLog(const std::string& scenario, int seed);
-  std::string directory_;
+  TempDir directory_{"slammtt-targets"};
   std::map<std::string, PipelineRun> runs_;
 };
 
