@@ -1,22 +1,34 @@
 #include "estimator/ekf_prediction.h"
 
+#include <cmath>
+
 #include "estimator/constant_velocity_model.h"
 
 namespace slammtt {
 
-void ApplyRobotPrediction(const Eigen::Vector3d& new_pose, const Eigen::Matrix3d& jacobian,
-                          const Eigen::Matrix3d& noise, SlamState* state) {
+void ApplyRobotPrediction(const Eigen::Vector3d& new_pose, const Eigen::Matrix4d& jacobian,
+                          const Eigen::Matrix4d& noise, SlamState* state) {
+  constexpr int kR = SlamState::kRobotDim;
   auto cov = state->covariance();
   // Rows, then columns: (F P) F^T restricted to the robot's rows and columns.
-  const Eigen::Matrix<double, 3, Eigen::Dynamic> rows = jacobian * cov.topRows(3);
-  cov.topRows(3) = rows;
-  const Eigen::Matrix<double, Eigen::Dynamic, 3> cols = cov.leftCols(3) * jacobian.transpose();
-  cov.leftCols(3) = cols;
-  const Eigen::Matrix3d robot = cov.topLeftCorner<3, 3>() + noise;
-  cov.topLeftCorner<3, 3>() = 0.5 * (robot + robot.transpose());
+  const Eigen::Matrix<double, kR, Eigen::Dynamic> rows = jacobian * cov.topRows(kR);
+  cov.topRows(kR) = rows;
+  const Eigen::Matrix<double, Eigen::Dynamic, kR> cols = cov.leftCols(kR) * jacobian.transpose();
+  cov.leftCols(kR) = cols;
+  const Eigen::Matrix4d robot = cov.topLeftCorner<kR, kR>() + noise;
+  cov.topLeftCorner<kR, kR>() = 0.5 * (robot + robot.transpose());
   // Rows and columns were computed in different summation orders: make them bit-identical.
-  for (int i = 0; i < 3; ++i) state->MirrorRowToColumn(i);
+  for (int i = 0; i < kR; ++i) state->MirrorRowToColumn(i);
   state->mean().head<3>() = new_pose;
+}
+
+void ApplyRobotPrediction(const Eigen::Vector3d& new_pose, const Eigen::Matrix3d& jacobian,
+                          const Eigen::Matrix3d& noise, SlamState* state) {
+  Eigen::Matrix4d f = Eigen::Matrix4d::Identity();
+  f.topLeftCorner<3, 3>() = jacobian;
+  Eigen::Matrix4d q = Eigen::Matrix4d::Zero();
+  q.topLeftCorner<3, 3>() = noise;
+  ApplyRobotPrediction(new_pose, f, q, state);
 }
 
 void PredictMovers(double dt_s, double sigma_q_moving_mps2, double sigma_q_undecided_mps2,
@@ -68,18 +80,26 @@ void AddVelocityJump(int k, double dt_s, double sigma_mps, SlamState* state) {
   cov.block<2, 2>(v, v) += q * Eigen::Matrix2d::Identity();
 }
 
-RobotMotionAccumulator::RobotMotionAccumulator(const Eigen::Vector3d& start_pose)
-    : pose_(start_pose) {}
+RobotMotionAccumulator::RobotMotionAccumulator(const Eigen::Vector3d& start_pose,
+                                               double heading_drift_rad_per_m,
+                                               double heading_drift_walk_var_per_m)
+    : pose_(start_pose),
+      heading_drift_rad_per_m_(heading_drift_rad_per_m),
+      heading_drift_walk_var_per_m_(heading_drift_walk_var_per_m) {}
 
 void RobotMotionAccumulator::Add(const OdometryIncrement& increment,
                                  const Eigen::Matrix2d& increment_covariance) {
-  Eigen::Matrix3d f;
-  Eigen::Matrix<double, 3, 2> g;
-  pose_ = PredictRobotPose(pose_, increment, &f, &g);
+  Eigen::Matrix4d f;
+  Eigen::Matrix<double, 4, 2> g;
+  pose_ = PredictRobotPoseWithHeadingDrift(pose_, heading_drift_rad_per_m_, increment, &f, &g);
   jacobian_ = f * jacobian_;
   noise_ = f * noise_ * f.transpose() + g * increment_covariance * g.transpose();
+  noise_(SlamState::kHeadingDriftIndex, SlamState::kHeadingDriftIndex) +=
+      heading_drift_walk_var_per_m_ * std::abs(increment.distance_m);
 }
 
-void RobotMotionAccumulator::AddPoseNoise(const Eigen::Matrix3d& noise) { noise_ += noise; }
+void RobotMotionAccumulator::AddPoseNoise(const Eigen::Matrix3d& noise) {
+  noise_.topLeftCorner<3, 3>() += noise;
+}
 
 }  // namespace slammtt

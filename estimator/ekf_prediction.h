@@ -11,8 +11,13 @@
 
 namespace slammtt {
 
-// Robot part of eq. 19: P_rr <- F P_rr F^T + Q, P_rx <- F P_rx (and the mirror), mean <- pose.
-// `new_pose` is f(x) (eq. 18), `jacobian` is F, `noise` is G Q G^T (3x3).
+// Robot part of eq. 19 on the robot block (pose and heading drift, slam_state.h): P_rr <- F
+// P_rr F^T + Q, P_rx <- F P_rx (and the mirror), pose <- new_pose; the drift's mean is left as
+// it is (the step does not change it). `new_pose` is f(x) (eq. 18), `jacobian` is F (4x4 over
+// x, y, heading, b), `noise` is G Q G^T plus the drift's random walk (4x4).
+void ApplyRobotPrediction(const Eigen::Vector3d& new_pose, const Eigen::Matrix4d& jacobian,
+                          const Eigen::Matrix4d& noise, SlamState* state);
+// The same for a transition that ignores the drift: F = diag(jacobian, 1), Q = diag(noise, 0).
 void ApplyRobotPrediction(const Eigen::Vector3d& new_pose, const Eigen::Matrix3d& jacobian,
                           const Eigen::Matrix3d& noise, SlamState* state);
 
@@ -34,25 +39,34 @@ void InflateMoverVelocities(const Eigen::Matrix2d& added, SlamState* state);
 // falls outside its gate right after a turn.
 void AddVelocityJump(int k, double dt_s, double sigma_mps, SlamState* state);
 
-// A chain of eq.-1 steps composed into one robot transition: the composed pose, Jacobian
-// F = F_k ... F_1 and noise Q = sum of the step noises propagated through the later steps.
-// Applying it once costs the same O(n) as one step, whatever the number of odometry messages
-// between two scans.
+// A chain of eq.-1 steps, each corrected by the heading drift b (PredictRobotPoseWithHeadingDrift),
+// composed into one transition of the robot block (x, y, heading, b): the composed pose,
+// Jacobian F = F_k ... F_1 (4x4) and noise Q = sum of the step noises propagated through the
+// later steps. Applying it once costs the same O(n) as one step, whatever the number of
+// odometry messages between two scans.
+//
+// b follows a random walk whose variance grows by `heading_drift_walk_var_per_m` per metre
+// travelled (the wheels' effective sizes change slowly with load, tyre pressure and wear), so
+// the filter keeps following it instead of becoming certain of an old value.
 class RobotMotionAccumulator {
  public:
-  explicit RobotMotionAccumulator(const Eigen::Vector3d& start_pose);
+  explicit RobotMotionAccumulator(const Eigen::Vector3d& start_pose,
+                                  double heading_drift_rad_per_m = 0.0,
+                                  double heading_drift_walk_var_per_m = 0.0);
   // One eq.-1 step with the covariance (2x2 over distance, rotation) of its increment.
   void Add(const OdometryIncrement& increment, const Eigen::Matrix2d& increment_covariance);
   // Adds pose noise directly (3x3), e.g. for unmodelled motion.
   void AddPoseNoise(const Eigen::Matrix3d& noise);
   const Eigen::Vector3d& pose() const { return pose_; }
-  const Eigen::Matrix3d& jacobian() const { return jacobian_; }
-  const Eigen::Matrix3d& noise() const { return noise_; }
+  const Eigen::Matrix4d& jacobian() const { return jacobian_; }
+  const Eigen::Matrix4d& noise() const { return noise_; }
 
  private:
   Eigen::Vector3d pose_;
-  Eigen::Matrix3d jacobian_ = Eigen::Matrix3d::Identity();
-  Eigen::Matrix3d noise_ = Eigen::Matrix3d::Zero();
+  double heading_drift_rad_per_m_;
+  double heading_drift_walk_var_per_m_;
+  Eigen::Matrix4d jacobian_ = Eigen::Matrix4d::Identity();
+  Eigen::Matrix4d noise_ = Eigen::Matrix4d::Zero();
 };
 
 }  // namespace slammtt

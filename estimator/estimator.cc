@@ -168,6 +168,10 @@ std::string CheckEstimatorOptions(const EstimatorOptions& o) {
       !non_negative(n.rotation_var_per_s)) {
     return "odometry noise variances must be >= 0";
   }
+  if (!non_negative(o.heading_drift_sigma_rad_per_m) ||
+      !non_negative(o.heading_drift_walk_var_per_m)) {
+    return "odometry heading drift sigma and walk variance must be >= 0";
+  }
   if (!non_negative(o.mover_acceleration_sigma_mps2) ||
       !non_negative(o.undecided_acceleration_sigma_mps2)) {
     return "acceleration sigmas must be >= 0";
@@ -215,7 +219,9 @@ std::string CheckEstimatorOptions(const EstimatorOptions& o) {
 }
 
 Estimator::Estimator(const EstimatorOptions& options)
-    : options_(options), state_(options.initial_pose, Eigen::Matrix3d::Zero()) {}
+    : options_(options),
+      state_(options.initial_pose, Eigen::Matrix3d::Zero(),
+             options.heading_drift_sigma_rad_per_m * options.heading_drift_sigma_rad_per_m) {}
 
 bool Estimator::AddOdometry(const OdometryReading& reading) {
   if (!AllFinite(reading.pose) || !std::isfinite(reading.linear_mps) ||
@@ -251,7 +257,11 @@ bool Estimator::AddOdometry(const OdometryReading& reading) {
 
 void Estimator::Predict(int64_t utime, bool first_scan) {
   const double dt = first_scan ? 0.0 : Seconds(utime - *last_scan_utime_);
-  RobotMotionAccumulator motion(state_.robot_pose());
+  // With the drift state off its variance stays exactly 0 (no random walk), so b stays 0.
+  const double drift_walk_var_per_m =
+      options_.heading_drift_sigma_rad_per_m > 0.0 ? options_.heading_drift_walk_var_per_m : 0.0;
+  RobotMotionAccumulator motion(state_.robot_pose(), state_.heading_drift_rad_per_m(),
+                                drift_walk_var_per_m);
   const double speed_var_rate = options_.extrapolation_speed_sigma_mps *
                                 options_.extrapolation_speed_sigma_mps;
   const double turn_var_rate = options_.extrapolation_turn_sigma_radps *

@@ -91,6 +91,19 @@ struct EstimatorOptions {
 
   // Motion models.
   OdometryNoiseOptions odometry_noise;
+  // The odometry's systematic heading drift b [rad per metre travelled], estimated as a state
+  // (slam_state.h, ekf_prediction.h): prior b ~ N(0, sigma^2). Its physical origin is a
+  // difference of the two wheels' effective diameters (UMBmark's type-B error, Borenstein and
+  // Feng 1996): a relative difference e on an axle of length L turns the odometry by e / L
+  // radians per metre. The P3-DX's wheels (195 mm) are about 0.33 m apart (docs/world.md,
+  // odometry.axle_length_m); pneumatic tyres differ by up to about 0.5 % in effective
+  // diameter with load and pressure, which gives |b| up to 0.005 / 0.33 = 0.015 rad/m: the
+  // default puts that at 2 sigma. 0 turns the drift state off (b stays exactly 0).
+  double heading_drift_sigma_rad_per_m = 0.0075;
+  // Random walk of b [rad^2/m^2 per metre travelled]: 1e-8 lets b change by 1e-3 rad/m (a
+  // 0.03 % change of a wheel's size) over 100 m, the order of a tyre warming up or losing
+  // pressure over a run. Ignored when the prior sigma is 0.
+  double heading_drift_walk_var_per_m = 1e-8;
   // sigma_Q of eq. 8. A MOVING object walks at a steady velocity between turns (its turns are
   // manoeuvres, below); an UNDECIDED one gets a more forgiving model while its velocity is
   // judged, so that its velocity covariance does not become overconfident about a static

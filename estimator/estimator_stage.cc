@@ -96,6 +96,10 @@ EstimatorStageOptions ReadEstimatorOptions(const Config& s) {
   n.rotation_var_per_m = Double(s, "odometry_rotation_var_per_m", n.rotation_var_per_m);
   n.distance_var_per_s = Double(s, "odometry_distance_var_per_s", n.distance_var_per_s);
   n.rotation_var_per_s = Double(s, "odometry_rotation_var_per_s", n.rotation_var_per_s);
+  o.heading_drift_sigma_rad_per_m = Double(s, "odometry_heading_drift_sigma_rad_per_m",
+                                           o.heading_drift_sigma_rad_per_m);
+  o.heading_drift_walk_var_per_m = Double(s, "odometry_heading_drift_walk_var_per_m",
+                                          o.heading_drift_walk_var_per_m);
   o.mover_acceleration_sigma_mps2 =
       Double(s, "moving_acceleration_sigma_mps2", o.mover_acceleration_sigma_mps2);
   o.undecided_acceleration_sigma_mps2 =

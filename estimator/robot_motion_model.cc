@@ -27,6 +27,33 @@ Eigen::Vector3d PredictRobotPose(const Eigen::Vector3d& pose, const OdometryIncr
   return Eigen::Vector3d(pose(0) + d * c, pose(1) + d * s, WrapAngle(heading_after));
 }
 
+Eigen::Vector3d PredictRobotPoseWithHeadingDrift(const Eigen::Vector3d& pose,
+                                                 double heading_drift_rad_per_m,
+                                                 const OdometryIncrement& increment,
+                                                 Eigen::Matrix4d* jacobian_robot,
+                                                 Eigen::Matrix<double, 4, 2>* jacobian_increment) {
+  const double d = increment.distance_m;
+  const double b = heading_drift_rad_per_m;
+  const OdometryIncrement corrected{d, increment.rotation_rad + b * d};
+  Eigen::Matrix3d f;
+  Eigen::Matrix<double, 3, 2> g;
+  const Eigen::Vector3d new_pose = PredictRobotPose(pose, corrected, &f, &g);
+  // Chain rule through the corrected rotation delta + b d: d/db = d * (d/d delta), and the
+  // distance enters twice, d/dd = (d/dd) + b * (d/d delta).
+  if (jacobian_robot != nullptr) {
+    jacobian_robot->setZero();
+    jacobian_robot->topLeftCorner<3, 3>() = f;
+    jacobian_robot->block<3, 1>(0, 3) = d * g.col(1);
+    (*jacobian_robot)(3, 3) = 1.0;
+  }
+  if (jacobian_increment != nullptr) {
+    jacobian_increment->setZero();
+    jacobian_increment->block<3, 1>(0, 0) = g.col(0) + b * g.col(1);
+    jacobian_increment->block<3, 1>(0, 1) = g.col(1);
+  }
+  return new_pose;
+}
+
 OdometryIncrement IncrementBetweenOdometryPoses(const Eigen::Vector3d& from,
                                                 const Eigen::Vector3d& to) {
   OdometryIncrement increment;

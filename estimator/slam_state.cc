@@ -5,11 +5,15 @@
 
 namespace slammtt {
 
-SlamState::SlamState(const Eigen::Vector3d& pose, const Eigen::Matrix3d& pose_covariance) {
+SlamState::SlamState(const Eigen::Vector3d& pose, const Eigen::Matrix3d& pose_covariance,
+                     double heading_drift_variance) {
   Reserve(64);
   dim_ = kRobotDim;
   mean_.head<3>() = pose;
+  mean_(kHeadingDriftIndex) = 0.0;
+  cov_.topLeftCorner<kRobotDim, kRobotDim>().setZero();
   cov_.topLeftCorner<3, 3>() = 0.5 * (pose_covariance + pose_covariance.transpose());
+  cov_(kHeadingDriftIndex, kHeadingDriftIndex) = heading_drift_variance;
 }
 
 void SlamState::Reserve(int dim) {
@@ -65,8 +69,9 @@ int SlamState::AddObject(const Eigen::Vector2d& position,
   const int old_dim = dim_;
   const int p = AppendStates(2);
   mean_.segment<2>(p) = position;
-  // Cross covariance with everything that was there: G * P_r,x.
-  const Eigen::MatrixXd cross = jacobian_robot * cov_.topLeftCorner(3, old_dim);
+  // Cross covariance with everything that was there, the heading drift included: G * P_r,x
+  // (rows 0-2 of P: the pose).
+  const Eigen::MatrixXd cross = jacobian_robot * cov_.topLeftCorner(kRobotPoseDim, old_dim);
   cov_.block(p, 0, 2, old_dim) = cross;
   cov_.block(0, p, old_dim, 2) = cross.transpose();
   const Eigen::Matrix2d own = jacobian_robot * cov_.topLeftCorner<3, 3>() *

@@ -1,8 +1,11 @@
 // The one EKF state of the estimator (paper eq. 2): robot pose, static landmarks and moving
 // objects, with a dense covariance and block access.
 //
-// Layout of the state vector: the robot pose (x, y, heading) at indices 0-2, then every object
-// in slots. An object always has a position slot (x, y); an object that carries velocity
+// Layout of the state vector: the robot block at indices 0-3, the pose (x, y, heading) at 0-2
+// and the odometry's systematic heading drift b [rad per metre travelled] at 3 (the paper's
+// robot state augmented with an odometry calibration parameter, as in simultaneous
+// localisation and odometry self-calibration: Martinelli, Tomatis and Siegwart, Autonomous
+// Robots 22, 2007; ekf_prediction.h), then every object in slots. An object always has a position slot (x, y); an object that carries velocity
 // states (a moving or undecided object, paper eq. 5) also has a velocity slot (vx, vy). The
 // two slots of one object need not be adjacent: a landmark that starts to move gets its
 // velocity slot appended at the end, and removing states compacts the vector, so objects refer
@@ -64,10 +67,15 @@ struct StateObject {
 
 class SlamState {
  public:
-  static constexpr int kRobotDim = 3;
+  static constexpr int kRobotPoseDim = 3;     // x, y, heading
+  static constexpr int kHeadingDriftIndex = 3;  // b [rad/m]
+  static constexpr int kRobotDim = 4;         // pose + b; the first object starts here
 
-  // A state with only the robot, at `pose` with covariance `pose_covariance`.
-  SlamState(const Eigen::Vector3d& pose, const Eigen::Matrix3d& pose_covariance);
+  // A state with only the robot, at `pose` with covariance `pose_covariance`, and a heading
+  // drift of mean 0 and variance `heading_drift_variance` [rad^2/m^2], independent of the pose
+  // (0: the drift is known to be zero and stays so unless a prediction adds noise to it).
+  SlamState(const Eigen::Vector3d& pose, const Eigen::Matrix3d& pose_covariance,
+            double heading_drift_variance = 0.0);
 
   int dim() const { return dim_; }
   int num_objects() const { return static_cast<int>(objects_.size()); }
@@ -82,6 +90,9 @@ class SlamState {
 
   Eigen::Vector3d robot_pose() const { return mean_.head<3>(); }
   Eigen::Matrix3d robot_covariance() const { return cov_.topLeftCorner<3, 3>(); }
+  // The odometry's heading drift b [rad per metre travelled] and its variance.
+  double heading_drift_rad_per_m() const { return mean_(kHeadingDriftIndex); }
+  double heading_drift_variance() const { return cov_(kHeadingDriftIndex, kHeadingDriftIndex); }
 
   const std::vector<StateObject>& objects() const { return objects_; }
   StateObject& object(int k) { return objects_[static_cast<size_t>(k)]; }
@@ -93,7 +104,8 @@ class SlamState {
   // 4x4 over (x, y, vx, vy); the velocity rows and columns are zero for a static landmark.
   Eigen::Matrix4d ObjectCovariance(int k) const;
 
-  // Adds an object whose position error is G (robot error) plus an independent error of
+  // Adds an object whose position error is G (robot pose error; a point seen from the robot
+  // does not depend on the heading drift, so G is 2x3 over the pose) plus an independent error of
   // covariance `independent_covariance` (e.g. a point seen from the robot: G = d point / d
   // robot, independent = J_z R J_z^T). So P_pp = G P_rr G^T + C and P_p,x = G P_r,x for every
   // other state x. Returns the new object's index.

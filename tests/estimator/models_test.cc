@@ -55,6 +55,42 @@ TEST(RobotMotionModelTest, JacobiansMatchNumericalDerivatives) {
   }
 }
 
+TEST(RobotMotionModelTest, HeadingDriftJacobiansMatchNumericalDerivatives) {
+  const std::vector<Eigen::Vector4d> robots = {
+      {0.0, 0.0, 0.0, 0.0}, {1.0, -2.0, 3.1, 0.009}, {-4.0, 2.5, -1.7, -0.015}};
+  const std::vector<OdometryIncrement> increments = {{0.3, 0.05}, {-0.2, 0.4}, {1.5, -0.3}};
+  for (const Eigen::Vector4d& robot : robots) {
+    for (const OdometryIncrement& u : increments) {
+      Eigen::Matrix4d f;
+      Eigen::Matrix<double, 4, 2> g;
+      PredictRobotPoseWithHeadingDrift(robot.head<3>(), robot(3), u, &f, &g);
+      // The augmented transition: (pose, b) -> (eq. 1 with delta + b d, b).
+      auto transition = [](const Eigen::Vector4d& x, const OdometryIncrement& v) {
+        Eigen::VectorXd out(4);
+        out.head<3>() = PredictRobotPoseWithHeadingDrift(x.head<3>(), x(3), v);
+        out(3) = x(3);
+        return out;
+      };
+      const Eigen::MatrixXd f_numerical = NumericalJacobian(
+          [&](const Eigen::VectorXd& x) -> Eigen::VectorXd {
+            return transition(Eigen::Vector4d(x), u);
+          },
+          robot, {2});
+      const Eigen::MatrixXd g_numerical = NumericalJacobian(
+          [&](const Eigen::VectorXd& x) -> Eigen::VectorXd {
+            return transition(robot, {x(0), x(1)});
+          },
+          Eigen::Vector2d(u.distance_m, u.rotation_rad), {2});
+      EXPECT_LT((f - f_numerical).cwiseAbs().maxCoeff(), 1e-7);
+      EXPECT_LT((g - g_numerical).cwiseAbs().maxCoeff(), 1e-7);
+      // The drift turns the robot by b d on top of the odometry (a wrapped difference).
+      const Eigen::Vector3d plain = PredictRobotPose(robot.head<3>(), u);
+      const Eigen::Vector3d drifted = PredictRobotPoseWithHeadingDrift(robot.head<3>(), robot(3), u);
+      EXPECT_NEAR(WrapAngle(drifted(2) - plain(2)), robot(3) * u.distance_m, 1e-12);
+    }
+  }
+}
+
 TEST(RobotMotionModelTest, IncrementBetweenPosesInvertsEquationOne) {
   const Eigen::Vector3d from(0.5, -1.0, 3.0);
   for (const OdometryIncrement& u :

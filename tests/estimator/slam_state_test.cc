@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <cmath>
 #include <random>
 
 #include "estimator/constant_velocity_model.h"
@@ -11,11 +12,15 @@
 namespace slammtt {
 namespace {
 
-// A state with random correlated covariance: robot, 3 landmarks, 2 movers.
+constexpr int kR = SlamState::kRobotDim;  // robot block: pose + heading drift
+
+// A state with random correlated covariance: robot (pose and heading drift), 3 landmarks,
+// 2 movers.
 SlamState RandomState(uint64_t seed) {
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> normal(0.0, 1.0);
-  SlamState state(Eigen::Vector3d(0.1, -0.2, 0.3), 0.01 * Eigen::Matrix3d::Identity());
+  SlamState state(Eigen::Vector3d(0.1, -0.2, 0.3), 0.01 * Eigen::Matrix3d::Identity(), 1e-4);
+  state.mean()(SlamState::kHeadingDriftIndex) = 0.012;
   for (int k = 0; k < 5; ++k) {
     Eigen::Matrix<double, 2, 3> g;
     for (int r = 0; r < 2; ++r) {
@@ -38,18 +43,34 @@ SlamState RandomState(uint64_t seed) {
   return state;
 }
 
+TEST(SlamStateTest, StartsWithAnIndependentHeadingDrift) {
+  SlamState state(Eigen::Vector3d(1.0, 2.0, 0.5), Eigen::Vector3d(0.1, 0.2, 0.05).asDiagonal(),
+                  2.5e-5);
+  EXPECT_EQ(state.dim(), kR);
+  EXPECT_EQ(state.heading_drift_rad_per_m(), 0.0);
+  EXPECT_EQ(state.heading_drift_variance(), 2.5e-5);
+  EXPECT_TRUE((state.covariance().block<3, 1>(0, 3).isZero()));
+  EXPECT_TRUE((state.covariance().block<1, 3>(3, 0).isZero()));
+  EXPECT_EQ(state.robot_covariance(), Eigen::Matrix3d(Eigen::Vector3d(0.1, 0.2, 0.05).asDiagonal()));
+}
+
 TEST(SlamStateTest, AddObjectCorrelatesThroughTheRobot) {
-  SlamState state(Eigen::Vector3d::Zero(), Eigen::Vector3d(0.1, 0.2, 0.05).asDiagonal());
+  SlamState state = RandomState(7);
+  state.RemoveObjects({0, 1, 2, 3, 4});
+  ASSERT_EQ(state.dim(), kR);
   Eigen::Matrix<double, 2, 3> g;
   g << 1.0, 0.0, -2.0, 0.0, 1.0, 3.0;
   const Eigen::Matrix2d c = Eigen::Vector2d(0.04, 0.09).asDiagonal();
   const int j = state.AddObject(Eigen::Vector2d(3.0, 2.0), g, c, ObjectRecord{});
   EXPECT_EQ(j, 0);
-  EXPECT_EQ(state.dim(), 5);
+  EXPECT_EQ(state.dim(), kR + 2);
   const Eigen::Matrix3d prr = state.robot_covariance();
-  EXPECT_TRUE((state.covariance().block<2, 2>(3, 3).isApprox(g * prr * g.transpose() + c)));
-  EXPECT_TRUE((state.covariance().block<2, 3>(3, 0).isApprox(g * prr)));
-  EXPECT_TRUE((state.covariance().block<3, 2>(0, 3).isApprox((g * prr).transpose())));
+  // The point inherits the pose's correlation with the heading drift: P_p,b = G P_pose,b.
+  const Eigen::Matrix<double, 3, 4> p_pose_robot = state.covariance().block<3, 4>(0, 0);
+  ASSERT_NE(p_pose_robot(0, 3), 0.0);
+  EXPECT_TRUE((state.covariance().block<2, 2>(kR, kR).isApprox(g * prr * g.transpose() + c)));
+  EXPECT_TRUE((state.covariance().block<2, 4>(kR, 0).isApprox(g * p_pose_robot)));
+  EXPECT_TRUE((state.covariance().block<4, 2>(0, kR).isApprox((g * p_pose_robot).transpose())));
   EXPECT_FALSE(state.object(0).has_velocity());
 }
 
@@ -62,10 +83,10 @@ TEST(SlamStateTest, GrowsPastItsInitialCapacity) {
     const int j = state.AddObject(Eigen::Vector2d(k, -k), g, Eigen::Matrix2d::Identity(), {});
     state.AddVelocity(j, Eigen::Vector2d(k, 0.0), Eigen::Matrix2d::Identity());
   }
-  EXPECT_EQ(state.dim(), 3 + 400);
+  EXPECT_EQ(state.dim(), kR + 400);
   EXPECT_EQ(state.position(57), Eigen::Vector2d(57, -57));
   EXPECT_EQ(state.velocity(99), Eigen::Vector2d(99, 0));
-  EXPECT_DOUBLE_EQ(state.covariance()(3, 0), 0.01);
+  EXPECT_DOUBLE_EQ(state.covariance()(kR, 0), 0.01);
   EXPECT_TRUE(state.covariance().isApprox(state.covariance().transpose()));
 }
 
@@ -77,7 +98,7 @@ TEST(SlamStateTest, RemovingObjectsKeepsTheOtherBlocks) {
   const int v3 = state.object(3).velocity_index;
   state.RemoveObjects({1, 4, 1});
   ASSERT_EQ(state.num_objects(), 3);
-  EXPECT_EQ(state.dim(), 3 + 2 + 2 + 4);
+  EXPECT_EQ(state.dim(), kR + 2 + 2 + 4);
   EXPECT_EQ(state.object(2).record.id, 4);
   // The mover that stayed (old object 3) keeps its mean and its blocks with the robot.
   const int np = state.object(2).position_index;
@@ -85,8 +106,8 @@ TEST(SlamStateTest, RemovingObjectsKeepsTheOtherBlocks) {
   EXPECT_EQ(state.mean().segment<2>(np), x.segment<2>(p3));
   EXPECT_EQ(state.mean().segment<2>(nv), x.segment<2>(v3));
   EXPECT_EQ(Eigen::Matrix2d(state.covariance().block(np, nv, 2, 2)), Eigen::Matrix2d(p.block(p3, v3, 2, 2)));
-  EXPECT_EQ(Eigen::MatrixXd(state.covariance().block(0, np, 3, 2)), Eigen::MatrixXd(p.block(0, p3, 3, 2)));
-  EXPECT_EQ(Eigen::Matrix3d(state.covariance().topLeftCorner(3, 3)), Eigen::Matrix3d(p.topLeftCorner(3, 3)));
+  EXPECT_EQ(Eigen::MatrixXd(state.covariance().block(0, np, kR, 2)), Eigen::MatrixXd(p.block(0, p3, kR, 2)));
+  EXPECT_EQ(Eigen::Matrix4d(state.covariance().topLeftCorner(kR, kR)), Eigen::Matrix4d(p.topLeftCorner(kR, kR)));
   EXPECT_TRUE(state.covariance().isApprox(state.covariance().transpose()));
 }
 
@@ -123,16 +144,19 @@ TEST(EkfPredictionTest, BlockPredictionEqualsDenseEquationNine) {
   const Eigen::VectorXd x = state.mean();
   const double dt = 0.125;
   const double sigma_q = 0.7;
-  Eigen::Matrix3d f;
-  f << 1.0, 0.0, -0.2, 0.0, 1.0, 0.3, 0.0, 0.0, 1.0;
-  const Eigen::Matrix3d q_robot = Eigen::Vector3d(1e-3, 2e-3, 5e-4).asDiagonal();
+  Eigen::Matrix4d f;
+  f << 1.0, 0.0, -0.2, -0.04,  //
+      0.0, 1.0, 0.3, 0.06,     //
+      0.0, 0.0, 1.0, 0.2,      //
+      0.0, 0.0, 0.0, 1.0;
+  const Eigen::Matrix4d q_robot = Eigen::Vector4d(1e-3, 2e-3, 5e-4, 1e-8).asDiagonal();
   const Eigen::Vector3d new_pose(0.4, -0.1, 0.35);
   // Dense reference: F_full = blkdiag(F, I, T) per eq. 9, Q_full on robot and movers.
   const int n = state.dim();
   Eigen::MatrixXd f_full = Eigen::MatrixXd::Identity(n, n);
   Eigen::MatrixXd q_full = Eigen::MatrixXd::Zero(n, n);
-  f_full.topLeftCorner<3, 3>() = f;
-  q_full.topLeftCorner<3, 3>() = q_robot;
+  f_full.topLeftCorner<kR, kR>() = f;
+  q_full.topLeftCorner<kR, kR>() = q_robot;
   Eigen::VectorXd x_expected = x;
   x_expected.head<3>() = new_pose;
   const Eigen::Matrix4d q_mover = ConstantVelocityProcessNoise(dt, sigma_q);
@@ -160,17 +184,27 @@ TEST(EkfPredictionTest, AccumulatedOdometryEqualsStepByStepPrediction) {
   SlamState composed = stepwise;
   const std::vector<OdometryIncrement> steps = {{0.1, 0.02}, {0.12, -0.05}, {0.09, 0.3}};
   const Eigen::Matrix2d noise = Eigen::Vector2d(1e-4, 3e-4).asDiagonal();
-  RobotMotionAccumulator accumulator(composed.robot_pose());
+  const double walk_var_per_m = 1e-6;
+  RobotMotionAccumulator accumulator(composed.robot_pose(), composed.heading_drift_rad_per_m(),
+                                     walk_var_per_m);
   for (const OdometryIncrement& u : steps) {
-    Eigen::Matrix3d f;
-    Eigen::Matrix<double, 3, 2> g;
-    const Eigen::Vector3d pose = PredictRobotPose(stepwise.robot_pose(), u, &f, &g);
-    ApplyRobotPrediction(pose, f, g * noise * g.transpose(), &stepwise);
+    Eigen::Matrix4d f;
+    Eigen::Matrix<double, 4, 2> g;
+    const Eigen::Vector3d pose = PredictRobotPoseWithHeadingDrift(
+        stepwise.robot_pose(), stepwise.heading_drift_rad_per_m(), u, &f, &g);
+    Eigen::Matrix4d q = g * noise * g.transpose();
+    q(3, 3) += walk_var_per_m * std::abs(u.distance_m);
+    ApplyRobotPrediction(pose, f, q, &stepwise);
     accumulator.Add(u, noise);
   }
   ApplyRobotPrediction(accumulator.pose(), accumulator.jacobian(), accumulator.noise(), &composed);
   EXPECT_LT((stepwise.covariance() - composed.covariance()).cwiseAbs().maxCoeff(), 1e-12);
   EXPECT_LT((stepwise.mean() - composed.mean()).cwiseAbs().maxCoeff(), 1e-12);
+  // The drift moved the pose: without it the same steps end elsewhere.
+  EXPECT_NE(composed.heading_drift_rad_per_m(), 0.0);
+  RobotMotionAccumulator no_drift(RandomState(4).robot_pose());
+  for (const OdometryIncrement& u : steps) no_drift.Add(u, noise);
+  EXPECT_GT(std::abs(no_drift.pose()(2) - composed.robot_pose()(2)), 0.012 * 0.3);
 }
 
 }  // namespace

@@ -24,14 +24,5 @@ TEST(S1CrossingOpenTargetsTest, RobotAteFiveTimesLowerThanBaselineA) {
   }
 }
 
-TEST(S3NoStaticOpenTargetsTest, EveryMoverTrackedMotaAtLeast09) {
-  for (int seed : kTargetSeeds) {
-    SCOPED_TRACE("s3-no-static seed " + std::to_string(seed));
-    const testing::PipelineRun& ml = TargetRun("s3-no-static", seed, "ml_ransac");
-    Print("s3-no-static seed " + std::to_string(seed) + " ml_ransac", ml);
-    EXPECT_GE(Number(ml.report, "mota"), 0.9);
-  }
-}
-
 }  // namespace
 }  // namespace slammtt
