@@ -23,7 +23,9 @@ bool ApplyGroup(const std::vector<Linearised>& group, SlamState* state) {
   const int n = state->dim();
   const int k = static_cast<int>(group.size());
   auto cov = state->covariance();
-  // W = P H^T (n x 2k), from the robot's and the object's columns only.
+  // W = P H^T (n x 2k), from the robot pose's and the object's columns only (H is zero on the
+  // heading drift state, index 3: a range and bearing do not depend on it; its row of W, and so
+  // its update, comes through its correlation with the pose).
   Eigen::MatrixXd w(n, 2 * k);
   for (int t = 0; t < k; ++t) {
     const Linearised& o = group[static_cast<size_t>(t)];

@@ -15,6 +15,7 @@ std::vector<ObjectPrediction> PredictObservations(const SlamState& state,
   const Eigen::Vector3d robot = state.robot_pose();
   const Eigen::Vector2d sensor = SensorPosition(robot, mount);
   const auto cov = state.covariance();
+  // The pose block only: the range-bearing Jacobian is zero on the heading drift state.
   const Eigen::Matrix3d p_rr = cov.topLeftCorner<3, 3>();
   for (int j = 0; j < state.num_objects(); ++j) {
     ObjectPrediction& prediction = predictions[static_cast<size_t>(j)];

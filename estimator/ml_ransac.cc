@@ -65,7 +65,8 @@ RansacOutcome RunOnePointRansac(const SlamState& state,
   if (sample_space.empty()) return outcome;
 
   // Objects whose predictions a hypothesis must recompute, and their rows in the reduced
-  // gain: robot rows 0-2, then 2 rows per object.
+  // gain: robot pose rows 0-2 (the heading drift state, index 3, enters no prediction), then 2
+  // rows per object.
   std::vector<int> row_of(static_cast<size_t>(state.num_objects()), -1);
   std::vector<int> involved;
   auto involve = [&](int object) {
