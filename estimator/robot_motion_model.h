@@ -28,9 +28,9 @@ Eigen::Vector3d PredictRobotPose(const Eigen::Vector3d& pose, const OdometryIncr
 // Eq. 1 with the odometry's systematic heading drift b [rad per metre travelled] corrected:
 // the true heading change is the measured one plus b * d (d signed: a wheel larger than its
 // nominal size turns the robot by the same angle per metre it rolls, the other way when
-// reversing; Borenstein and Feng, UMBmark, Univ. Michigan report UM-MEAM-94-22, 1994/1996,
-// section on type-B errors: unequal wheel diameters give a heading error proportional to the
-// distance travelled). So eq. 1 runs with the increment (d, delta + b d). b is a state of the
+// reversing: the type-B error of Borenstein and Feng, "Measurement and correction of systematic
+// odometry errors in mobile robots", IEEE Trans. Robotics and Automation 12(6), 1996 (UMBmark):
+// unequal wheel diameters give a heading error proportional to the distance travelled). So eq. 1 runs with the increment (d, delta + b d). b is a state of the
 // EKF (slam_state.h); the step leaves it unchanged. Returns the new pose and optionally the
 // Jacobians with respect to (x, y, heading, b) (4x4, last row (0 0 0 1)) and to the increment
 // (4x2, last row zero).
