@@ -162,6 +162,7 @@ bool PlausibleEstimatorStatus(const void* data, int size) {
   w.Fixed(kFingerprint + 9 * kInt64 + 3 * kInt32);
   w.String();  // last_event
   w.Fixed(3 * kInt64);  // odometry_rejected, messages_undecodable, updates_failed
+  w.Fixed(2 * kDouble);  // heading_drift_rad_per_m, heading_drift_sigma_rad_per_m
   return w.End();
 }
 

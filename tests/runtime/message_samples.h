@@ -359,6 +359,8 @@ struct Sample<slammtt_msgs::estimator_status_t> {
     m.odometry_rejected = 3;
     m.messages_undecodable = 4;
     m.updates_failed = 5;
+    m.heading_drift_rad_per_m = -0.0009;
+    m.heading_drift_sigma_rad_per_m = 0.002;
     return m;
   }
   static std::vector<CountField> Counts(const slammtt_msgs::estimator_status_t& m) {
