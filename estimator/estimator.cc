@@ -389,8 +389,12 @@ std::vector<PointMeasurement> Estimator::ValidateFeatures(
       if (std::abs(m.range_bearing(1)) + extent + kEdgeOfViewMargin_rad >=
           0.5 * options_.field_of_view_rad) {
         const double s = options_.edge_of_view_sigma_m;
+        // s across the line of sight is s / range in bearing, at most pi: a bearing cannot be
+        // more uncertain than the half circle, and a feature at the sensor (min_range_m 0)
+        // must not get an infinite variance.
+        const double bearing_sigma = std::min(s / range, M_PI);
         m.covariance(0, 0) += s * s;
-        m.covariance(1, 1) += (s / range) * (s / range);
+        m.covariance(1, 1) += bearing_sigma * bearing_sigma;
         ++counts->features_at_edge_of_view;
       }
     }

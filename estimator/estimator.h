@@ -84,7 +84,7 @@ struct EstimatorOptions {
   // object: the rest lies beyond the edge, so its centre can be off by up to about one object
   // radius, along the range and across it (a person leaving a 180-degree view beside the robot:
   // 0.15-0.25 m on s2-lobby). Such a feature gets this standard deviation added in both
-  // directions (range variance + s^2, bearing variance + (s / range)^2). A feature is at the
+  // directions (range variance + s^2, bearing variance + min(s / range, pi)^2). A feature is at the
   // edge when its angular extent, atan(width / 2 / range) either side of its bearing, comes
   // within kEdgeOfViewMargin_rad of the edge. 0 disables it.
   double edge_of_view_sigma_m = 0.3;

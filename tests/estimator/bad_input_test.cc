@@ -204,6 +204,28 @@ TEST_F(BadInputTest, ObjectCapIsEnforcedAndReported) {
   ExpectHealthy(estimator);
 }
 
+// min_range_m 0 is allowed: a feature at (or next to) the sensor is then valid input. At a
+// limited field of view its angular extent reaches the edge, and the edge-of-view bearing
+// sigma (edge_of_view_sigma_m / range) must not become infinite there.
+TEST_F(BadInputTest, AFeatureAtTheSensorKeepsTheStateFinite) {
+  EstimatorOptions options;
+  options.min_range_m = 0.0;
+  options.field_of_view_rad = M_PI;
+  Estimator estimator(options);
+  FeatureReading at_sensor = Feature(0.0, 0.0);
+  at_sensor.width_m = 0.3;
+  FeatureReading next_to_sensor = Feature(1e-200, 0.1);
+  next_to_sensor.width_m = 0.3;
+  const ScanResult result =
+      estimator.ProcessScan(Scan(100000, {at_sensor, next_to_sensor, Feature(5.0, 0.2)}), &rng_);
+  ASSERT_TRUE(result.processed);
+  EXPECT_EQ(result.counts.features_rejected, 0);
+  EXPECT_EQ(result.counts.features_at_edge_of_view, 2);
+  ExpectHealthy(estimator);
+  estimator.ProcessScan(Scan(200000, {at_sensor, next_to_sensor, Feature(5.0, 0.2)}), &rng_);
+  ExpectHealthy(estimator);
+}
+
 TEST_F(BadInputTest, OptionsAreChecked) {
   EXPECT_EQ(CheckEstimatorOptions(EstimatorOptions{}), "");
   EstimatorOptions o;
