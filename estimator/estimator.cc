@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <utility>
 
 #include "estimator/angle.h"
 #include "estimator/ekf_prediction.h"
@@ -573,16 +574,16 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
       }
     }
     // Choose by PairCost (gating.h): a wide object must not win a measurement from a
-    // well-known one merely by its smaller NIS.
-    std::vector<Candidate> by_cost = remaining;
-    for (Candidate& c : by_cost) {
+    // well-known one merely by its smaller NIS. GreedyOneToOne orders by the `nis` field, so it
+    // carries the cost from here on (ApplyPairs re-gates by the NIS itself).
+    for (Candidate& c : remaining) {
       c.nis = PairCost(measurements[static_cast<size_t>(c.measurement)],
                        predictions[static_cast<size_t>(c.object)], c.nis);
     }
-    std::vector<Candidate> chosen = GreedyOneToOne(by_cost, assignment);
-    counts.level3_updates = ApplyPairs(chosen, measurements,
-                                       options_.gate_d2_chi2, may_update, scan.utime, options_,
-                                       &state_, &assignment, &counts);
+    counts.level3_updates =
+        ApplyPairs(GreedyOneToOne(std::move(remaining), assignment), measurements,
+                   options_.gate_d2_chi2, may_update, scan.utime, options_, &state_, &assignment,
+                   &counts);
   }
   lap(Substage::kLevel23);
 

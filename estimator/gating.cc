@@ -52,12 +52,17 @@ double NormalizedInnovationSquared(const PointMeasurement& measurement,
          det;
 }
 
+double PairCost(double nis, const Eigen::Matrix2d& innovation_covariance) {
+  const Eigen::Matrix2d& s = innovation_covariance;
+  const double det = s(0, 0) * s(1, 1) - s(0, 1) * s(1, 0);
+  if (!(det > 0.0)) return std::numeric_limits<double>::infinity();
+  return nis + std::log(det);
+}
+
 double PairCost(const PointMeasurement& measurement, const ObjectPrediction& prediction,
                 double nis) {
-  const Eigen::Matrix2d s = prediction.hph + measurement.covariance;
-  const double det = s(0, 0) * s(1, 1) - s(0, 1) * s(1, 0);
-  if (!(det > 0.0) || !prediction.valid) return std::numeric_limits<double>::infinity();
-  return nis + std::log(det);
+  if (!prediction.valid) return std::numeric_limits<double>::infinity();
+  return PairCost(nis, prediction.hph + measurement.covariance);
 }
 
 std::vector<Candidate> GatePairs(const std::vector<PointMeasurement>& measurements,

@@ -47,6 +47,8 @@ struct Candidate {
 // an object known to 2 m (a track coasting unseen, a one-scan-old object) is small for any
 // measurement nearby, so by the NIS it would beat the landmark known to 2 cm that the
 // measurement really belongs to. +infinity when S is not positive definite.
+double PairCost(double nis, const Eigen::Matrix2d& innovation_covariance);
+// The same with S = prediction.hph + measurement.covariance; +infinity for an invalid prediction.
 double PairCost(const PointMeasurement& measurement, const ObjectPrediction& prediction,
                 double nis);
 

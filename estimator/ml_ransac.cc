@@ -47,11 +47,6 @@ double Nis(const Eigen::Vector2d& nu, const Eigen::Matrix2d& s) {
          det;
 }
 
-double LogDet(const Eigen::Matrix2d& s) {
-  const double det = s(0, 0) * s(1, 1) - s(0, 1) * s(1, 0);
-  return det > 0.0 ? std::log(det) : std::numeric_limits<double>::infinity();
-}
-
 }  // namespace
 
 RansacOutcome RunOnePointRansac(const SlamState& state,
@@ -141,7 +136,7 @@ RansacOutcome RunOnePointRansac(const SlamState& state,
       const double nis = Nis(innovation, s_c);
       if (nis < options.inlier_chi2) {
         inliers.push_back({c.measurement, c.object, nis});
-        inlier_cost.push_back(nis + LogDet(s_c));
+        inlier_cost.push_back(PairCost(nis, s_c));
       }
     }
     inlier_order.resize(inliers.size());
@@ -151,7 +146,7 @@ RansacOutcome RunOnePointRansac(const SlamState& state,
     Hypothesis hypothesis;
     hypothesis.pair = pair_index;
     hypothesis.pairs.push_back(h);
-    hypothesis.cost = h.nis + LogDet(s);
+    hypothesis.cost = PairCost(h.nis, s);
     measurement_used[static_cast<size_t>(h.measurement)] = 1;
     object_used[static_cast<size_t>(h.object)] = 1;
     for (size_t k : inlier_order) {
