@@ -629,10 +629,8 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
   std::vector<int> taken_over;  // lost tracks whose identity moved to a new object
   for (int k = 0; k < num_objects_before; ++k) {
     ObjectRecord& candidate = state_.object(k).record;
-    if (candidate.continues_id == 0 || assignment.ObjectFree(k) || candidate.confirmed ||
-        candidate.hits < 2) {
-      continue;
-    }
+    // (Not "still tentative": with confirm_hits <= 2 its own second hit has just confirmed it.)
+    if (candidate.continues_id == 0 || assignment.ObjectFree(k) || candidate.hits < 2) continue;
     const int64_t lost_id = candidate.continues_id;
     candidate.continues_id = 0;
     for (int j = 0; j < num_objects_before; ++j) {

@@ -60,6 +60,7 @@ struct ReturnCase {
   Eigen::Vector2d return_point{1.4, -0.75};
   std::optional<Eigen::Vector2d> extra_post;
   double reacquire_speed_mps = 2.0;
+  int confirm_hits = 3;
 };
 
 struct ReturnRun {
@@ -84,6 +85,7 @@ ReturnRun RunReturn(const ReturnCase& c) {
   EstimatorOptions options;
   options.field_of_view_rad = M_PI;
   options.tracks.reacquire_speed_mps = c.reacquire_speed_mps;
+  options.tracks.confirm_hits = c.confirm_hits;
   Estimator estimator(options);
   std::mt19937_64 rng(5);
   const Eigen::Vector2d posts[2] = {{6.0, 1.0}, {4.0, -4.0}};
@@ -186,6 +188,25 @@ TEST(ReacquisitionTest, AWalkerBackWithinWalkingReachKeepsItsIdentityAtItsSecond
   ASSERT_EQ(near_off.size(), 1u);
   EXPECT_NE(near_off[0].id, off.walker_id);
   EXPECT_EQ(TotalReacquired(off), 0);
+}
+
+// With confirm_hits 2 (or 1) the new object is already confirmed by its own hits when its
+// second measurement comes: it must still take over the lost track's identity.
+TEST(ReacquisitionTest, AlsoWhenTheNewObjectIsConfirmedByItsSecondHit) {
+  ReturnCase c;
+  c.return_point = Eigen::Vector2d(0.125, 1.5) + 2.6 * Eigen::Vector2d(0.5, -std::sqrt(0.75));
+  for (int confirm_hits : {1, 2}) {
+    c.confirm_hits = confirm_hits;
+    const ReturnRun run = RunReturn(c);
+    ASSERT_GT(run.return_scan, 0);
+    const ScanResult& second = run.scans[static_cast<size_t>(run.return_scan + 1)];
+    EXPECT_EQ(second.counts.reacquired, 1) << "confirm_hits " << confirm_hits;
+    const std::vector<ObjectEstimate> near = Near(second, c.return_point);
+    ASSERT_EQ(near.size(), 1u);
+    EXPECT_EQ(near[0].id, run.walker_id) << "confirm_hits " << confirm_hits;
+    EXPECT_EQ(near[0].object_class, ObjectClass::kMoving);
+    EXPECT_EQ(TotalReacquired(run), 1);
+  }
 }
 
 TEST(ReacquisitionTest, NotBeyondWalkingReach) {
