@@ -30,8 +30,9 @@ Eigen::Vector3d PredictRobotPose(const Eigen::Vector3d& pose, const OdometryIncr
 // nominal size turns the robot by the same angle per metre it rolls, the other way when
 // reversing: the type-B error of Borenstein and Feng, "Measurement and correction of systematic
 // odometry errors in mobile robots", IEEE Trans. Robotics and Automation 12(6), 1996 (UMBmark):
-// unequal wheel diameters give a heading error proportional to the distance travelled). So eq. 1 runs with the increment (d, delta + b d). b is a state of the
-// EKF (slam_state.h); the step leaves it unchanged. Returns the new pose and optionally the
+// unequal wheel diameters give a heading error proportional to the distance travelled). So
+// eq. 1 runs with the increment (d, delta + b d). b is a state of the EKF (slam_state.h); the
+// step leaves it unchanged. Returns the new pose and optionally the
 // Jacobians with respect to (x, y, heading, b) (4x4, last row (0 0 0 1)) and to the increment
 // (4x2, last row zero).
 Eigen::Vector3d PredictRobotPoseWithHeadingDrift(

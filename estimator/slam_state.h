@@ -5,8 +5,9 @@
 // and the odometry's systematic heading drift b [rad per metre travelled] at 3 (the paper's
 // robot state augmented with an odometry calibration parameter, as in simultaneous
 // localisation and odometry self-calibration: Martinelli, Tomatis and Siegwart, Autonomous
-// Robots 22, 2007; ekf_prediction.h), then every object in slots. An object always has a position slot (x, y); an object that carries velocity
-// states (a moving or undecided object, paper eq. 5) also has a velocity slot (vx, vy). The
+// Robots 22, 2007; ekf_prediction.h), then every object in slots. An object always has a
+// position slot (x, y); an object that carries velocity states (a moving or undecided object,
+// paper eq. 5) also has a velocity slot (vx, vy). The
 // two slots of one object need not be adjacent: a landmark that starts to move gets its
 // velocity slot appended at the end, and removing states compacts the vector, so objects refer
 // to their slots by index. A static landmark (eq. 4) has no velocity slot.
