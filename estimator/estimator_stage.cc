@@ -1,5 +1,6 @@
 #include "estimator/estimator_stage.h"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -311,6 +312,9 @@ void EstimatorStage::PublishStatus(int64_t utime, MessageSink& out) {
   status.odometry_rejected = c.odometry_rejected;
   status.messages_undecodable = counters_.messages_undecodable;
   status.updates_failed = c.updates_failed;
+  const SlamState& state = estimator_.state();
+  status.heading_drift_rad_per_m = state.heading_drift_rad_per_m();
+  status.heading_drift_sigma_rad_per_m = std::sqrt(std::max(0.0, state.heading_drift_variance()));
   out.PublishMessage(status_channel_, status);
 }
 

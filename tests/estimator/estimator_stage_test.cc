@@ -145,6 +145,14 @@ TEST(EstimatorStageTest, PublishesEveryOutputWithTheFeaturesUtime) {
   EXPECT_EQ(status.scans_processed, 1);
   EXPECT_EQ(status.odometry_processed, 2);
   EXPECT_EQ(status.num_tentative, 2);
+  // The odometry heading drift state: nothing has measured it yet, so it is still its prior
+  // (mean 0, sigma the configured one plus 0.05 m of random walk).
+  const EstimatorOptions defaults;
+  const double prior_sigma = defaults.heading_drift_sigma_rad_per_m;
+  EXPECT_EQ(status.heading_drift_rad_per_m, 0.0);
+  EXPECT_NEAR(status.heading_drift_sigma_rad_per_m,
+              std::sqrt(prior_sigma * prior_sigma + 0.05 * defaults.heading_drift_walk_var_per_m),
+              1e-12);
   const auto timing = out.Get<slammtt_msgs::stage_timing_t>(4);
   EXPECT_EQ(timing.utime, 100000);
   EXPECT_EQ(timing.stage, "estimator");
