@@ -1,6 +1,9 @@
 // slammtt-estimator: ODOMETRY and FEATURES in; POSE, MAP, TRACKS, ESTIMATOR_STATUS and
 // STAGE_TIMING out (paper Algorithm 2). Thin: the work is in EstimatorStage
 // (estimator/estimator_stage.h), which slammtt-replay runs too.
+#include <algorithm>
+#include <cmath>
+
 #include "estimator/estimator_stage.h"
 #include "runtime/command_line.h"
 #include "runtime/lcm_io.h"
@@ -34,6 +37,12 @@ int main(int argc, char** argv) {
                        << n.messages_out_of_order << " messages out of order, "
                        << stage.counters().messages_undecodable << " undecodable, "
                        << runner.handler_errors() << " handler errors";
+    // The odometry's heading drift estimate (docs/estimator.md): well away from zero, it says
+    // the wheels' effective diameters differ and the base's odometry wants a calibration.
+    const slammtt::SlamState& state = stage.estimator().state();
+    slammtt::LogInfo() << "odometry heading drift estimate: " << state.heading_drift_rad_per_m()
+                       << " rad/m, sigma "
+                       << std::sqrt(std::max(0.0, state.heading_drift_variance())) << " rad/m";
     return 0;
   });
 }
