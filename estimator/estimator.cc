@@ -212,6 +212,7 @@ std::string CheckEstimatorOptions(const EstimatorOptions& o) {
   const MotionClassifierOptions& c = o.classifier;
   if (!non_negative(c.moving_chi2) || !non_negative(c.moving_min_speed_mps) ||
       !non_negative(c.still_max_speed_mps) || !non_negative(c.still_hold_s) ||
+      !non_negative(c.still_velocity_chi2) || !non_negative(c.still_restart_variance_ratio) ||
       !positive(c.started_moving_chi2)) {
     return "classifier thresholds must be >= 0";
   }

@@ -237,6 +237,13 @@ TEST_F(BadInputTest, OptionsAreChecked) {
   o = EstimatorOptions{};
   o.ransac.success_probability = 1.0;
   EXPECT_NE(CheckEstimatorOptions(o), "");
+  // 0 disables these two rules; a negative value is a mistake, not another way to disable them.
+  o = EstimatorOptions{};
+  o.classifier.still_velocity_chi2 = -1.0;
+  EXPECT_NE(CheckEstimatorOptions(o), "");
+  o = EstimatorOptions{};
+  o.classifier.still_restart_variance_ratio = -0.5;
+  EXPECT_NE(CheckEstimatorOptions(o), "");
 }
 
 }  // namespace
