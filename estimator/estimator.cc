@@ -7,6 +7,7 @@
 #include <sstream>
 #include <utility>
 
+#include "common/utime.h"
 #include "estimator/angle.h"
 #include "estimator/ekf_prediction.h"
 #include "estimator/ekf_update.h"
@@ -16,7 +17,6 @@ namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
-double Seconds(int64_t microseconds) { return 1e-6 * static_cast<double>(microseconds); }
 
 bool AllFinite(const Eigen::Vector3d& v) { return v.allFinite(); }
 
@@ -180,6 +180,9 @@ std::string CheckEstimatorOptions(const EstimatorOptions& o) {
   if (!positive(o.new_object_velocity_sigma_mps)) return "new_object_velocity_sigma must be > 0";
   if (!non_negative(o.manoeuvre_velocity_sigma_mps)) return "manoeuvre_velocity_sigma must be >= 0";
   if (!positive(o.max_time_gap_s)) return "max_time_gap_s must be > 0";
+  if (!positive(o.max_prediction_s) || o.max_prediction_s < o.max_time_gap_s) {
+    return "max_prediction_s must be >= max_time_gap_s and > 0";
+  }
   if (!non_negative(o.gap_robot_position_sigma_mps) ||
       !non_negative(o.gap_robot_heading_sigma_radps) ||
       !non_negative(o.gap_mover_velocity_sigma_mps) ||
@@ -258,7 +261,9 @@ bool Estimator::AddOdometry(const OdometryReading& reading) {
 }
 
 void Estimator::Predict(int64_t utime, bool first_scan) {
-  const double dt = first_scan ? 0.0 : Seconds(utime - *last_scan_utime_);
+  const double gap_s = first_scan ? 0.0 : SecondsBetween(utime, *last_scan_utime_);
+  // What is predicted, inflated and extrapolated (EstimatorOptions::max_prediction_s).
+  const double dt = std::min(gap_s, options_.max_prediction_s);
   // With the drift state off its variance stays exactly 0 (no random walk), so b stays 0.
   const double drift_walk_var_per_m =
       options_.heading_drift_sigma_rad_per_m > 0.0 ? options_.heading_drift_walk_var_per_m : 0.0;
@@ -274,7 +279,7 @@ void Estimator::Predict(int64_t utime, bool first_scan) {
     while (!odometry_.empty() && odometry_.front().utime <= utime) {
       const OdometryReading& r = odometry_.front();
       const OdometryIncrement increment = IncrementBetweenOdometryPoses(previous.pose, r.pose);
-      motion.Add(increment, OdometryIncrementCovariance(increment, Seconds(r.utime - previous.utime),
+      motion.Add(increment, OdometryIncrementCovariance(increment, SecondsBetween(r.utime, previous.utime),
                                                         options_.odometry_noise));
       previous = OdometryCursor{r.utime, r.pose, r.linear_mps, r.angular_radps};
       odometry_.pop_front();
@@ -283,11 +288,11 @@ void Estimator::Predict(int64_t utime, bool first_scan) {
     if (!odometry_.empty()) {
       // The scan falls between two readings: the part of the next increment up to the scan.
       const OdometryReading& next = odometry_.front();
-      const double fraction = static_cast<double>(utime - previous.utime) /
-                              static_cast<double>(next.utime - previous.utime);
+      const double fraction = MicrosecondsBetween(utime, previous.utime) /
+                              MicrosecondsBetween(next.utime, previous.utime);
       const OdometryIncrement full = IncrementBetweenOdometryPoses(previous.pose, next.pose);
       const OdometryIncrement part{fraction * full.distance_m, fraction * full.rotation_rad};
-      motion.Add(part, OdometryIncrementCovariance(part, Seconds(utime - previous.utime),
+      motion.Add(part, OdometryIncrementCovariance(part, SecondsBetween(utime, previous.utime),
                                                    options_.odometry_noise));
       cursor_ = OdometryCursor{utime, PredictRobotPose(previous.pose, part), next.linear_mps,
                                next.angular_radps};
@@ -295,7 +300,7 @@ void Estimator::Predict(int64_t utime, bool first_scan) {
     } else {
       // No reading at or after the scan yet: extrapolate with the last velocities, with noise
       // that grows with the extrapolated time.
-      const double tau = Seconds(utime - previous.utime);
+      const double tau = std::min(SecondsBetween(utime, previous.utime), options_.max_prediction_s);
       const OdometryIncrement part{previous.linear_mps * tau, previous.angular_radps * tau};
       Eigen::Matrix2d covariance =
           OdometryIncrementCovariance(part, tau, options_.odometry_noise);
@@ -317,14 +322,16 @@ void Estimator::Predict(int64_t utime, bool first_scan) {
     Event("scan at utime " + std::to_string(utime) +
           ": no odometry since the previous scan, predicted with the last velocity");
   }
-  if (dt > options_.max_time_gap_s) {
+  if (gap_s > options_.max_time_gap_s) {
     ++counters_.time_gaps;
     std::ostringstream text;
-    text << "scan at utime " << utime << ": " << dt << " s since the previous scan (limit "
+    text << "scan at utime " << utime << ": " << gap_s << " s since the previous scan (limit "
          << options_.max_time_gap_s << " s), uncertainty inflated";
+    if (gap_s > dt) text << " as for " << dt << " s";
     Event(text.str());
     const double position_sigma = options_.gap_robot_position_sigma_mps * dt;
-    const double heading_sigma = options_.gap_robot_heading_sigma_radps * dt;
+    // A heading known to within more than half a turn is not known at all.
+    const double heading_sigma = std::min(options_.gap_robot_heading_sigma_radps * dt, M_PI);
     motion.AddPoseNoise(Eigen::Vector3d(position_sigma * position_sigma,
                                         position_sigma * position_sigma,
                                         heading_sigma * heading_sigma)
@@ -428,7 +435,10 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
     return result;
   }
   const bool first_scan = !last_scan_utime_;
-  const double dt = first_scan ? 0.0 : Seconds(scan.utime - *last_scan_utime_);
+  // Time since the previous scan (what went unseen) and the part of it the prediction covered
+  // (max_prediction_s), over which a manoeuvre's velocity jump acts.
+  const double gap_s = first_scan ? 0.0 : SecondsBetween(scan.utime, *last_scan_utime_);
+  const double dt = std::min(gap_s, options_.max_prediction_s);
 
   // --- predict (line 2)
   std::vector<double> widths;
@@ -617,7 +627,7 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
       const bool in_geometry =
           p.valid && SurelyInGeometry(p.range_bearing, sigma, options_.max_range_m,
                                       options_.field_of_view_rad);
-      RecordMiss(dt, in_geometry,
+      RecordMiss(gap_s, in_geometry,
                  in_geometry && ExpectedVisible(p.range_bearing, sigma, seen, detection_range,
                                                 options_.field_of_view_rad,
                                                 options_.tracks.shadow_radius_m),
@@ -733,7 +743,7 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
         continue;
       }
       lost.push_back({j, object.record.last_seen_m,
-                      Seconds(scan.utime - object.record.last_seen_utime)});
+                      SecondsBetween(scan.utime, object.record.last_seen_utime)});
     }
     std::vector<BirthPoint> births;
     if (!lost.empty()) {

@@ -119,6 +119,13 @@ struct EstimatorOptions {
 
   // Robustness.
   double max_time_gap_s = 1.0;                   // longer gaps inflate the uncertainty
+  // The longest interval one prediction covers: a longer gap (the process was paused, a
+  // corrupted utime years ahead) is inflated, and movers and extrapolated motion predicted, as
+  // if it were this long. Minutes without a measurement leave a person anywhere and a robot
+  // without odometry beyond what an EKF can recover; unbounded, the inflation (0.5 m/s, 0.2
+  // rad/s, 1 m/s per mover, each times the gap) drives the covariance's condition number past
+  // what double precision updates stay positive semi-definite at (a 2e4 s gap did).
+  double max_prediction_s = 30.0;
   double gap_robot_position_sigma_mps = 0.5;     // added robot std per second of gap
   double gap_robot_heading_sigma_radps = 0.2;
   double gap_mover_velocity_sigma_mps = 1.0;     // added to every mover's velocity std

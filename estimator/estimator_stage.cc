@@ -110,6 +110,7 @@ EstimatorStageOptions ReadEstimatorOptions(const Config& s) {
   o.manoeuvre_velocity_sigma_mps =
       Double(s, "manoeuvre_velocity_sigma_mps", o.manoeuvre_velocity_sigma_mps);
   o.max_time_gap_s = Double(s, "max_time_gap_s", o.max_time_gap_s);
+  o.max_prediction_s = Double(s, "max_prediction_s", o.max_prediction_s);
   o.gap_robot_position_sigma_mps =
       Double(s, "gap_robot_position_sigma_mps", o.gap_robot_position_sigma_mps);
   o.gap_robot_heading_sigma_radps =

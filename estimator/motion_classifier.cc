@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/utime.h"
+
 namespace slammtt {
 
 double LargestEigenvalue(const Eigen::Matrix2d& m) {
@@ -52,7 +54,7 @@ ClassChange ClassifyMover(const Eigen::Vector2d& position, const Eigen::Matrix2d
   // measured once and then unseen (a walker at the edge of detection, seen on one scan in ten,
   // with a velocity estimate near zero) would look still while it walks on.
   const bool measured_now = record->last_seen_utime == utime;
-  const double window_s = 1e-6 * static_cast<double>(utime - record->still_anchor_utime);
+  const double window_s = SecondsBetween(utime, record->still_anchor_utime);
   const double displacement_m = (position - record->still_anchor_m).norm();
   if (measured_now && window_s >= options.still_hold_s &&
       displacement_m <= options.still_max_speed_mps * window_s) {
@@ -60,7 +62,7 @@ ClassChange ClassifyMover(const Eigen::Vector2d& position, const Eigen::Matrix2d
   }
   // The velocity is known to be slow: its confidence region (still_velocity_chi2) lies within
   // moving_min_speed_mps. |v| + sqrt(chi2 lambda_max) bounds the largest speed in the region.
-  const double with_velocity_s = 1e-6 * static_cast<double>(utime - record->class_change_utime);
+  const double with_velocity_s = SecondsBetween(utime, record->class_change_utime);
   if (options.still_velocity_chi2 > 0.0 && det > 0.0 && with_velocity_s >= options.still_hold_s &&
       speed + std::sqrt(options.still_velocity_chi2 * LargestEigenvalue(cov)) <=
           options.moving_min_speed_mps) {

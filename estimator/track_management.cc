@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/utime.h"
 #include "estimator/angle.h"
 
 namespace slammtt {
@@ -37,7 +38,7 @@ void RecordMiss(double dt_s, bool in_geometry, bool expected_visible, ObjectReco
 
 bool ShouldPrune(const ObjectRecord& record, bool has_velocity, int64_t utime, bool out_of_view,
                  double position_sigma_m, const TrackManagementOptions& options) {
-  const double unseen_s = 1e-6 * static_cast<double>(utime - record.last_seen_utime);
+  const double unseen_s = SecondsBetween(utime, record.last_seen_utime);
   if (!record.confirmed) return unseen_s > options.tentative_prune_unseen_s;
   if (has_velocity) {
     if (options.prune_unseen_visible_s > 0.0 &&
@@ -107,7 +108,7 @@ bool ReportedConfirmed(const ObjectRecord& record, bool has_velocity, int64_t ut
   if (options.coast_confirmed_s > 0.0 && record.unseen_in_view_s > options.coast_confirmed_s) {
     return false;
   }
-  const double unseen_s = 1e-6 * static_cast<double>(utime - record.last_seen_utime);
+  const double unseen_s = SecondsBetween(utime, record.last_seen_utime);
   return options.coast_unseen_s <= 0.0 || unseen_s <= options.coast_unseen_s;
 }
 

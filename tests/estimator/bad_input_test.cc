@@ -156,6 +156,54 @@ TEST_F(BadInputTest, TimeGapInflatesInsteadOfTrustingTheLongPrediction) {
   ExpectHealthy(gap);
 }
 
+// A gap of any length, up to a corrupted utime years ahead, is one inflated prediction of a
+// bounded length: the covariance stays positive semi-definite and the estimator goes on. Five
+// posts all around, still odometry, 20 scans, the gap, 40 scans.
+TEST_F(BadInputTest, GapsOfAnyLengthKeepTheCovarianceHealthy) {
+  const std::vector<FeatureReading> posts = {Feature(5.0, 0.1), Feature(7.0, -0.5),
+                                             Feature(4.0, 1.0), Feature(9.0, 2.0),
+                                             Feature(3.0, -2.5)};
+  for (const double gap_s : {3.0, 1e3, 2e4, 5e4, 1e5, 1e7, 1e9}) {
+    SCOPED_TRACE("gap " + std::to_string(gap_s) + " s");
+    Estimator estimator{EstimatorOptions{}};
+    std::mt19937_64 rng(1);
+    int64_t t = 0;
+    auto step = [&](int64_t dt_us) {
+      t += dt_us;
+      estimator.AddOdometry(Odometry(t, 0.0));
+      estimator.ProcessScan(Scan(t, posts), &rng);
+    };
+    for (int k = 0; k < 20; ++k) step(100000);
+    step(static_cast<int64_t>(gap_s * 1e6));
+    ExpectHealthy(estimator);
+    for (int k = 0; k < 40 && !HasFailure(); ++k) {
+      step(100000);
+      ExpectHealthy(estimator);
+    }
+    if (HasFailure()) return;  // one gap's messages are enough
+    EXPECT_EQ(estimator.counters().time_gaps, 1);
+    EXPECT_EQ(estimator.counters().scans_processed, 61);
+  }
+}
+
+// utimes at the ends of int64: differences are taken without overflow, so a reading at the
+// far past and then ordinary ones give one (huge) gap, counted, not a wrapped negative time.
+TEST_F(BadInputTest, UtimesAtTheEndsOfTheRangeDoNotWrap) {
+  Estimator estimator{EstimatorOptions{}};
+  std::mt19937_64 rng(1);
+  const int64_t far_past = std::numeric_limits<int64_t>::min() + 5;
+  estimator.AddOdometry(Odometry(far_past, 0.0));
+  estimator.ProcessScan(Scan(far_past + 5, {Feature(5.0, 0.2), Feature(6.0, -0.3)}), &rng);
+  for (int64_t t = 1100000; t <= 3000000; t += 100000) {
+    estimator.AddOdometry(Odometry(t, 0.0));
+    estimator.ProcessScan(Scan(t, {Feature(5.0, 0.2), Feature(6.0, -0.3)}), &rng);
+    ExpectHealthy(estimator);
+    if (HasFailure()) return;
+  }
+  EXPECT_EQ(estimator.counters().time_gaps, 1);
+  EXPECT_EQ(estimator.counters().scans_processed, 21);
+}
+
 TEST_F(BadInputTest, ScanWithoutOdometryPredictsWithTheLastVelocity) {
   Estimator estimator{EstimatorOptions{}};
   estimator.AddOdometry(Odometry(0, 0.0, 1.0));
@@ -244,6 +292,10 @@ TEST_F(BadInputTest, OptionsAreChecked) {
   o = EstimatorOptions{};
   o.classifier.still_restart_variance_ratio = -0.5;
   EXPECT_NE(CheckEstimatorOptions(o), "");
+  // A prediction bound below the gap limit would cut ordinary intervals short.
+  o = EstimatorOptions{};
+  o.max_prediction_s = 0.5 * o.max_time_gap_s;
+  EXPECT_NE(CheckEstimatorOptions(o).find("max_prediction_s"), std::string::npos);
 }
 
 }  // namespace
