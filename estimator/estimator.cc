@@ -279,8 +279,9 @@ void Estimator::Predict(int64_t utime, bool first_scan) {
     while (!odometry_.empty() && odometry_.front().utime <= utime) {
       const OdometryReading& r = odometry_.front();
       const OdometryIncrement increment = IncrementBetweenOdometryPoses(previous.pose, r.pose);
-      motion.Add(increment, OdometryIncrementCovariance(increment, SecondsBetween(r.utime, previous.utime),
-                                                        options_.odometry_noise));
+      motion.Add(increment,
+                 OdometryIncrementCovariance(increment, SecondsBetween(r.utime, previous.utime),
+                                             options_.odometry_noise));
       previous = OdometryCursor{r.utime, r.pose, r.linear_mps, r.angular_radps};
       odometry_.pop_front();
       had_odometry = true;
@@ -300,7 +301,8 @@ void Estimator::Predict(int64_t utime, bool first_scan) {
     } else {
       // No reading at or after the scan yet: extrapolate with the last velocities, with noise
       // that grows with the extrapolated time.
-      const double tau = std::min(SecondsBetween(utime, previous.utime), options_.max_prediction_s);
+      const double tau =
+          std::min(SecondsBetween(utime, previous.utime), options_.max_prediction_s);
       const OdometryIncrement part{previous.linear_mps * tau, previous.angular_radps * tau};
       Eigen::Matrix2d covariance =
           OdometryIncrementCovariance(part, tau, options_.odometry_noise);
