@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include "common/utime.h"
+
 namespace slammtt {
 namespace {
 
@@ -237,7 +239,7 @@ json ReportToJson(const EvalInput& input, const EvaluationReport& report) {
 
 std::string ReportSummaryText(const EvaluationReport& report) {
   std::ostringstream out;
-  const double span_s = static_cast<double>(report.last_utime - report.first_utime) * 1e-6;
+  const double span_s = SecondsBetween(report.last_utime, report.first_utime);
   out << "evaluation of " << report.source << ": " << report.truth_scans
       << " ground-truth scans, " << Fixed(span_s, 1) << " s\n";
   out << "  robot:          ";

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "common/utime.h"
 #include "tools/metrics/assignment.h"
 
 namespace slammtt {
@@ -109,7 +110,7 @@ ClassificationSummary ClassificationAccumulator::Summary() const {
       }
       const int64_t settled_utime = history.labels[settled].first;
       const double delay_s =
-          static_cast<double>(settled_utime - history.first_visible_utime) * 1e-6;
+          SecondsBetween(settled_utime, history.first_visible_utime);
       object.delay_s = delay_s;
       int64_t visible_before = 0;
       for (int64_t t : history.visible_utimes) visible_before += t < settled_utime ? 1 : 0;

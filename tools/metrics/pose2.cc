@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/utime.h"
+
 namespace slammtt {
 
 Pose2 Compose(const Pose2& a, const Pose2& b) {
@@ -54,7 +56,7 @@ std::optional<Pose2> InterpolatePose(const std::vector<TimedPose>& trajectory, i
   if (after->utime == utime) return after->pose;
   const TimedPose& b = *after;
   const TimedPose& a = *(after - 1);
-  const double f = static_cast<double>(utime - a.utime) / static_cast<double>(b.utime - a.utime);
+  const double f = MicrosecondsBetween(utime, a.utime) / MicrosecondsBetween(b.utime, a.utime);
   return Pose2{a.pose.x_m + f * (b.pose.x_m - a.pose.x_m),
                a.pose.y_m + f * (b.pose.y_m - a.pose.y_m),
                WrapAngle(a.pose.heading_rad +
