@@ -17,7 +17,6 @@ namespace {
 
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
-
 bool AllFinite(const Eigen::Vector3d& v) { return v.allFinite(); }
 
 // Which measurement each object got, and the reverse.
