@@ -182,6 +182,7 @@ std::string CheckEstimatorOptions(const EstimatorOptions& o) {
   if (!positive(o.max_prediction_s) || o.max_prediction_s < o.max_time_gap_s) {
     return "max_prediction_s must be >= max_time_gap_s and > 0";
   }
+  if (!positive(o.time_jump_back_restart_s)) return "time_jump_back_restart_s must be > 0";
   if (!non_negative(o.gap_robot_position_sigma_mps) ||
       !non_negative(o.gap_robot_heading_sigma_radps) ||
       !non_negative(o.gap_mover_velocity_sigma_mps) ||
@@ -227,6 +228,25 @@ Estimator::Estimator(const EstimatorOptions& options)
       state_(options.initial_pose, Eigen::Matrix3d::Zero(),
              options.heading_drift_sigma_rad_per_m * options.heading_drift_sigma_rad_per_m) {}
 
+bool Estimator::RestartOnJumpBack(const char* what, int64_t utime,
+                                  const std::optional<int64_t>& newest_utime) {
+  if (!newest_utime) return false;
+  const double back_s = SecondsBetween(*newest_utime, utime);
+  if (!(back_s > options_.time_jump_back_restart_s)) return false;
+  ++counters_.restarts;
+  std::ostringstream text;
+  text << what << " at utime " << utime << " is " << back_s << " s older than the newest ("
+       << *newest_utime << "): a new time base, estimation started over";
+  Event(text.str());
+  const double drift_sigma = options_.heading_drift_sigma_rad_per_m;
+  state_ = SlamState(options_.initial_pose, Eigen::Matrix3d::Zero(), drift_sigma * drift_sigma);
+  last_scan_utime_.reset();
+  last_odometry_utime_.reset();
+  cursor_.reset();
+  odometry_.clear();
+  return true;
+}
+
 bool Estimator::AddOdometry(const OdometryReading& reading) {
   if (!AllFinite(reading.pose) || !std::isfinite(reading.linear_mps) ||
       !std::isfinite(reading.angular_radps)) {
@@ -234,6 +254,7 @@ bool Estimator::AddOdometry(const OdometryReading& reading) {
     Event("odometry at utime " + std::to_string(reading.utime) + " rejected: not finite");
     return false;
   }
+  RestartOnJumpBack("odometry", reading.utime, last_odometry_utime_);
   if (last_odometry_utime_ && reading.utime <= *last_odometry_utime_) {
     ++counters_.messages_out_of_order;
     Event("odometry at utime " + std::to_string(reading.utime) +
@@ -428,6 +449,7 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
   auto lap = [observer](Substage s) {
     if (observer != nullptr) observer->SubstageDone(s);
   };
+  RestartOnJumpBack("scan", scan.utime, last_scan_utime_);
   if (last_scan_utime_ && scan.utime <= *last_scan_utime_) {
     ++counters_.messages_out_of_order;
     Event("scan at utime " + std::to_string(scan.utime) +

@@ -126,6 +126,13 @@ struct EstimatorOptions {
   // rad/s, 1 m/s per mover, each times the gap) drives the covariance's condition number past
   // what double precision updates stay positive semi-definite at (a 2e4 s gap did).
   double max_prediction_s = 30.0;
+  // A message older than the newest of its stream by more than this is not a late message but
+  // a new time base: a log played again or another log (lcm-logplayer), a restarted simulator,
+  // the robot's clock stepped back, or the return to normal after one corrupted far-future
+  // utime. The estimator starts over from the initial pose with an empty map (track ids keep
+  // counting up, the counters keep counting) instead of dropping everything until the clock
+  // passes its newest utime. Shorter steps back are out-of-order messages and are dropped.
+  double time_jump_back_restart_s = 10.0;
   double gap_robot_position_sigma_mps = 0.5;     // added robot std per second of gap
   double gap_robot_heading_sigma_radps = 0.2;
   double gap_mover_velocity_sigma_mps = 1.0;     // added to every mover's velocity std
@@ -250,6 +257,7 @@ struct EstimatorCounters {
   int64_t hypotheses_generated = 0;
   int64_t updates_failed = 0;
   int64_t static_updates_skipped = 0;
+  int64_t restarts = 0;                // time_jump_back_restart_s: starts over on a new time base
 };
 
 class Estimator {
@@ -286,6 +294,10 @@ class Estimator {
   std::vector<PointMeasurement> ValidateFeatures(const std::vector<FeatureReading>& features,
                                                  StepCounts* counts, std::vector<double>* widths);
   void Event(const std::string& text) { last_event_ = text; }
+  // True (and the estimator started over, counted and described) when `utime` lies more than
+  // time_jump_back_restart_s before `newest_utime` of its stream.
+  bool RestartOnJumpBack(const char* what, int64_t utime,
+                         const std::optional<int64_t>& newest_utime);
 
   EstimatorOptions options_;
   SlamState state_;

@@ -111,6 +111,8 @@ EstimatorStageOptions ReadEstimatorOptions(const Config& s) {
       Double(s, "manoeuvre_velocity_sigma_mps", o.manoeuvre_velocity_sigma_mps);
   o.max_time_gap_s = Double(s, "max_time_gap_s", o.max_time_gap_s);
   o.max_prediction_s = Double(s, "max_prediction_s", o.max_prediction_s);
+  o.time_jump_back_restart_s =
+      Double(s, "time_jump_back_restart_s", o.time_jump_back_restart_s);
   o.gap_robot_position_sigma_mps =
       Double(s, "gap_robot_position_sigma_mps", o.gap_robot_position_sigma_mps);
   o.gap_robot_heading_sigma_radps =
@@ -313,6 +315,7 @@ void EstimatorStage::PublishStatus(int64_t utime, MessageSink& out) {
   status.odometry_rejected = c.odometry_rejected;
   status.messages_undecodable = counters_.messages_undecodable;
   status.updates_failed = c.updates_failed;
+  status.restarts = c.restarts;
   const SlamState& state = estimator_.state();
   status.heading_drift_rad_per_m = state.heading_drift_rad_per_m();
   status.heading_drift_sigma_rad_per_m = std::sqrt(std::max(0.0, state.heading_drift_variance()));

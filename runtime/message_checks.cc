@@ -163,6 +163,7 @@ bool PlausibleEstimatorStatus(const void* data, int size) {
   w.String();  // last_event
   w.Fixed(3 * kInt64);  // odometry_rejected, messages_undecodable, updates_failed
   w.Fixed(2 * kDouble);  // heading_drift_rad_per_m, heading_drift_sigma_rad_per_m
+  w.Fixed(kInt64);       // restarts
   return w.End();
 }
 

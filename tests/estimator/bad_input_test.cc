@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <limits>
 #include <random>
 
@@ -204,6 +205,73 @@ TEST_F(BadInputTest, UtimesAtTheEndsOfTheRangeDoNotWrap) {
   EXPECT_EQ(estimator.counters().scans_processed, 21);
 }
 
+// The same log played twice into a running estimator (lcm-logplayer): the second run's first
+// message lies 3 s before the newest, beyond time_jump_back_restart_s (set to 1 s here), so
+// the estimator starts over instead of dropping the whole second run as out of order. A step
+// back shorter than that is still a late message, dropped.
+TEST_F(BadInputTest, ALogPlayedAgainStartsTheEstimationOver) {
+  EstimatorOptions options;
+  options.time_jump_back_restart_s = 1.0;
+  Estimator estimator(options);
+  auto play_into = [&](Estimator* e, int scans) {
+    for (int k = 1; k <= scans; ++k) {
+      const int64_t t = 100000 * k;
+      e->AddOdometry(Odometry(t, 0.05 * k, 0.5));
+      e->ProcessScan(Scan(t, {Feature(5.0 - 0.05 * k, 0.2), Feature(6.0 - 0.05 * k, -0.3)}),
+                     &rng_);
+    }
+  };
+  auto play = [&](int scans) { play_into(&estimator, scans); };
+  play(30);
+  ASSERT_EQ(estimator.counters().restarts, 0);
+  int64_t largest_id = 0;
+  for (const StateObject& object : estimator.state().objects()) {
+    largest_id = std::max(largest_id, object.record.id);
+  }
+  ASSERT_GT(largest_id, 0);
+  EXPECT_FALSE(estimator.ProcessScan(Scan(2500000, {Feature(5.0, 0.2)}), &rng_).processed);
+  EXPECT_EQ(estimator.counters().messages_out_of_order, 1);  // 0.5 s back: late, dropped
+  play(30);
+  // The odometry's jump started it over, the scans of the new run then came to a fresh start.
+  EXPECT_EQ(estimator.counters().restarts, 1);
+  EXPECT_NE(estimator.last_event().find("started over"), std::string::npos);
+  EXPECT_EQ(estimator.counters().messages_out_of_order, 1);
+  EXPECT_EQ(estimator.counters().scans_processed, 60);
+  // What is left is the second run alone, as a fresh estimator sees it, with new identities.
+  Estimator fresh(options);
+  play_into(&fresh, 30);
+  EXPECT_NEAR((estimator.state().robot_pose() - fresh.state().robot_pose()).norm(), 0.0, 1e-12);
+  ASSERT_EQ(estimator.state().num_objects(), 2);
+  for (const StateObject& object : estimator.state().objects()) {
+    EXPECT_GT(object.record.id, largest_id);
+  }
+  ExpectHealthy(estimator);
+}
+
+// One scan stamped a million seconds ahead (a corrupted utime) is one inflated gap; the
+// ordinary scans after it are then a new time base, and the estimator goes on instead of
+// dropping everything for eleven days.
+TEST_F(BadInputTest, OneFarFutureUtimeDoesNotSilenceTheEstimator) {
+  Estimator estimator{EstimatorOptions{}};
+  int64_t t = 0;
+  for (int k = 0; k < 10; ++k) {
+    t += 100000;
+    estimator.AddOdometry(Odometry(t, 0.0));
+    estimator.ProcessScan(Scan(t, {Feature(5.0, 0.2)}), &rng_);
+  }
+  EXPECT_TRUE(estimator.ProcessScan(Scan(t + 1000000000000, {Feature(5.0, 0.2)}), &rng_).processed);
+  for (int k = 0; k < 10; ++k) {
+    t += 100000;
+    estimator.AddOdometry(Odometry(t, 0.0));
+    EXPECT_TRUE(estimator.ProcessScan(Scan(t, {Feature(5.0, 0.2)}), &rng_).processed);
+  }
+  EXPECT_EQ(estimator.counters().time_gaps, 1);
+  EXPECT_EQ(estimator.counters().restarts, 1);
+  EXPECT_EQ(estimator.counters().messages_out_of_order, 0);
+  EXPECT_EQ(estimator.counters().scans_processed, 21);
+  ExpectHealthy(estimator);
+}
+
 TEST_F(BadInputTest, ScanWithoutOdometryPredictsWithTheLastVelocity) {
   Estimator estimator{EstimatorOptions{}};
   estimator.AddOdometry(Odometry(0, 0.0, 1.0));
@@ -296,6 +364,9 @@ TEST_F(BadInputTest, OptionsAreChecked) {
   o = EstimatorOptions{};
   o.max_prediction_s = 0.5 * o.max_time_gap_s;
   EXPECT_NE(CheckEstimatorOptions(o).find("max_prediction_s"), std::string::npos);
+  o = EstimatorOptions{};
+  o.time_jump_back_restart_s = 0.0;
+  EXPECT_NE(CheckEstimatorOptions(o).find("time_jump_back_restart_s"), std::string::npos);
 }
 
 }  // namespace

@@ -150,6 +150,7 @@ TEST(EstimatorStageTest, PublishesEveryOutputWithTheFeaturesUtime) {
   const EstimatorOptions defaults;
   const double prior_sigma = defaults.heading_drift_sigma_rad_per_m;
   EXPECT_EQ(status.heading_drift_rad_per_m, 0.0);
+  EXPECT_EQ(status.restarts, 0);
   EXPECT_NEAR(status.heading_drift_sigma_rad_per_m,
               std::sqrt(prior_sigma * prior_sigma + 0.05 * defaults.heading_drift_walk_var_per_m),
               1e-12);

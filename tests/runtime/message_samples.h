@@ -361,6 +361,7 @@ struct Sample<slammtt_msgs::estimator_status_t> {
     m.updates_failed = 5;
     m.heading_drift_rad_per_m = -0.0009;
     m.heading_drift_sigma_rad_per_m = 0.002;
+    m.restarts = 1;
     return m;
   }
   static std::vector<CountField> Counts(const slammtt_msgs::estimator_status_t& m) {
