@@ -131,8 +131,10 @@ struct EstimatorOptions {
   // the robot's clock stepped back, or the return to normal after one corrupted far-future
   // utime. The estimator starts over from the initial pose with an empty map (track ids keep
   // counting up, the counters keep counting) instead of dropping everything until the clock
-  // passes its newest utime. Shorter steps back are out-of-order messages and are dropped.
-  double time_jump_back_restart_s = 10.0;
+  // passes its newest utime. Shorter steps back are out-of-order messages and are dropped: 2 s
+  // is far beyond any delivery delay (LCM delivers within milliseconds; a scan's FEATURES come
+  // within its processing time) and shorter than any log worth replaying.
+  double time_jump_back_restart_s = 2.0;
   double gap_robot_position_sigma_mps = 0.5;     // added robot std per second of gap
   double gap_robot_heading_sigma_radps = 0.2;
   double gap_mover_velocity_sigma_mps = 1.0;     // added to every mover's velocity std

@@ -34,7 +34,8 @@ int main(int argc, char** argv) {
     const slammtt::EstimatorCounters& n = stage.estimator().counters();
     slammtt::LogInfo() << "stopped: " << n.scans_processed << " scans, " << n.odometry_processed
                        << " odometry messages, " << n.features_rejected << " features rejected, "
-                       << n.messages_out_of_order << " messages out of order, "
+                       << n.messages_out_of_order << " messages out of order, " << n.restarts
+                       << " restarts (new time base), "
                        << stage.counters().messages_undecodable << " undecodable, "
                        << runner.handler_errors() << " handler errors";
     // The odometry's heading drift estimate (docs/estimator.md): well away from zero, it says
