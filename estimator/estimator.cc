@@ -280,10 +280,7 @@ bool Estimator::AddOdometry(const OdometryReading& reading) {
   return true;
 }
 
-void Estimator::Predict(int64_t utime, bool first_scan) {
-  const double gap_s = first_scan ? 0.0 : SecondsBetween(utime, *last_scan_utime_);
-  // What is predicted, inflated and extrapolated (EstimatorOptions::max_prediction_s).
-  const double dt = std::min(gap_s, options_.max_prediction_s);
+void Estimator::Predict(int64_t utime, bool first_scan, double gap_s, double dt) {
   // With the drift state off its variance stays exactly 0 (no random walk), so b stays 0.
   const double drift_walk_var_per_m =
       options_.heading_drift_sigma_rad_per_m > 0.0 ? options_.heading_drift_walk_var_per_m : 0.0;
@@ -467,7 +464,7 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
   std::vector<double> widths;
   const std::vector<PointMeasurement> measurements =
       ValidateFeatures(scan.features, &counts, &widths);
-  Predict(scan.utime, first_scan);
+  Predict(scan.utime, first_scan, gap_s, dt);
   last_scan_utime_ = scan.utime;
   lap(Substage::kPredict);
 

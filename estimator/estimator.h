@@ -291,7 +291,9 @@ class Estimator {
     double angular_radps = 0.0;
   };
 
-  void Predict(int64_t utime, bool first_scan);
+  // Prediction to the scan at `utime`: `gap_s` since the previous scan, of which `dt` (at most
+  // max_prediction_s) is predicted, inflated and extrapolated.
+  void Predict(int64_t utime, bool first_scan, double gap_s, double dt);
   // Accepted measurements, and the width of each in `widths`.
   std::vector<PointMeasurement> ValidateFeatures(const std::vector<FeatureReading>& features,
                                                  StepCounts* counts, std::vector<double>* widths);
