@@ -19,6 +19,13 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 bool AllFinite(const Eigen::Vector3d& v) { return v.allFinite(); }
 
+// The state before the first message (and after a restart): the robot at initial_pose, known
+// exactly (it defines the map frame), the heading drift at its prior.
+SlamState InitialState(const EstimatorOptions& options) {
+  const double drift_sigma = options.heading_drift_sigma_rad_per_m;
+  return SlamState(options.initial_pose, Eigen::Matrix3d::Zero(), drift_sigma * drift_sigma);
+}
+
 // Which measurement each object got, and the reverse.
 struct Assignment {
   std::vector<int> object_of_measurement;
@@ -224,9 +231,7 @@ std::string CheckEstimatorOptions(const EstimatorOptions& o) {
 }
 
 Estimator::Estimator(const EstimatorOptions& options)
-    : options_(options),
-      state_(options.initial_pose, Eigen::Matrix3d::Zero(),
-             options.heading_drift_sigma_rad_per_m * options.heading_drift_sigma_rad_per_m) {}
+    : options_(options), state_(InitialState(options)) {}
 
 bool Estimator::RestartOnJumpBack(const char* what, int64_t utime,
                                   const std::optional<int64_t>& newest_utime) {
@@ -238,8 +243,7 @@ bool Estimator::RestartOnJumpBack(const char* what, int64_t utime,
   text << what << " at utime " << utime << " is " << back_s << " s older than the newest ("
        << *newest_utime << "): a new time base, estimation started over";
   Event(text.str());
-  const double drift_sigma = options_.heading_drift_sigma_rad_per_m;
-  state_ = SlamState(options_.initial_pose, Eigen::Matrix3d::Zero(), drift_sigma * drift_sigma);
+  state_ = InitialState(options_);
   last_scan_utime_.reset();
   last_odometry_utime_.reset();
   cursor_.reset();
