@@ -142,13 +142,13 @@ void SegmenterStage::Handle(const std::string& channel, const void* data, int si
   const std::vector<Feature>& features = segmenter_.MakeFeatures();
   timer.Lap("features");
 
-  slammtt_msgs::features_t message;
+  slammtt_msgs::features_t message{};
   message.utime = scan.utime;
   message.sequence = scan.sequence;
   message.num_features = static_cast<int32_t>(features.size());
   message.features.reserve(features.size());
   for (const Feature& f : features) {
-    slammtt_msgs::feature_t m;
+    slammtt_msgs::feature_t m{};
     m.range_m = f.range_m;
     m.bearing_rad = f.bearing_rad;
     m.width_m = f.width_m;

@@ -87,6 +87,10 @@ bool PlausibleFeatures(const void* data, int size) {
   w.Fixed(kFingerprint + 2 * kInt64);  // utime, sequence
   const int32_t features = w.Count(kFeature);
   w.Elements(features, kFeature);
+  const int32_t lines = w.Count(kLineFeature);
+  w.Elements(lines, kLineFeature);
+  const int32_t people = w.Count(kPersonFeature);
+  w.Elements(people, kPersonFeature);
   return w.End();
 }
 
@@ -95,6 +99,16 @@ bool PlausibleGroundTruth(const void* data, int size) {
   w.Fixed(kFingerprint + kInt64 + 5 * kDouble);  // utime, robot x, y, heading, linear, angular
   const int32_t objects = w.Count(kObjectTruth);
   w.Elements(objects, kObjectTruth);
+  const int32_t segments = w.Count(kSegmentTruth);
+  w.Elements(segments, kSegmentTruth);
+  return w.End();
+}
+
+bool PlausibleLegLabels(const void* data, int size) {
+  EncodedWalk w(data, size);
+  w.Fixed(kFingerprint + kInt64);  // utime
+  const int32_t legs = w.Count(kLegLabel);
+  w.Elements(legs, kLegLabel);  // x_m[], y_m[]
   return w.End();
 }
 

@@ -39,6 +39,7 @@
 #include "slammtt_msgs/features_t.hpp"
 #include "slammtt_msgs/ground_truth_t.hpp"
 #include "slammtt_msgs/laser_scan_t.hpp"
+#include "slammtt_msgs/leg_labels_t.hpp"
 #include "slammtt_msgs/lidar_status_t.hpp"
 #include "slammtt_msgs/map_t.hpp"
 #include "slammtt_msgs/stage_timing_t.hpp"
@@ -62,10 +63,22 @@ inline constexpr int64_t kEmptyString = kInt32 + 1;
 // One laser_scan_t beam: angle_rad, range_m, intensity (floats) and valid (boolean).
 inline constexpr int64_t kBeam = 3 * kFloat + kBoolean;
 // feature_t: range_m, bearing_rad, width_m, num_points, range_var_m2, bearing_var_rad2,
-// range_bearing_cov_m_rad.
-inline constexpr int64_t kFeature = 3 * kDouble + kInt32 + 3 * kDouble;
-// object_truth_t: id, x_m, y_m, vx_mps, vy_mps, radius_m, object_class, beams_on_object, visible.
-inline constexpr int64_t kObjectTruth = kInt64 + 5 * kDouble + kInt8 + kInt32 + kBoolean;
+// range_bearing_cov_m_rad, leg_likeness.
+inline constexpr int64_t kFeature = 3 * kDouble + kInt32 + 4 * kDouble;
+// line_feature_t: rho_m, alpha_rad, rho_var_m2, alpha_var_rad2, rho_alpha_cov_m_rad, first_x_m,
+// first_y_m, last_x_m, last_y_m, num_points, rms_residual_m.
+inline constexpr int64_t kLineFeature = 9 * kDouble + kInt32 + kDouble;
+// person_feature_t: range_m, bearing_rad, range_var_m2, bearing_var_rad2,
+// range_bearing_cov_m_rad, num_legs, leg_index[2], confidence.
+inline constexpr int64_t kPersonFeature = 5 * kDouble + kInt32 + 2 * kInt32 + kDouble;
+// object_truth_t: id, x_m, y_m, vx_mps, vy_mps, radius_m, object_class, beams_on_object, visible,
+// kind, parent_id.
+inline constexpr int64_t kObjectTruth =
+    kInt64 + 5 * kDouble + kInt8 + kInt32 + kBoolean + kInt8 + kInt64;
+// segment_truth_t: id, kind, x0_m, y0_m, x1_m, y1_m, beams_on_segment.
+inline constexpr int64_t kSegmentTruth = kInt64 + kInt8 + 4 * kDouble + kInt32;
+// One leg_labels_t label: x_m and y_m.
+inline constexpr int64_t kLegLabel = 2 * kDouble;
 // track_t: id, x_m, y_m, vx_mps, vy_mps, covariance[16], object_class, confirmed,
 // first_seen_utime, hits, last_seen_utime.
 inline constexpr int64_t kTrack =
@@ -84,6 +97,7 @@ bool PlausibleStageTiming(const void* data, int size);
 bool PlausibleLidarStatus(const void* data, int size);
 bool PlausibleBaseStatus(const void* data, int size);
 bool PlausibleEstimatorStatus(const void* data, int size);
+bool PlausibleLegLabels(const void* data, int size);
 
 // The check of a type, chosen by overload on a (never dereferenced) pointer to the type.
 inline bool PlausibleEncoding(const slammtt_msgs::laser_scan_t*, const void* data, int size) {
@@ -113,6 +127,9 @@ inline bool PlausibleEncoding(const slammtt_msgs::base_status_t*, const void* da
 inline bool PlausibleEncoding(const slammtt_msgs::estimator_status_t*, const void* data,
                               int size) {
   return PlausibleEstimatorStatus(data, size);
+}
+inline bool PlausibleEncoding(const slammtt_msgs::leg_labels_t*, const void* data, int size) {
+  return PlausibleLegLabels(data, size);
 }
 // Every other type (odometry_t, pose_t, velocity_command_t and the nested element types) has a
 // fixed size: the generated decoder checks each read against `size` before it makes it and

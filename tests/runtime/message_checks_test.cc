@@ -229,13 +229,18 @@ std::set<std::string> TypesWithVariableLength(const std::string& lcm_dir) {
 TEST(MessageChecksCoverageTest, EveryTypeWithAnArrayOrAStringIsChecked) {
   const std::set<std::string> expected = {
       "laser_scan_t", "features_t",     "ground_truth_t", "tracks_t",          "map_t",
-      "stage_timing_t", "lidar_status_t", "base_status_t", "estimator_status_t"};
+      "stage_timing_t", "lidar_status_t", "base_status_t", "estimator_status_t", "leg_labels_t"};
   EXPECT_EQ(TypesWithVariableLength(std::string(SLAMMTT_SOURCE_DIR) + "/lcmtypes"), expected);
 }
 
 TEST(MessageChecksCoverageTest, FixedElementSizesAreLcmGensOwn) {
   EXPECT_EQ(slammtt_msgs::feature_t{}._getEncodedSizeNoHash(), encoded_bytes::kFeature);
+  EXPECT_EQ(slammtt_msgs::line_feature_t{}._getEncodedSizeNoHash(), encoded_bytes::kLineFeature);
+  EXPECT_EQ(slammtt_msgs::person_feature_t{}._getEncodedSizeNoHash(),
+            encoded_bytes::kPersonFeature);
   EXPECT_EQ(slammtt_msgs::object_truth_t{}._getEncodedSizeNoHash(), encoded_bytes::kObjectTruth);
+  EXPECT_EQ(slammtt_msgs::segment_truth_t{}._getEncodedSizeNoHash(),
+            encoded_bytes::kSegmentTruth);
   EXPECT_EQ(slammtt_msgs::track_t{}._getEncodedSizeNoHash(), encoded_bytes::kTrack);
   EXPECT_EQ(slammtt_msgs::landmark_t{}._getEncodedSizeNoHash(), encoded_bytes::kLandmark);
   slammtt_msgs::laser_scan_t scan = Sample<slammtt_msgs::laser_scan_t>::Make();

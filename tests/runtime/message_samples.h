@@ -20,6 +20,7 @@
 #include "slammtt_msgs/features_t.hpp"
 #include "slammtt_msgs/ground_truth_t.hpp"
 #include "slammtt_msgs/laser_scan_t.hpp"
+#include "slammtt_msgs/leg_labels_t.hpp"
 #include "slammtt_msgs/lidar_status_t.hpp"
 #include "slammtt_msgs/map_t.hpp"
 #include "slammtt_msgs/stage_timing_t.hpp"
@@ -111,15 +112,51 @@ struct Sample<slammtt_msgs::features_t> {
       f.range_var_m2 = 0.0009;
       f.bearing_var_rad2 = 0.0012;
       f.range_bearing_cov_m_rad = 1e-5 * k;
+      f.leg_likeness = 0.25 * k;
       m.features.push_back(f);
     }
+    m.num_lines = 2;
+    for (int k = 0; k < m.num_lines; ++k) {
+      slammtt_msgs::line_feature_t l{};
+      l.rho_m = 1.5 + k;
+      l.alpha_rad = 0.4 - k;
+      l.rho_var_m2 = 1e-4;
+      l.alpha_var_rad2 = 2e-4;
+      l.rho_alpha_cov_m_rad = -1e-6 * k;
+      l.first_x_m = 1.0;
+      l.first_y_m = -1.0 + k;
+      l.last_x_m = 1.2;
+      l.last_y_m = 1.0 + k;
+      l.num_points = 40 + k;
+      l.rms_residual_m = 0.01;
+      m.lines.push_back(l);
+    }
+    m.num_people = 1;
+    slammtt_msgs::person_feature_t p{};
+    p.range_m = 2.5;
+    p.bearing_rad = -0.15;
+    p.range_var_m2 = 0.01;
+    p.bearing_var_rad2 = 0.002;
+    p.range_bearing_cov_m_rad = 0.0;
+    p.num_legs = 2;
+    p.leg_index[0] = 0;
+    p.leg_index[1] = 1;
+    p.confidence = 0.8;
+    m.people.push_back(p);
     return m;
   }
   static std::vector<CountField> Counts(const slammtt_msgs::features_t& m) {
-    return {{"num_features", kFingerprint + 2 * 8, m.num_features}};  // after utime, sequence
+    const size_t after_features = kFingerprint + 2 * 8 + 4 +  // utime, sequence, num_features
+                                  static_cast<size_t>(m.num_features) * 60;
+    const size_t after_lines = after_features + 4 + static_cast<size_t>(m.num_lines) * 84;
+    return {{"num_features", kFingerprint + 2 * 8, m.num_features},
+            {"num_lines", after_features, m.num_lines},
+            {"num_people", after_lines, m.num_people}};
   }
   static bool ArraysMatchCounts(const slammtt_msgs::features_t& m) {
-    return m.num_features >= 0 && m.features.size() == static_cast<size_t>(m.num_features);
+    return m.num_features >= 0 && m.features.size() == static_cast<size_t>(m.num_features) &&
+           m.num_lines >= 0 && m.lines.size() == static_cast<size_t>(m.num_lines) &&
+           m.num_people >= 0 && m.people.size() == static_cast<size_t>(m.num_people);
   }
 };
 
@@ -145,16 +182,35 @@ struct Sample<slammtt_msgs::ground_truth_t> {
       o.object_class = static_cast<int8_t>(k);
       o.beams_on_object = 7 * k;
       o.visible = static_cast<int8_t>(k);
+      o.kind = static_cast<int8_t>(k == 0 ? slammtt_msgs::object_truth_t::KIND_POST
+                                          : slammtt_msgs::object_truth_t::KIND_PERSON);
+      o.parent_id = -1;
       m.objects.push_back(o);
+    }
+    m.num_segments = 2;
+    for (int k = 0; k < m.num_segments; ++k) {
+      slammtt_msgs::segment_truth_t g{};
+      g.id = 200 + k;
+      g.kind = slammtt_msgs::segment_truth_t::KIND_WALL;
+      g.x0_m = -1.0;
+      g.y0_m = 2.0 * k;
+      g.x1_m = 4.0;
+      g.y1_m = 2.0 * k + 0.5;
+      g.beams_on_segment = 30 + k;
+      m.segments.push_back(g);
     }
     return m;
   }
   static std::vector<CountField> Counts(const slammtt_msgs::ground_truth_t& m) {
     // after utime and the robot's x, y, heading, linear and angular velocity
-    return {{"num_objects", kFingerprint + 8 + 5 * 8, m.num_objects}};
+    const size_t objects_at = kFingerprint + 8 + 5 * 8;
+    return {{"num_objects", objects_at, m.num_objects},
+            {"num_segments", objects_at + 4 + static_cast<size_t>(m.num_objects) * 63,
+             m.num_segments}};
   }
   static bool ArraysMatchCounts(const slammtt_msgs::ground_truth_t& m) {
-    return m.num_objects >= 0 && m.objects.size() == static_cast<size_t>(m.num_objects);
+    return m.num_objects >= 0 && m.objects.size() == static_cast<size_t>(m.num_objects) &&
+           m.num_segments >= 0 && m.segments.size() == static_cast<size_t>(m.num_segments);
   }
 };
 
@@ -373,13 +429,35 @@ struct Sample<slammtt_msgs::estimator_status_t> {
   static bool ArraysMatchCounts(const slammtt_msgs::estimator_status_t&) { return true; }
 };
 
+template <>
+struct Sample<slammtt_msgs::leg_labels_t> {
+  static slammtt_msgs::leg_labels_t Make() {
+    slammtt_msgs::leg_labels_t m{};
+    m.utime = 1700000001000000;
+    m.num_legs = 3;
+    for (int k = 0; k < m.num_legs; ++k) {
+      m.x_m.push_back(1.0 + 0.5 * k);
+      m.y_m.push_back(-0.25 * k);
+    }
+    return m;
+  }
+  static std::vector<CountField> Counts(const slammtt_msgs::leg_labels_t& m) {
+    return {{"num_legs", kFingerprint + 8, m.num_legs}};  // after utime
+  }
+  static bool ArraysMatchCounts(const slammtt_msgs::leg_labels_t& m) {
+    const size_t n = static_cast<size_t>(m.num_legs);
+    return m.num_legs >= 0 && m.x_m.size() == n && m.y_m.size() == n;
+  }
+};
+
 // Every type with a Sample above, for the typed tests of the checks and of the fuzzer: a new
 // type is added here once.
 using SampledTypes =
     ::testing::Types<slammtt_msgs::laser_scan_t, slammtt_msgs::features_t,
                      slammtt_msgs::ground_truth_t, slammtt_msgs::tracks_t, slammtt_msgs::map_t,
                      slammtt_msgs::stage_timing_t, slammtt_msgs::lidar_status_t,
-                     slammtt_msgs::base_status_t, slammtt_msgs::estimator_status_t>;
+                     slammtt_msgs::base_status_t, slammtt_msgs::estimator_status_t,
+                     slammtt_msgs::leg_labels_t>;
 
 // Names each typed test after its message type ("laser_scan_t") instead of a number.
 class SampledTypeNames {

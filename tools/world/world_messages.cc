@@ -41,6 +41,9 @@ slammtt_msgs::ground_truth_t ToGroundTruthMessage(const TruthSnapshot& truth,
                                       : slammtt_msgs::object_truth_t::CLASS_MOVING;
     object.beams_on_object = o.beams_on_object;
     object.visible = o.visible;
+    object.kind = o.is_static ? slammtt_msgs::object_truth_t::KIND_POST
+                              : slammtt_msgs::object_truth_t::KIND_DISC;
+    object.parent_id = -1;
     msg.objects.push_back(object);
   }
   return msg;
