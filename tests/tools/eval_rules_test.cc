@@ -21,6 +21,7 @@
 #include "tools/eval/eval_log.h"
 #include "tools/eval/evaluation.h"
 #include "tools/eval/report_json.h"
+#include "tools/plots/eval_plots.h"
 
 namespace slammtt {
 namespace {
@@ -193,6 +194,110 @@ TEST(EvalVisibilityTest, TwoBeamsAreNotVisibleInAScanLog) {
   EXPECT_EQ(r2.tracking->clear_mot.num_truth, 8);
   EXPECT_DOUBLE_EQ(*r2.tracking->clear_mot.mota, 0.75);
   EXPECT_EQ(r2.map->num_static_truth, 1);
+}
+
+// A person on two legs (KIND_PERSON 20 with legs 21 and 22) walks at 1 m/s, tracked by 120 at
+// every scan. Its legs are hit by 2 + 2 beams at scans 0-1 (4 beams on the person, but no leg
+// has the 3 a cluster needs: not visible) and by 1 + 4 beams at scans 2-3 (visible). So the
+// truth set is {20} at scans 2-3: 2 matches, and the track at scans 0-1 coasts on an existing
+// but invisible person: don't care. The legs are never objects of their own.
+Obj Leg(int64_t id, int64_t person, double x, double y, int beams) {
+  Obj o = Truth(id, x, y, true, 1.0, beams, beams > 0);
+  o.radius_m = 0.06;
+  o.kind = Obj::KIND_LEG;
+  o.parent_id = person;
+  return o;
+}
+
+Obj Person(int64_t id, double x, double y, int beams) {
+  Obj o = Truth(id, x, y, true, 1.0, beams, beams > 0);
+  o.kind = Obj::KIND_PERSON;
+  o.parent_id = -1;
+  return o;
+}
+
+TEST(EvalPeopleTest, APersonIsVisibleWhenOneLegHasTheBeamsOfACluster) {
+  testing::TempDir dir;
+  LogWriter log(dir.File("legs.lcm"));
+  for (int k = 0; k < 4; ++k) {
+    const double x = 5.0 + 0.125 * k;
+    const int a = k < 2 ? 2 : 1;
+    const int b = k < 2 ? 2 : 4;
+    WriteScan(&log, k,
+              {Person(20, x, 1, a + b), Leg(21, 20, x, 1.1, a), Leg(22, 20, x, 0.9, b)},
+              {Track(120, x, 1, Trk::CLASS_MOVING)}, true);
+  }
+  log.Commit();
+  EvalInput input;
+  const EvaluationReport r = EvaluateFile(dir.File("legs.lcm"), EvalOptions(), &input);
+  ASSERT_EQ(input.truth.size(), 4u);
+  for (const TruthScan& scan : input.truth) {
+    ASSERT_EQ(scan.objects.size(), 1u);  // the legs are folded into the person
+    EXPECT_EQ(scan.objects[0].id, 20);
+    EXPECT_EQ(scan.objects[0].kind, TruthKind::kPerson);
+  }
+  EXPECT_EQ(input.truth[0].objects[0].beams_on_object, 2);  // the better leg, not the sum
+  EXPECT_EQ(input.truth[3].objects[0].beams_on_object, 4);
+  ASSERT_TRUE(r.tracking.has_value());
+  const ClearMotSummary& c = r.tracking->clear_mot;
+  EXPECT_EQ(c.num_truth, 2);
+  EXPECT_EQ(c.num_matches, 2);
+  EXPECT_EQ(c.num_false_positives, 0);
+  EXPECT_EQ(c.num_dont_care, 2);
+  EXPECT_DOUBLE_EQ(*c.mota, 1.0);
+}
+
+TEST(EvalPeopleTest, ALegWithoutItsPersonRejectsTheScan) {
+  testing::TempDir dir;
+  LogWriter log(dir.File("orphan.lcm"));
+  WriteScan(&log, 0, {Person(20, 5, 1, 6), Leg(21, 20, 5, 1.1, 3), Leg(22, 20, 5, 0.9, 3)}, {},
+            true);
+  WriteScan(&log, 1, {Person(20, 5, 1, 3), Leg(21, 99, 5, 1.1, 3)}, {}, true);
+  log.Commit();
+  LogReadResult read;
+  const EvalInput input = ReadEvalInput(dir.File("orphan.lcm"), Channels(), &read);
+  EXPECT_EQ(input.truth.size(), 1u);
+  EXPECT_EQ(input.rejected.at("ground_truth"), 1);
+}
+
+TEST(EvalPeopleTest, WallsAreReadDrawnAndNeverPartOfThePointMap) {
+  testing::TempDir dir;
+  LogWriter log(dir.File("walls.lcm"));
+  for (int k = 0; k < 2; ++k) {
+    slammtt_msgs::ground_truth_t gt{};
+    gt.utime = At(k);
+    gt.objects = {Truth(1, 3, 3, false, 0.0, 5, true)};
+    gt.objects[0].kind = Obj::KIND_POST;
+    gt.num_objects = 1;
+    slammtt_msgs::segment_truth_t wall{};
+    wall.id = 7;
+    wall.kind = slammtt_msgs::segment_truth_t::KIND_WALL;
+    wall.x0_m = -2.0;
+    wall.y0_m = 4.0;
+    wall.x1_m = 6.0;
+    wall.y1_m = 4.0;
+    wall.beams_on_segment = 40;
+    gt.segments = {wall};
+    gt.num_segments = 1;
+    log.WriteMessage(gt.utime, "GROUND_TRUTH", gt);
+    slammtt_msgs::pose_t pose{};
+    pose.utime = At(k);
+    log.WriteMessage(pose.utime, "POSE", pose);
+  }
+  slammtt_msgs::map_t map{};
+  map.utime = At(1);
+  log.WriteMessage(map.utime, "MAP", map);
+  log.Commit();
+  EvalInput input;
+  const EvaluationReport r = EvaluateFile(dir.File("walls.lcm"), EvalOptions(), &input);
+  ASSERT_EQ(input.static_segments.size(), 1u);
+  EXPECT_EQ(input.static_segments[0].kind, TruthKind::kWall);
+  EXPECT_EQ(input.static_segments[0].to_m, Eigen::Vector2d(6.0, 4.0));
+  ASSERT_TRUE(r.map.has_value());
+  EXPECT_EQ(r.map->num_static_truth, 1);  // the post; the wall is no point landmark
+  const std::string map_svg = MapSvg(r);
+  EXPECT_NE(map_svg.find("walls (truth)"), std::string::npos);
+  EXPECT_EQ(MapSvg(Evaluate(input, EvalOptions())), map_svg);
 }
 
 TEST(EvalVisibilityTest, ANegativeBeamCountRejectsTheScan) {

@@ -16,6 +16,14 @@
 
 namespace slammtt {
 
+// What a ground-truth object is (object_truth_t / segment_truth_t KIND_*). kUnspecified: a log
+// that does not say (kind 0); such objects are scored by their class alone.
+enum class TruthKind { kUnspecified, kWall, kFurniture, kPost, kDisc, kPerson };
+
+// A compact object or a person. The legs of a person are not objects of their own: they are
+// folded into their person (eval_log.h), whose beams_on_object is then the beams on its
+// better-seen leg, so that "visible" means what the segmenter needs: a cluster of min_beams
+// points on one leg.
 struct TruthObjectSample {
   int64_t id = 0;
   Eigen::Vector2d position_m = Eigen::Vector2d::Zero();  // world frame
@@ -26,6 +34,15 @@ struct TruthObjectSample {
   // rule for a log with LASER_SCAN is beams_on_object >= EvalOptions::min_beams (evaluation.h).
   bool visible = false;
   int beams_on_object = 0;  // laser beams whose first hit is this object (>= 0)
+  TruthKind kind = TruthKind::kUnspecified;
+};
+
+// A straight static surface of the world (a wall, a furniture side), world frame.
+struct TruthSegment {
+  int64_t id = 0;
+  TruthKind kind = TruthKind::kWall;
+  Eigen::Vector2d from_m = Eigen::Vector2d::Zero();
+  Eigen::Vector2d to_m = Eigen::Vector2d::Zero();
 };
 
 // GROUND_TRUTH at one scan time.
@@ -58,6 +75,9 @@ struct LandmarkSample {
 struct EvalInput {
   std::string source;                 // the log's path, for reports
   std::vector<TruthScan> truth;       // sorted by utime, unique utimes
+  // The world's straight static surfaces, from the first accepted GROUND_TRUTH that has any
+  // (they do not move). Not part of the point map's truth: for pictures and line scoring.
+  std::vector<TruthSegment> static_segments;
   std::vector<TimedPose> odometry;    // odometry frame, sorted, unique
   std::vector<TimedPose> estimate;    // POSE, map frame, sorted, unique
   std::vector<TrackScan> tracks;      // sorted, unique

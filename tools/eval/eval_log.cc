@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
+#include <set>
 #include <string>
 #include <stdexcept>
 #include <system_error>
@@ -53,6 +55,63 @@ int64_t SortUnique(std::vector<T>* items) {
   return dropped;
 }
 
+using Truth = slammtt_msgs::object_truth_t;
+
+bool KnownKind(int8_t kind) { return kind >= 0 && kind <= Truth::KIND_LEG; }
+
+TruthKind ToTruthKind(int8_t kind) {
+  switch (kind) {
+    case Truth::KIND_WALL: return TruthKind::kWall;
+    case Truth::KIND_FURNITURE: return TruthKind::kFurniture;
+    case Truth::KIND_POST: return TruthKind::kPost;
+    case Truth::KIND_DISC: return TruthKind::kDisc;
+    case Truth::KIND_PERSON: return TruthKind::kPerson;
+    default: return TruthKind::kUnspecified;
+  }
+}
+
+// One GROUND_TRUTH message as a TruthScan (eval_log.h). False when anything in it is unusable:
+// a non-finite or absurd number, an unknown class or kind, a negative beam count, a repeated id,
+// a leg whose person is not in the message, a wall or furniture kind on a compact object.
+bool ReadTruthScan(const slammtt_msgs::ground_truth_t& msg, TruthScan* scan,
+                   std::vector<TruthSegment>* segments) {
+  bool ok = ValidUtime(msg.utime) && Finite({msg.robot_x_m, msg.robot_y_m, msg.robot_heading_rad});
+  scan->utime = msg.utime;
+  scan->robot = Pose2{msg.robot_x_m, msg.robot_y_m, WrapAngle(msg.robot_heading_rad)};
+  std::map<int64_t, int> leg_beams;  // person id -> beams on its better-seen leg
+  std::set<int64_t> ids;
+  for (const auto& o : msg.objects) {
+    ok = ok && Finite({o.x_m, o.y_m, o.vx_mps, o.vy_mps, o.radius_m}) &&
+         (o.object_class == Truth::CLASS_STATIC || o.object_class == Truth::CLASS_MOVING) &&
+         o.beams_on_object >= 0 && KnownKind(o.kind) && o.kind != Truth::KIND_WALL &&
+         ids.insert(o.id).second;
+    if (o.kind == Truth::KIND_LEG) {
+      int& beams = leg_beams[o.parent_id];
+      beams = std::max(beams, o.beams_on_object);
+      continue;
+    }
+    scan->objects.push_back(TruthObjectSample{
+        o.id, Eigen::Vector2d(o.x_m, o.y_m), Eigen::Vector2d(o.vx_mps, o.vy_mps),
+        o.object_class == Truth::CLASS_MOVING, o.visible != 0, o.beams_on_object,
+        ToTruthKind(o.kind)});
+  }
+  for (TruthObjectSample& o : scan->objects) {
+    if (o.kind != TruthKind::kPerson) continue;
+    const auto legs = leg_beams.find(o.id);
+    o.beams_on_object = legs != leg_beams.end() ? legs->second : 0;
+    if (legs != leg_beams.end()) leg_beams.erase(legs);
+  }
+  ok = ok && leg_beams.empty();  // every leg belongs to a person of this message
+  for (const auto& g : msg.segments) {
+    ok = ok && Finite({g.x0_m, g.y0_m, g.x1_m, g.y1_m}) && g.beams_on_segment >= 0 &&
+         (g.kind == slammtt_msgs::segment_truth_t::KIND_WALL ||
+          g.kind == slammtt_msgs::segment_truth_t::KIND_FURNITURE);
+    segments->push_back(TruthSegment{g.id, ToTruthKind(g.kind), Eigen::Vector2d(g.x0_m, g.y0_m),
+                                     Eigen::Vector2d(g.x1_m, g.y1_m)});
+  }
+  return ok;
+}
+
 }  // namespace
 
 EvalInput ReadEvalInput(const std::string& path, const Channels& channels, LogReadResult* read) {
@@ -76,30 +135,13 @@ EvalInput ReadEvalInput(const std::string& path, const Channels& channels, LogRe
         ++input.rejected["ground_truth"];
         return;
       }
-      bool ok = ValidUtime(msg.utime) &&
-                Finite({msg.robot_x_m, msg.robot_y_m, msg.robot_heading_rad});
       TruthScan scan;
-      scan.utime = msg.utime;
-      scan.robot = Pose2{msg.robot_x_m, msg.robot_y_m, WrapAngle(msg.robot_heading_rad)};
-      for (const auto& o : msg.objects) {
-        ok = ok && Finite({o.x_m, o.y_m, o.vx_mps, o.vy_mps, o.radius_m}) &&
-             (o.object_class == slammtt_msgs::object_truth_t::CLASS_STATIC ||
-              o.object_class == slammtt_msgs::object_truth_t::CLASS_MOVING) &&
-             o.beams_on_object >= 0;
-        scan.objects.push_back(TruthObjectSample{
-            o.id, Eigen::Vector2d(o.x_m, o.y_m), Eigen::Vector2d(o.vx_mps, o.vy_mps),
-            o.object_class == slammtt_msgs::object_truth_t::CLASS_MOVING, o.visible != 0,
-            o.beams_on_object});
-      }
-      for (size_t a = 0; ok && a < scan.objects.size(); ++a) {
-        for (size_t b = a + 1; b < scan.objects.size(); ++b) {
-          ok = ok && scan.objects[a].id != scan.objects[b].id;
-        }
-      }
-      if (!ok) {
+      std::vector<TruthSegment> segments;
+      if (!ReadTruthScan(msg, &scan, &segments)) {
         ++input.rejected["ground_truth"];
         return;
       }
+      if (input.static_segments.empty()) input.static_segments = std::move(segments);
       input.truth.push_back(std::move(scan));
     } else if (e.channel == laser_scan_channel) {
       ++input.laser_scans;

@@ -5,6 +5,9 @@
 // or repeats the utime of an earlier one of its channel is rejected and counted
 // (EvalInput::rejected), never used; messages are sorted by utime per channel (a live recording
 // may interleave them). LASER_SCAN messages are only counted (EvalInput::laser_scans).
+// A person's legs (KIND_LEG) are folded into their person (eval_input.h); a leg whose person is
+// not in the same message, an unknown kind or a wall kind on a compact object rejects the
+// GROUND_TRUTH message. The straight static surfaces come from the first accepted message.
 //
 // Also the rest of slammtt-eval's contact with files and configuration: the `eval:` section and
 // writing the report and the pictures.

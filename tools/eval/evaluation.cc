@@ -101,6 +101,7 @@ EvaluationReport Evaluate(const EvalInput& input, const EvalOptions& options) {
     report.notes.push_back("no GROUND_TRUTH in the log: nothing can be scored");
     return report;
   }
+  report.static_segments = input.static_segments;
   report.first_utime = input.truth.front().utime;
   report.last_utime = input.truth.back().utime;
 

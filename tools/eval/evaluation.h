@@ -149,6 +149,7 @@ struct EvaluationReport {
   std::vector<std::vector<Eigen::Vector2d>> mover_paths;  // per moving object, all scans
   std::vector<IdentifiedPoint> static_objects;            // ever visible
   std::vector<IdentifiedPoint> unseen_static_objects;     // never visible
+  std::vector<TruthSegment> static_segments;              // walls and furniture sides
   std::vector<AnchoredLandmark> landmarks;                // final map
   std::vector<TrackPath> track_paths;
 };

@@ -28,6 +28,33 @@ std::vector<Eigen::Vector2d> Points(const std::vector<IdentifiedPoint>& objects)
   return out;
 }
 
+const LineStyle kWallStyle{"#8c6d46", 2.2, "", 0.8};
+const LineStyle kFurnitureStyle{"#c9a66b", 1.6, "", 0.8};
+
+std::vector<Eigen::Vector2d> SegmentEnds(const std::vector<TruthSegment>& segments) {
+  std::vector<Eigen::Vector2d> out;
+  for (const TruthSegment& g : segments) {
+    out.push_back(g.from_m);
+    out.push_back(g.to_m);
+  }
+  return out;
+}
+
+// The true walls and furniture sides under everything else; their legend entries when any.
+void DrawStaticSegments(const EvaluationReport& report, PlotPanel* panel,
+                        std::vector<LegendEntry>* legend) {
+  bool walls = false;
+  bool furniture = false;
+  for (const TruthSegment& g : report.static_segments) {
+    const bool wall = g.kind == TruthKind::kWall;
+    panel->Polyline({g.from_m, g.to_m}, wall ? kWallStyle : kFurnitureStyle);
+    walls = walls || wall;
+    furniture = furniture || !wall;
+  }
+  if (walls) legend->push_back({"walls (truth)", kWallStyle});
+  if (furniture) legend->push_back({"furniture (truth)", kFurnitureStyle});
+}
+
 std::string Subtitle(const EvaluationReport& report) {
   return report.source;
 }
@@ -72,9 +99,11 @@ std::string MapSvg(const EvaluationReport& report) {
   std::vector<Eigen::Vector2d> landmark_points;
   for (const AnchoredLandmark& l : report.landmarks) landmark_points.push_back(l.position_m);
   panel.FitRange({truth, Points(report.static_objects), Points(report.unseen_static_objects),
-                  landmark_points},
+                  landmark_points, SegmentEnds(report.static_segments)},
                  true);
   panel.DrawAxes("Static map (2-sigma ellipses)", "x [m]", "y [m]");
+  std::vector<LegendEntry> segment_legend;
+  DrawStaticSegments(report, &panel, &segment_legend);
   for (const auto& path : report.mover_paths) panel.Polyline(path, kMoverPathStyle, 400);
   const LineStyle robot_path{"#111111", 1.0, "3 3", 0.6};
   panel.Polyline(truth, robot_path);
@@ -99,6 +128,7 @@ std::string MapSvg(const EvaluationReport& report) {
       {"other landmark", other, LegendMark::kDot},
       {"true mover paths", kMoverPathStyle},
       {"robot path (truth)", robot_path}};
+  legend.insert(legend.end(), segment_legend.begin(), segment_legend.end());
   if (!report.unseen_static_objects.empty()) {
     legend.insert(legend.begin() + 1,
                   {"static object never seen", unseen_truth, LegendMark::kCross});
@@ -122,8 +152,11 @@ std::string TracksSvg(const EvaluationReport& report) {
   std::vector<std::vector<Eigen::Vector2d>> sets = report.mover_paths;
   sets.push_back(truth);
   for (const TrackPath& t : report.track_paths) sets.push_back(t.points);
+  sets.push_back(SegmentEnds(report.static_segments));
   panel.FitRange(sets, true);
   panel.DrawAxes("Moving objects: tracks per identity over the true paths", "x [m]", "y [m]");
+  std::vector<LegendEntry> legend;
+  DrawStaticSegments(report, &panel, &legend);
   for (const auto& path : report.mover_paths) panel.Polyline(path, kMoverPathStyle, 600);
   panel.Polyline(truth, LineStyle{"#111111", 1.2, "", 0.8});
   for (const TrackPath& t : report.track_paths) {
@@ -137,11 +170,13 @@ std::string TracksSvg(const EvaluationReport& report) {
     // The identity at the track's last position, so that a switch can be read off the picture.
     panel.Label(t.points.back(), std::to_string(t.id), style.colour);
   }
-  panel.Legend({{"true mover paths", kMoverPathStyle},
-                {"robot (truth)", LineStyle{"#111111", 1.2}},
-                {"confirmed moving track (label: its id), one colour per identity",
-                 LineStyle{"#1f77b4", 1.4}},
-                {"where a track ends", LineStyle{"#1f77b4"}, LegendMark::kDot}});
+  legend.insert(legend.begin(),
+                {{"true mover paths", kMoverPathStyle},
+                 {"robot (truth)", LineStyle{"#111111", 1.2}},
+                 {"confirmed moving track (label: its id), one colour per identity",
+                  LineStyle{"#1f77b4", 1.4}},
+                 {"where a track ends", LineStyle{"#1f77b4"}, LegendMark::kDot}});
+  panel.Legend(legend);
   if (!report.tracking) panel.Message("no TRACKS in the log");
   std::string caption = Subtitle(report);
   if (report.tracking) {
