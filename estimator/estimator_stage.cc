@@ -56,7 +56,58 @@ int8_t ClassCode(ObjectClass c) {
   return slammtt_msgs::track_t::CLASS_UNDECIDED;
 }
 
+FeatureReading PointReading(const slammtt_msgs::feature_t& f) {
+  FeatureReading reading;
+  reading.range_m = f.range_m;
+  reading.bearing_rad = f.bearing_rad;
+  reading.range_var_m2 = f.range_var_m2;
+  reading.bearing_var_rad2 = f.bearing_var_rad2;
+  reading.range_bearing_cov_m_rad = f.range_bearing_cov_m_rad;
+  reading.width_m = f.width_m;
+  return reading;
+}
+
+// Position of a point feature in the sensor frame.
+Eigen::Vector2d SensorPoint(const slammtt_msgs::feature_t& f) {
+  return f.range_m * Eigen::Vector2d(std::cos(f.bearing_rad), std::sin(f.bearing_rad));
+}
+
 }  // namespace
+
+ScanInput ScanInputFromFeatures(const slammtt_msgs::features_t& message, bool person_features) {
+  ScanInput scan;
+  scan.utime = message.utime;
+  const size_t num_points = message.features.size();
+  std::vector<bool> is_leg(num_points, false);
+  if (person_features) {
+    for (const slammtt_msgs::person_feature_t& p : message.people) {
+      FeatureReading reading;
+      reading.range_m = p.range_m;
+      reading.bearing_rad = p.bearing_rad;
+      reading.range_var_m2 = p.range_var_m2;
+      reading.bearing_var_rad2 = p.bearing_var_rad2;
+      reading.range_bearing_cov_m_rad = p.range_bearing_cov_m_rad;
+      std::vector<const slammtt_msgs::feature_t*> legs;
+      for (int k = 0; k < 2 && k < p.num_legs; ++k) {
+        const int32_t index = p.leg_index[k];
+        if (index < 0 || static_cast<size_t>(index) >= num_points || is_leg[index]) continue;
+        is_leg[static_cast<size_t>(index)] = true;
+        legs.push_back(&message.features[static_cast<size_t>(index)]);
+      }
+      if (legs.size() == 2) {
+        reading.width_m = (SensorPoint(*legs[0]) - SensorPoint(*legs[1])).norm() +
+                          0.5 * (legs[0]->width_m + legs[1]->width_m);
+      } else if (legs.size() == 1) {
+        reading.width_m = legs[0]->width_m;
+      }
+      scan.features.push_back(reading);
+    }
+  }
+  for (size_t k = 0; k < num_points; ++k) {
+    if (!is_leg[k]) scan.features.push_back(PointReading(message.features[k]));
+  }
+  return scan;
+}
 
 EstimatorStageOptions ReadEstimatorOptions(const Config& s) {
   EstimatorStageOptions stage;
@@ -71,6 +122,7 @@ EstimatorStageOptions ReadEstimatorOptions(const Config& s) {
   } else {
     s.FailKey("mode", "expected ml_ransac, static_nn or ransac_all_pairs, got '" + mode + "'");
   }
+  stage.person_features = s.GetBool("person_features", stage.person_features);
   const int64_t seed = s.GetInt("seed", 1);
   if (seed < 0) s.FailKey("seed", "must not be negative");
   stage.seed = static_cast<uint64_t>(seed);
@@ -168,6 +220,7 @@ EstimatorStageOptions ReadEstimatorOptions(const Config& s) {
 EstimatorStage::EstimatorStage(const EstimatorStageOptions& options, const Channels& channels)
     : estimator_(options.estimator),
       rng_(options.seed),
+      person_features_(options.person_features),
       odometry_channel_(channels.Get("odometry")),
       features_channel_(channels.Get("features")),
       pose_channel_(channels.Get("pose")),
@@ -219,19 +272,7 @@ void EstimatorStage::HandleFeatures(const void* data, int size, MessageSink& out
     return;
   }
   StageTimer timer("estimator", message.utime);
-  ScanInput scan;
-  scan.utime = message.utime;
-  scan.features.reserve(message.features.size());
-  for (const slammtt_msgs::feature_t& f : message.features) {
-    FeatureReading reading;
-    reading.range_m = f.range_m;
-    reading.bearing_rad = f.bearing_rad;
-    reading.range_var_m2 = f.range_var_m2;
-    reading.bearing_var_rad2 = f.bearing_var_rad2;
-    reading.range_bearing_cov_m_rad = f.range_bearing_cov_m_rad;
-    reading.width_m = f.width_m;
-    scan.features.push_back(reading);
-  }
+  const ScanInput scan = ScanInputFromFeatures(message, person_features_);
   TimerObserver observer(&timer);
   const ScanResult result = estimator_.ProcessScan(scan, &rng_, &observer);
   if (!result.processed) {
@@ -239,6 +280,7 @@ void EstimatorStage::HandleFeatures(const void* data, int size, MessageSink& out
     return;
   }
   timer.Count("features", result.counts.features);
+  timer.Count("lines_unused", message.num_lines);
   timer.Count("objects", static_cast<int64_t>(result.objects.size()));
   timer.Count("hypotheses", result.counts.hypotheses);
   timer.Count("updates", result.counts.level1_updates + result.counts.level2_updates +

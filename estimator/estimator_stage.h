@@ -31,13 +31,25 @@
 #include "runtime/config.h"
 #include "runtime/process.h"
 #include "runtime/stage.h"
+#include "slammtt_msgs/features_t.hpp"
 
 namespace slammtt {
 
 struct EstimatorStageOptions {
   EstimatorOptions estimator;
   uint64_t seed = 1;  // estimator.seed: seeds the RANSAC generator
+  // estimator.person_features: a person feature of FEATURES becomes one measurement (its
+  // centre and covariance) in place of the point features of its legs, so that a person on two
+  // legs is one object to track, not two. false: every point feature is a measurement and
+  // person features are ignored. Line features are not used by this estimator (counted).
+  bool person_features = true;
 };
+
+// The measurements of one FEATURES message (EstimatorStageOptions::person_features). A person
+// measurement's width is the span of its legs (the distance between their centres plus their
+// mean width; one leg: its width). A leg_index out of range or naming a leg of another person
+// is ignored (the index, not the person). Pure: exposed for tests.
+ScanInput ScanInputFromFeatures(const slammtt_msgs::features_t& message, bool person_features);
 
 // Reads the `estimator:` section of the stack configuration (keys and defaults in
 // docs/estimator.md); absent keys keep the defaults of EstimatorOptions. Throws ConfigError
@@ -70,6 +82,7 @@ class EstimatorStage : public Stage {
 
   Estimator estimator_;
   std::mt19937_64 rng_;
+  bool person_features_;
   std::string odometry_channel_;
   std::string features_channel_;
   std::string pose_channel_;

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <tuple>
 
 #include "estimator/estimator_stage.h"
 #include "slammtt_msgs/estimator_status_t.hpp"
@@ -112,6 +113,68 @@ TEST(EstimatorOptionsTest, MistakesNameTheKey) {
   EXPECT_NE(error("estimator:\n  max_static_updates_per_scan: -1\n")
                 .find("max_static_updates_per_scan"),
             std::string::npos);
+}
+
+// Two legs of a person at (2, +-0.1) in the sensor frame, a post at 4 m ahead, and a person
+// feature pairing the legs: one person measurement and the post; without person features, the
+// three points.
+slammtt_msgs::features_t PersonAndPost() {
+  slammtt_msgs::features_t m{};
+  m.utime = 1000;
+  for (const auto& [x, y, width] : {std::tuple{2.0, 0.1, 0.1}, std::tuple{2.0, -0.1, 0.12},
+                                    std::tuple{4.0, 0.0, 0.2}}) {
+    slammtt_msgs::feature_t f{};
+    f.range_m = std::hypot(x, y);
+    f.bearing_rad = std::atan2(y, x);
+    f.width_m = width;
+    f.range_var_m2 = 0.0004;
+    f.bearing_var_rad2 = 0.0001;
+    m.features.push_back(f);
+  }
+  m.num_features = 3;
+  slammtt_msgs::person_feature_t p{};
+  p.range_m = 2.0;
+  p.bearing_rad = 0.0;
+  p.range_var_m2 = 0.01;
+  p.bearing_var_rad2 = 0.002;
+  p.num_legs = 2;
+  p.leg_index[0] = 0;
+  p.leg_index[1] = 1;
+  p.confidence = 0.9;
+  m.people.push_back(p);
+  m.num_people = 1;
+  return m;
+}
+
+TEST(ScanInputFromFeaturesTest, APersonReplacesItsLegs) {
+  const ScanInput scan = ScanInputFromFeatures(PersonAndPost(), true);
+  ASSERT_EQ(scan.features.size(), 2u);
+  EXPECT_DOUBLE_EQ(scan.features[0].range_m, 2.0);
+  EXPECT_DOUBLE_EQ(scan.features[0].range_var_m2, 0.01);
+  EXPECT_NEAR(scan.features[0].width_m, 0.2 + 0.11, 1e-12);  // leg span + mean leg width
+  EXPECT_DOUBLE_EQ(scan.features[1].range_m, 4.0);
+  const ScanInput legs = ScanInputFromFeatures(PersonAndPost(), false);
+  ASSERT_EQ(legs.features.size(), 3u);
+  EXPECT_NEAR(legs.features[0].bearing_rad, std::atan2(0.1, 2.0), 1e-12);
+}
+
+TEST(ScanInputFromFeaturesTest, BadOrSharedLegIndicesAreIgnored) {
+  slammtt_msgs::features_t m = PersonAndPost();
+  slammtt_msgs::person_feature_t second = m.people[0];
+  second.range_m = 3.0;
+  second.num_legs = 2;
+  second.leg_index[0] = 1;   // already the first person's leg
+  second.leg_index[1] = 17;  // no such feature
+  m.people.push_back(second);
+  m.people[0].leg_index[1] = -5;  // the first person keeps leg 0 only
+  m.num_people = 2;
+  const ScanInput scan = ScanInputFromFeatures(m, true);
+  // Person 1 (leg 0), person 2 (leg 1), the post: every point used once.
+  ASSERT_EQ(scan.features.size(), 3u);
+  EXPECT_DOUBLE_EQ(scan.features[0].width_m, 0.1);
+  EXPECT_DOUBLE_EQ(scan.features[1].range_m, 3.0);
+  EXPECT_DOUBLE_EQ(scan.features[1].width_m, 0.12);
+  EXPECT_DOUBLE_EQ(scan.features[2].range_m, 4.0);
 }
 
 TEST(EstimatorStageTest, PublishesEveryOutputWithTheFeaturesUtime) {
