@@ -92,8 +92,14 @@ TEST(EvaluationTest, HandBuiltLogGivesHandComputedFigures) {
   EXPECT_NEAR(r.landmarks[0].position_m.x(), 5.1, 1e-12);
   EXPECT_NEAR(r.landmarks[0].covariance(1, 1), 0.09, 1e-12);  // rotated by -90 degrees
 
-  // The JSON carries exactly the top-level keys the issue lists (written out here, not taken
-  // from the code under test) plus the detail.
+  // IDF1 on the same truth and scored tracks: 9 true detections (M1 x 5, M2 x 4), 9 scored
+  // track detections (100 x 4, 102, 101 x 3 (its coasting scan excused), 400); M1 <-> 100 (4
+  // scans), M2 <-> 101 (3): IDTP 7, IDF1 = 14 / 18.
+  EXPECT_EQ(r.tracking->identity.id_true_positives, 7);
+  EXPECT_NEAR(*r.tracking->identity.idf1, 14.0 / 18.0, 1e-12);
+
+  // The JSON carries exactly the top-level keys the issues list (written out here, not taken
+  // from the code under test: issue 5's, plus IDF1 and HOTA of issue 16) plus the detail.
   const nlohmann::json j = ReportToJson(input, r);
   std::vector<std::string> keys;
   for (auto it = j.begin(); it != j.end(); ++it) keys.push_back(it.key());
@@ -101,7 +107,7 @@ TEST(EvaluationTest, HandBuiltLogGivesHandComputedFigures) {
       "ate_rmse_m",     "odometry_ate_rmse_m",  "ospa_mean_m",    "gospa_mean_m",
       "mota",           "motp_m",               "id_switches",    "fragmentations",
       "movers_in_static_map", "landmark_rmse_m", "static_recall", "classification_accuracy",
-      "detail"};
+      "idf1",           "hota",                 "detail"};
   std::sort(expected.begin(), expected.end());
   EXPECT_EQ(keys, expected);  // nlohmann::json iterates objects in key order
   std::vector<std::string> listed = TopLevelMetricKeys();

@@ -201,6 +201,7 @@ EvaluationReport Evaluate(const EvalInput& input, const EvalOptions& options) {
   const int64_t window_end = input.tracks.back().utime;
   TrackingResult tracking;
   ClearMotAccumulator clear_mot(options.match_threshold_m);
+  IdentityMetricsAccumulator identity(options.match_threshold_m);
   ClassificationAccumulator classification(options.match_threshold_m);
   std::map<int64_t, TrackPath> paths;
   std::set<int64_t> movers_few_beams;
@@ -275,10 +276,14 @@ EvaluationReport Evaluate(const EvalInput& input, const EvalOptions& options) {
                                     frame.dont_care_hypotheses.end());
     PointSet truth_points;
     PointSet track_points;
+    std::vector<IdentifiedPoint> scored_hypotheses;
     for (const IdentifiedPoint& p : truth_movers) truth_points.push_back(p.position_m);
     for (const IdentifiedPoint& h : hypotheses) {
-      if (excused.count(h.id) == 0) track_points.push_back(h.position_m);
+      if (excused.count(h.id) != 0) continue;
+      track_points.push_back(h.position_m);
+      scored_hypotheses.push_back(h);
     }
+    identity.AddFrame(truth_movers, scored_hypotheses);
     const OspaResult ospa =
         Ospa(truth_points, track_points, options.ospa_cutoff_m, options.ospa_order);
     const GospaResult gospa = Gospa(truth_points, track_points, options.ospa_cutoff_m,
@@ -309,6 +314,7 @@ EvaluationReport Evaluate(const EvalInput& input, const EvalOptions& options) {
   tracking.ospa_cardinality_mean_m = ospa_card_sum / n;
   tracking.gospa_mean_m = gospa_sum / n;
   tracking.clear_mot = clear_mot.Summary();
+  tracking.identity = identity.Scores();
   tracking.movers_few_beams = static_cast<int64_t>(movers_few_beams.size());
   tracking.movers_standing = static_cast<int64_t>(movers_standing.size());
   if (tracking.scans_without_tracks > 0) {

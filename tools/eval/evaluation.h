@@ -34,6 +34,7 @@
 #include "tools/eval/eval_input.h"
 #include "tools/metrics/classification_score.h"
 #include "tools/metrics/clear_mot.h"
+#include "tools/metrics/identity_metrics.h"
 #include "tools/metrics/map_score.h"
 #include "tools/metrics/trajectory_error.h"
 
@@ -92,6 +93,9 @@ struct FragmentationEvent {
 struct TrackingResult {
   std::vector<TrackingScan> scans;
   ClearMotSummary clear_mot;
+  // IDF1 and HOTA (identity_metrics.h) on the same truth set and the same tracks, excused
+  // tracks left out.
+  IdentityScores identity;
   std::vector<IdentitySwitchEvent> identity_switches;
   std::vector<FragmentationEvent> fragmentations;
   // What the rules took out of the truth set over the scored scans, as (object, scan) pairs and

@@ -65,6 +65,7 @@ const std::vector<std::string>& TopLevelMetricKeys() {
   static const std::vector<std::string> keys = {
       "ate_rmse_m",      "odometry_ate_rmse_m",  "ospa_mean_m",     "gospa_mean_m",
       "mota",            "motp_m",               "id_switches",     "fragmentations",
+      "idf1",            "hota",
       "movers_in_static_map", "landmark_rmse_m", "static_recall",   "classification_accuracy"};
   return keys;
 }
@@ -79,6 +80,8 @@ json ReportToJson(const EvalInput& input, const EvaluationReport& report) {
   j["motp_m"] = report.tracking ? OrNull(report.tracking->clear_mot.motp_m) : json(nullptr);
   j["id_switches"] =
       report.tracking ? json(report.tracking->clear_mot.num_id_switches) : json(nullptr);
+  j["idf1"] = report.tracking ? OrNull(report.tracking->identity.idf1) : json(nullptr);
+  j["hota"] = report.tracking ? OrNull(report.tracking->identity.hota) : json(nullptr);
   j["fragmentations"] =
       report.tracking ? json(report.tracking->clear_mot.num_fragmentations) : json(nullptr);
   j["movers_in_static_map"] =
@@ -186,6 +189,16 @@ json ReportToJson(const EvalInput& input, const EvaluationReport& report) {
                        {"dont_care", c.num_dont_care},
                        {"mota", OrNull(c.mota)},
                        {"motp_m", OrNull(c.motp_m)}}},
+        {"identity", {{"idf1", OrNull(t.identity.idf1)},
+                      {"id_precision", OrNull(t.identity.id_precision)},
+                      {"id_recall", OrNull(t.identity.id_recall)},
+                      {"id_true_positives", t.identity.id_true_positives},
+                      {"id_false_positives", t.identity.id_false_positives},
+                      {"id_false_negatives", t.identity.id_false_negatives},
+                      {"hota", OrNull(t.identity.hota)},
+                      {"det_a", OrNull(t.identity.det_a)},
+                      {"ass_a", OrNull(t.identity.ass_a)},
+                      {"loc_a", OrNull(t.identity.loc_a)}}},
         {"dont_care", {{"tracks_on_standing_movers", c.num_dont_care_objects},
                        {"tracks_near_invisible_movers", c.num_dont_care_positions},
                        {"mover_scans_invisible", t.mover_scans_invisible},
@@ -276,7 +289,8 @@ std::string ReportSummaryText(const EvaluationReport& report) {
     out << "OSPA mean " << Fixed(t.ospa_mean_m, 3) << " m, GOSPA mean " << Fixed(t.gospa_mean_m, 3)
         << " m, MOTA " << FixedOr(t.clear_mot.mota, 3) << ", MOTP "
         << FixedOr(t.clear_mot.motp_m, 3, " m") << ", " << t.clear_mot.num_id_switches
-        << " identity switches, " << t.clear_mot.num_fragmentations << " fragmentations";
+        << " identity switches, " << t.clear_mot.num_fragmentations << " fragmentations, IDF1 "
+        << FixedOr(t.identity.idf1, 3) << ", HOTA " << FixedOr(t.identity.hota, 3);
     out << "\n  don't care:     " << t.mover_scans_standing << " mover-scans standing still (<"
         << Fixed(report.options.min_moving_speed_mps, 2) << " m/s), " << t.mover_scans_invisible
         << " invisible";
