@@ -106,5 +106,49 @@ TEST(TrajectoryErrorTest, EmptyInputAndNonFinitePoses) {
   EXPECT_THROW(EvaluateTrajectory({{0, Pose2{}, Pose2{nan, 0, 0}}}), std::invalid_argument);
 }
 
+TEST(TrajectoryErrorTest, LeastSquaresAlignmentUndoesARigidMotionOfTheWholeEstimate) {
+  // The estimate is the truth (a curve) moved by a rigid transform M: the alignment is M^-1 and
+  // the aligned error vanishes, while the first-pair anchoring of a noisy start does not.
+  const Pose2 motion{1.5, -2.0, 0.4};
+  std::vector<PosePair> pairs;
+  for (int k = 0; k < 20; ++k) {
+    const Pose2 truth{0.5 * k, 0.02 * k * k, 0.1 * k};
+    pairs.push_back({k, truth, Compose(motion, truth)});
+  }
+  const Pose2 alignment = LeastSquaresAlignment(pairs);
+  const Pose2 expected = Inverse(motion);
+  EXPECT_NEAR(alignment.x_m, expected.x_m, 1e-9);
+  EXPECT_NEAR(alignment.y_m, expected.y_m, 1e-9);
+  EXPECT_NEAR(alignment.heading_rad, expected.heading_rad, 1e-12);
+  for (PosePair& p : pairs) p.estimate = Compose(alignment, p.estimate);
+  EXPECT_NEAR(EvaluateTrajectory(pairs).max_m, 0.0, 1e-9);
+  // Fewer than two pairs: nothing to fit.
+  const Pose2 none = LeastSquaresAlignment({pairs.front()});
+  EXPECT_EQ(none.x_m, 0.0);
+  EXPECT_EQ(none.heading_rad, 0.0);
+}
+
+TEST(TrajectoryErrorTest, RelativePoseErrorSeesLocalJumpsNotGlobalOffsets) {
+  // Truth along x at 1 m steps. An estimate offset by a rigid transform has no relative error;
+  // one pose displaced by 0.1 m spoils the two steps next to it: 2 of 4 steps at 0.1 m,
+  // RMSE sqrt(2 * 0.01 / 4).
+  std::vector<PosePair> pairs;
+  for (int k = 0; k < 5; ++k) {
+    const Pose2 truth{static_cast<double>(k), 0.0, 0.0};
+    pairs.push_back({k, truth, Compose(Pose2{3.0, 4.0, 1.0}, truth)});
+  }
+  RelativePoseError rpe = EvaluateRelativePoseError(pairs);
+  EXPECT_EQ(rpe.count, 4);
+  EXPECT_NEAR(rpe.translation_rmse_m, 0.0, 1e-12);
+  EXPECT_NEAR(rpe.rotation_rmse_rad, 0.0, 1e-12);
+  for (int k = 0; k < 5; ++k) pairs[k].estimate = pairs[k].truth;
+  pairs[2].estimate.x_m += 0.1;
+  rpe = EvaluateRelativePoseError(pairs);
+  EXPECT_NEAR(rpe.translation_rmse_m, std::sqrt(0.02 / 4), 1e-12);
+  EXPECT_NEAR(rpe.translation_max_m, 0.1, 1e-12);
+  EXPECT_NEAR(rpe.translation_mean_m, 0.05, 1e-12);
+  EXPECT_EQ(EvaluateRelativePoseError({}).count, 0);
+}
+
 }  // namespace
 }  // namespace slammtt

@@ -47,7 +47,11 @@ std::optional<TrajectoryResult> ScorePairs(std::vector<PosePair> pairs) {
   result.anchor_utime = pairs.front().utime;
   result.anchor = AnchorAtFirstPair(&pairs);
   result.error = EvaluateTrajectory(pairs);
+  result.relative_error = EvaluateRelativePoseError(pairs);
   for (const PosePair& p : pairs) result.anchored.push_back({p.utime, p.estimate});
+  result.least_squares_alignment = LeastSquaresAlignment(pairs);  // of the anchored estimate
+  for (PosePair& p : pairs) p.estimate = Compose(result.least_squares_alignment, p.estimate);
+  result.aligned_error = EvaluateTrajectory(pairs);
   return result;
 }
 

@@ -64,6 +64,11 @@ struct TrajectoryResult {
   int64_t anchor_utime = 0;
   TrajectoryError error;
   std::vector<TimedPose> anchored;  // the estimate in the truth frame, at the scored times
+  // For comparison with published figures (trajectory_error.h): ATE after the least-squares
+  // alignment of the whole estimate (evo's --align), and the relative pose error.
+  Pose2 least_squares_alignment;
+  TrajectoryError aligned_error;
+  RelativePoseError relative_error;
 };
 
 struct TrackingScan {

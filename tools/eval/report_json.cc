@@ -44,6 +44,14 @@ json TrajectoryJson(const TrajectoryResult& t) {
           {"final_position_error_m", t.error.final_position_error_m},
           {"final_heading_error_rad", t.error.final_heading_error_rad},
           {"heading_rmse_rad", t.error.heading_rmse_rad},
+          {"aligned", {{"ate_rmse_m", t.aligned_error.rmse_m},
+                       {"ate_mean_m", t.aligned_error.mean_m},
+                       {"ate_max_m", t.aligned_error.max_m}}},
+          {"rpe", {{"pairs", t.relative_error.count},
+                   {"translation_rmse_m", t.relative_error.translation_rmse_m},
+                   {"translation_mean_m", t.relative_error.translation_mean_m},
+                   {"translation_max_m", t.relative_error.translation_max_m},
+                   {"rotation_rmse_rad", t.relative_error.rotation_rmse_rad}}},
           {"per_scan", per_scan}};
 }
 

@@ -43,4 +43,24 @@ TrajectoryError EvaluateTrajectory(const std::vector<PosePair>& pairs);
 // pair coincides exactly. Returns the anchor (identity for an empty input).
 Pose2 AnchorAtFirstPair(std::vector<PosePair>* pairs);
 
+// The rigid transform T that minimises sum |p_truth - T p_estimate|^2 over the pairs' positions
+// (Umeyama, "Least-squares estimation of transformation parameters between two point
+// patterns", IEEE TPAMI 13(4), 1991, without scale, in the plane): what evo's `--align` does,
+// for comparison with published figures. Identity for fewer than 2 pairs; with all estimates at
+// one point, only the translation is fitted.
+Pose2 LeastSquaresAlignment(const std::vector<PosePair>& pairs);
+
+// Relative pose error over consecutive pairs (Sturm et al., IROS 2012, section VI.A, with a
+// step of one pair; evo_rpe's default delta of 1): for each i,
+// E_i = (Q_i^-1 Q_i+1)^-1 (P_i^-1 P_i+1), Q the truth and P the estimate; the translation norm
+// and the wrapped angle of E_i. Independent of any anchoring or alignment.
+struct RelativePoseError {
+  int64_t count = 0;
+  double translation_rmse_m = 0.0;
+  double translation_mean_m = 0.0;
+  double translation_max_m = 0.0;
+  double rotation_rmse_rad = 0.0;
+};
+RelativePoseError EvaluateRelativePoseError(const std::vector<PosePair>& pairs);
+
 }  // namespace slammtt
