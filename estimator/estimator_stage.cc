@@ -280,12 +280,12 @@ void EstimatorStage::HandleFeatures(const void* data, int size, MessageSink& out
     return;
   }
   timer.Count("features", result.counts.features);
-  timer.Count("lines_unused", message.num_lines);
   timer.Count("objects", static_cast<int64_t>(result.objects.size()));
   timer.Count("hypotheses", result.counts.hypotheses);
   timer.Count("updates", result.counts.level1_updates + result.counts.level2_updates +
                              result.counts.level3_updates);
   timer.Count("updates_skipped", result.counts.static_updates_skipped);
+  timer.Count("lines_unused", message.num_lines);
   const slammtt_msgs::stage_timing_t timing = timer.Finish();
 
   slammtt_msgs::pose_t pose;
