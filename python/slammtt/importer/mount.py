@@ -140,8 +140,8 @@ class TransformTree:
                                       "one is used")
             self._static[key] = t
         else:
-            samples = self._dynamic[key]
-            if len(samples) < 2 or not samples[-1].close_to(t):
+            samples = self._dynamic[key]   # the distinct values seen, two at most
+            if not samples or (len(samples) == 1 and not samples[0].close_to(t)):
                 samples.append(t)
 
     def frames(self):
