@@ -14,8 +14,10 @@ BIN_DIR = pathlib.Path(os.environ.get("SLAMMTT_BIN_DIR", SOURCE_DIR / "build" / 
 FIXTURE_DIR = SOURCE_DIR / "tests" / "data" / "leg_tracker"
 POSITIVE_FIXTURE = FIXTURE_DIR / "positive_1_extracted_first20.bag"
 DEMO_FIXTURE = FIXTURE_DIR / "demo_stationary_first3s.bag"
-# ../shared relative to the checkout: absent on a clean clone (CI may not have it).
-SHARED_REAL = SOURCE_DIR.parent / "shared" / "data" / "real"
+# ../shared relative to the checkout (SLAMMTT_SHARED_DIR overrides it, e.g. for a git worktree
+# elsewhere): absent on a clean clone, where the tests on real recordings are skipped.
+SHARED_DIR = pathlib.Path(os.environ.get("SLAMMTT_SHARED_DIR", SOURCE_DIR.parent / "shared"))
+SHARED_REAL = SHARED_DIR / "data" / "real"
 
 
 def run_import(*args):
