@@ -99,3 +99,14 @@ def test_a_file_without_any_line_of_the_format_fails(tmp_path):
                                 "least 707 expected)")
     assert [l for l in err.splitlines() if "error" in l] == err.strip().splitlines()[-1:]
     assert not (tmp_path / "x.lcm").exists()
+
+
+def test_a_line_out_of_time_order_is_refused(tmp_path):
+    path = tmp_path / "order.dat"
+    path.write_text(line(2_000_000, 0, 0, ranges()) + line(1_000_000, 5, 5, ranges()) +
+                    line(2_000_000, 6, 6, ranges()) + line(2_100_000, 7, 7, ranges()))
+    refusals = breezyslam.Refusals()
+    readings = list(breezyslam.read_readings(path, refusals))
+    assert [r.line_number for r in readings] == [1, 4]
+    assert refusals.count == 2
+    assert refusals.first == "line 2: timestamp 1000000 not after 2000000"
