@@ -1,6 +1,6 @@
 #!/bin/sh
 # Makes the venv of slammtt's Python tools (slammtt-import, the log reader, their tests):
-#   scripts/python-env.sh [VENV]        (default: build/venv)
+#   scripts/python-env.sh [VENV]        (default: build/venv of the checkout)
 # 1. python3 -m venv VENV (python3 and python3-venv from Debian if missing; $PYTHON chooses
 #    another interpreter, 3.10 or newer);
 # 2. the pinned PyPI versions of python/requirements.txt (again only when that file changed);
@@ -11,29 +11,35 @@
 # Nothing else of the repository needs the venv; build/bin/slammtt-import (written by CMake)
 # runs VENV/bin/slammtt-import.
 set -eu
+venv=${1:-}
+case "$venv" in
+  "") ;;
+  /*) ;;
+  *) venv="$(pwd)/$venv" ;;   # relative to where it was called from
+esac
 cd "$(dirname "$0")/.."
 root=$(pwd)
-venv=${1:-build/venv}
+venv=${venv:-$root/build/venv}
 python=${PYTHON:-python3}
 
-usable_python() {
+new_python() {
   command -v "$python" >/dev/null 2>&1 &&
-    "$python" -c 'import sys, venv, ensurepip; sys.exit(sys.version_info < (3, 10))' \
-      >/dev/null 2>&1
+    "$python" -c 'import sys; sys.exit(sys.version_info < (3, 10))' >/dev/null 2>&1
 }
-if ! usable_python; then
-  scripts/install-deps.sh --python
-  python=python3
-  if ! usable_python; then
-    echo "python-env: error: $python with venv and ensurepip (3.10 or newer) is needed" >&2
-    exit 1
-  fi
-fi
-
 if [ ! -x "$venv/bin/python" ]; then
   echo "python-env: creating $venv" >&2
   mkdir -p "$(dirname "$venv")"
-  "$python" -m venv "$venv"
+  # Debian's python3 makes venvs only with python3-venv installed.
+  if ! new_python || ! "$python" -m venv "$venv" >/dev/null 2>&1; then
+    rm -rf "$venv"
+    scripts/install-deps.sh --python
+    python=python3
+    if ! new_python; then
+      echo "python-env: error: python3 3.10 or newer is needed" >&2
+      exit 1
+    fi
+    "$python" -m venv "$venv"
+  fi
 fi
 vpython="$venv/bin/python"
 
