@@ -21,7 +21,7 @@ import math
 
 import numpy as np
 
-from slammtt.importer.laser import BeamCounts, Scan, classify_beams
+from slammtt.importer.laser import Scan, classify_beams
 from slammtt.importer.mount import Mount
 from slammtt.importer.odometry import TickIntegrator, WheelGeometry
 
@@ -108,6 +108,3 @@ def read_readings(path, refusals):
                         counts=counts)
             yield Reading(line_number, integrator.update(utime, left, right), scan)
 
-
-__all__ = ["BEAMS", "BeamCounts", "MOUNT", "Reading", "Refusals", "read_readings",
-           "parse_line", "beam_angles_rad", "LineRefused"]

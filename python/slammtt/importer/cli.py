@@ -28,7 +28,7 @@ class UsageError(Exception):
     pass
 
 
-class ImportError_(Exception):
+class InputError(Exception):
     """The input cannot be imported (one line)."""
 
 
@@ -206,7 +206,7 @@ def _import_rosbag(args, channels, report):
     try:
         content = rosbag.read_bag(args.input, selection)
     except rosbag.BagError as error:
-        raise ImportError_(f"{args.input}: {error}") from None
+        raise InputError(f"{args.input}: {error}") from None
     report.info(f"{args.input} ({content.description})")
     for line in content.notes:
         report.info(line)
@@ -242,12 +242,12 @@ def _import_breezyslam(args, channels, report):
     try:
         readings = list(breezyslam.read_readings(args.input, refusals))
     except OSError as error:
-        raise ImportError_(f"{args.input}: cannot read ({error.strerror})") from None
+        raise InputError(f"{args.input}: cannot read ({error.strerror})") from None
     report.info(f"{args.input} (BreezySLAM text log): {len(readings)} lines read")
     if refusals.count:
         report.warning(f"skipped {refusals.count} malformed lines (first: {refusals.first})")
     if not readings:
-        raise ImportError_(f"{args.input}: no line of the breezyslam format "
+        raise InputError(f"{args.input}: no line of the breezyslam format "
                            f"({refusals.first or 'empty file'})")
     scans = [r.scan for r in readings]
     odometry_readings = [r.odometry for r in readings]
@@ -273,7 +273,7 @@ def run(argv):
             os.path.samefile(args.input, output):
         raise UsageError("the output is the input file")
     if not os.path.exists(args.input):
-        raise ImportError_(f"{args.input}: no such file or folder")
+        raise InputError(f"{args.input}: no such file or folder")
     kind = _format(args)
     if kind == "breezyslam":
         streams, mount, source = _import_breezyslam(args, channels, report)
@@ -310,7 +310,7 @@ def main(argv=None):
     except UsageError as error:
         print(f"{PROGRAM}: error: {error} (see --help)", file=sys.stderr)
         return 2
-    except ImportError_ as error:
+    except InputError as error:
         print(f"{PROGRAM}: error: {error}", file=sys.stderr)
         return 1
     except OSError as error:

@@ -17,7 +17,8 @@ counted in Scan.intensities_dropped).
 
 A scan whose geometry is unusable (no finite angle_min / angle_increment, an increment of 0
 with several beams, more than MAX_BEAMS beams, range limits NaN, range_min infinite, or not
-0 <= range_min <= range_max; range_max may be +inf) is refused: ScanRefused with one line, counted by the caller.
+0 <= range_min <= range_max; range_max may be +inf) is refused: ScanRefused with one line,
+counted by the caller.
 """
 
 import dataclasses
