@@ -164,10 +164,14 @@ def test_labels_in_another_frame_are_moved_or_skipped(tmp_path):
     bag.scan("/scan", 1_100_000, [1.0], frame="laser")
     bag.pose_array("/leg_cluster_positions", 1_100_000, [(2.0, 1.0)], "laser", 1_150_000)
     bag.pose_array("/leg_cluster_positions", 0, [(7.0, 7.0)], "laser", 1_200_000)
+    bag.pose_array("/leg_cluster_positions", 0, [(1.0, 1.0)] * 1001, "laser", 1_250_000)
+    bag.pose_array("/leg_cluster_positions", 0, [(math.nan, 1.0)], "laser", 1_260_000)
     path = bag.write(tmp_path / "labels.bag")
     err = import_ok(path, "-o", tmp_path / "l.lcm")
     assert "skipped 1 label messages in frame nowhere" in err
     assert "skipped 1 /leg_cluster_positions messages without a following scan" in err
+    assert "skipped 1 label messages with more than 1000 positions" in err
+    assert "skipped 1 label messages with non-finite positions" in err
     labels = read_log(tmp_path / "l.lcm")["LEG_LABELS"]
     assert [m.utime for m in labels] == [1_000_000, 1_100_000]
     assert (labels[0].x_m[0], labels[0].y_m[0]) == pytest.approx((1.0, 0.5))

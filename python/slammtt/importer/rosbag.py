@@ -27,6 +27,9 @@ ODOMETRY = "nav_msgs/msg/Odometry"
 TF_MESSAGE = "tf2_msgs/msg/TFMessage"
 POSE_ARRAY = "geometry_msgs/msg/PoseArray"
 DEFAULT_LABELS_TOPIC = "/leg_cluster_positions"
+# Far above the legs one scan can show (the training bags have at most 4); more is a corrupt
+# message.
+MAX_LABELS_PER_SCAN = 1000
 
 
 class BagError(Exception):
@@ -278,6 +281,10 @@ def _read_messages(reader, connections, selection, laser_topic, odometry_topic, 
 def _label(message, tree, content):
     """Label of a PoseArray: the positions in the laser frame (None: skipped, counted)."""
     frame = frame_name(message.header.frame_id)
+    if len(message.poses) > MAX_LABELS_PER_SCAN:
+        content.skip(f"label messages with more than {MAX_LABELS_PER_SCAN} positions",
+                     f"{len(message.poses)} positions")
+        return None
     points = np.array([[p.position.x, p.position.y, p.position.z] for p in message.poses],
                       dtype=np.float64).reshape(-1, 3)
     if not np.all(np.isfinite(points)):
