@@ -220,11 +220,12 @@ def _read_transforms(reader, connections, content):
 
 def _read_messages(reader, connections, selection, laser_topic, odometry_topic, labels_topic,
                    tree, content):
-    wanted = {laser_topic, odometry_topic, labels_topic} - {None}
-    chosen = [c for c in connections if c.topic in wanted and
-              c.msgtype in (LASER_SCAN, ODOMETRY, POSE_ARRAY)]
-    pending_labels = []   # label messages with stamp 0 waiting for the next scan
-    stamped_labels = []   # (stamp utime, Label) to match with a scan of that stamp
+    """The scans, odometry and labels of the chosen topics, in bag order, into `content`."""
+    handlers = _MessageHandlers(selection, tree, content, labels_topic)
+    by_topic = {(laser_topic, LASER_SCAN): handlers.scan,
+                (odometry_topic, ODOMETRY): handlers.odometry,
+                (labels_topic, POSE_ARRAY): handlers.label}
+    chosen = [c for c in connections if (c.topic, c.msgtype) in by_topic]
     for connection, bag_time_ns, raw in _messages(reader, chosen):
         try:
             message = reader.deserialize(raw, connection.msgtype)
@@ -233,47 +234,69 @@ def _read_messages(reader, connections, selection, laser_topic, odometry_topic, 
             content.skip(f"{connection.topic} messages (undecodable)", str(error))
             continue
         utime = stamp if selection.time_source == "header" else bag_time_ns // 1000
-        topic = connection.topic
-        if topic == laser_topic and connection.msgtype == LASER_SCAN:
-            frame = frame_name(message.header.frame_id)
-            if frame != content.laser_frame:
-                content.skip(f"{topic} scans in another frame than {content.laser_frame}",
-                             f"frame {frame}")
-                continue
-            try:
-                scan = laser.scan_from_laser_scan(message, utime)
-            except laser.ScanRefused as error:
-                content.skip(f"{topic} scans refused", str(error))
-                continue
-            content.scans.append(scan)
-            for label in pending_labels:
-                label.utime = scan.utime
-                content.labels.append(label)
-            pending_labels = []
-        elif topic == odometry_topic and connection.msgtype == ODOMETRY:
-            try:
-                content.odometry.append(
-                    odometry.odometry_from_ros(message, utime, selection.wheel_track_m))
-            except odometry.OdometryRefused as error:
-                content.skip(f"{topic} messages refused", str(error))
-        elif topic == labels_topic and connection.msgtype == POSE_ARRAY:
-            label = _label(message, tree, content)
-            if label is None:
-                continue
-            if stamp == 0:
-                pending_labels.append(label)
-            else:
-                label.utime = utime
-                stamped_labels.append(label)
-    for _ in pending_labels:
-        content.skip(f"{labels_topic} messages without a following scan", "at the end of the bag")
-    if stamped_labels:
+        by_topic[(connection.topic, connection.msgtype)](connection.topic, message, stamp, utime)
+    handlers.finish()
+
+
+class _MessageHandlers:
+    """One handler per kind of message; labels wait for their scan (module docstring)."""
+
+    def __init__(self, selection, tree, content, labels_topic):
+        self.selection = selection
+        self.tree = tree
+        self.content = content
+        self.labels_topic = labels_topic
+        self.pending_labels = []   # labels with stamp 0, waiting for the next scan
+        self.stamped_labels = []   # labels with a stamp, for the scan of that stamp
+
+    def scan(self, topic, message, _, utime):
+        content = self.content
+        frame = frame_name(message.header.frame_id)
+        if frame != content.laser_frame:
+            content.skip(f"{topic} scans in another frame than {content.laser_frame}",
+                         f"frame {frame}")
+            return
+        try:
+            scan = laser.scan_from_laser_scan(message, utime)
+        except laser.ScanRefused as error:
+            content.skip(f"{topic} scans refused", str(error))
+            return
+        content.scans.append(scan)
+        for label in self.pending_labels:
+            label.utime = scan.utime
+            content.labels.append(label)
+        self.pending_labels = []
+
+    def odometry(self, topic, message, _, utime):
+        try:
+            self.content.odometry.append(
+                odometry.odometry_from_ros(message, utime, self.selection.wheel_track_m))
+        except odometry.OdometryRefused as error:
+            self.content.skip(f"{topic} messages refused", str(error))
+
+    def label(self, _, message, stamp, utime):
+        label = _label(message, self.tree, self.content)
+        if label is None:
+            return
+        if stamp == 0:
+            self.pending_labels.append(label)
+        else:
+            label.utime = utime
+            self.stamped_labels.append(label)
+
+    def finish(self):
+        content = self.content
+        for _ in self.pending_labels:
+            content.skip(f"{self.labels_topic} messages without a following scan",
+                         "at the end of the bag")
+        if not self.stamped_labels:
+            return
         scan_utimes = {scan.utime for scan in content.scans}
-        for label in stamped_labels:
+        for label in self.stamped_labels:
             if label.utime in scan_utimes:
                 content.labels.append(label)
             else:
-                content.skip(f"{labels_topic} messages whose stamp is no scan's",
+                content.skip(f"{self.labels_topic} messages whose stamp is no scan's",
                              f"utime {label.utime}")
         content.labels.sort(key=lambda label: label.utime)
 
