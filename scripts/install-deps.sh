@@ -1,10 +1,15 @@
 #!/bin/sh
 # Installs the Debian/Ubuntu packages slammtt needs, if any is missing. Runs apt-get as root or
 # through sudo. Safe to run again: does nothing when everything is there.
+#   scripts/install-deps.sh            the C++ build's packages
+#   scripts/install-deps.sh --python   python3 and its venv module, for scripts/python-env.sh
 set -eu
 PACKAGES="cmake ninja-build g++ pkg-config iproute2 util-linux
 liblcm-dev liblcm-bin libglib2.0-dev libeigen3-dev libsuitesparse-dev libserialport-dev
 libyaml-cpp-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev"
+if [ "${1:-}" = "--python" ]; then
+  PACKAGES="python3 python3-venv"
+fi
 
 missing=""
 for p in $PACKAGES; do

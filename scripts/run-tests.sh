@@ -1,11 +1,13 @@
 #!/bin/sh
 # The README's test command: installs missing packages, builds with warnings as errors and runs
-# every test (labels unit, integration, target; fuzz and soak in their short version). The long
-# soak and fuzz runs are opt-in:
+# every test (labels unit, integration, target, python; fuzz and soak in their short version).
+# The Python tools' venv (build/venv, pinned PyPI versions) is made first. The long soak and fuzz
+# runs are opt-in:
 #   SLAMMTT_LONG_TESTS=1 scripts/run-tests.sh
 set -eu
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
+scripts/python-env.sh build/venv
 scripts/build.sh -DSLAMMTT_WERROR=ON
 cd build
 # Label target_open: issue targets the code does not meet yet. Their tests assert the targets
