@@ -1,4 +1,5 @@
-// A point feature made from one cluster of a scan (paper section 3, Algorithm 1, steps 8-9), in
+// A point feature (a compact object: a post, a bin, a chair leg, a person's leg; never a wall)
+// made from one cluster of a scan (paper section 3, Algorithm 1, steps 8-9), in
 // the sensor frame: x forward, y left, bearings CCW from x in (-pi, pi].
 #pragma once
 
@@ -19,6 +20,8 @@ struct Feature {
   // Measurement covariance of (range_m, bearing_rad) (paper eq. 14, R): [m^2, m rad; m rad,
   // rad^2]. Always symmetric positive definite.
   Eigen::Matrix2d covariance = Eigen::Matrix2d::Identity();
+  // How much the cluster looks like a person's leg, in [0, 1] (leg_likeness.h).
+  double leg_likeness = 0.0;
   // Input indices (positions in the scan as given) of the first and last beam of the cluster in
   // CCW order. For a cluster across a 360-degree scan's seam, last_beam_index may be smaller.
   int32_t first_beam_index = -1;

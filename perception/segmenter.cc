@@ -5,7 +5,10 @@
 #include <stdexcept>
 
 #include "common/angle.h"
+#include <Eigen/Dense>
+
 #include "perception/centre_estimation.h"
+#include "perception/leg_likeness.h"
 #include "perception/trig_series.h"
 
 namespace slammtt {
@@ -14,6 +17,13 @@ namespace {
 constexpr double kTwoPi = 2.0 * M_PI;
 // Beam::unusable_before of a beam without a usable return, before CountGapsAndDropDuplicates().
 constexpr int32_t kMarker = -1;
+// A compact cluster with straight runs (and not one straight run over almost all of it) is a
+// round object when one circle's RMS residual is at most sigma_r_m or this fraction of the
+// runs' pooled RMS residual (chords of a circle leave a systematic residual that the circle
+// does not).
+constexpr double kRoundRmsRatio = 0.8;
+// Lines of neighbouring clusters are tried for one line only when their normals are this close.
+constexpr double kMergeAngleRad = 5.0 * M_PI / 180.0;
 
 // CCW angle from a to b, in [0, 2 pi), for angles already in (-pi, pi].
 double CcwDelta(double a_rad, double b_rad) {
@@ -36,13 +46,19 @@ Segmenter::Segmenter(const SegmenterOptions& options)
 const std::vector<Feature>& Segmenter::Segment(const ScanView& scan) {
   PrepareBeams(scan);
   FindClusters();
-  return MakeFeatures();
+  ExtractLines();
+  MakeFeatures();
+  return FindPeople();
 }
 
 void Segmenter::PrepareBeams(const ScanView& scan) {
   stats_ = SegmentationStats{};
   features_.clear();
+  provisional_.clear();
+  lines_.clear();
+  people_.clear();
   clusters_.clear();
+  structure_.clear();
   CollectBeams(scan);
   if (!beams_.empty()) {
     PutInCircularOrder();
@@ -51,16 +67,104 @@ void Segmenter::PrepareBeams(const ScanView& scan) {
   stats_.beams_used = static_cast<int64_t>(beams_.size());
 }
 
-const std::vector<Feature>& Segmenter::MakeFeatures() {
+void Segmenter::MakeFeatures() {
   features_.clear();
+  provisional_.clear();
   stats_.clusters_too_few_points = 0;
   stats_.clusters_too_wide = 0;
   stats_.circle_fit_fallbacks = 0;
-  for (const Cluster& cluster : clusters_) MakeFeature(cluster);
-  std::sort(features_.begin(), features_.end(), [](const Feature& a, const Feature& b) {
+  stats_.beams_mixed_pixel = 0;
+  stats_.beams_isolated = 0;
+  stats_.clusters_on_lines = 0;
+  stats_.provisional_legs = 0;
+  const bool have_structure = structure_.size() == clusters_.size();
+  for (size_t c = 0; c < clusters_.size(); ++c) {
+    if (have_structure && structure_[c]) continue;
+    MakeFeature(clusters_[c]);
+  }
+  const auto by_bearing = [](const Feature& a, const Feature& b) {
     if (a.bearing_rad != b.bearing_rad) return a.bearing_rad < b.bearing_rad;
     return a.range_m < b.range_m;
-  });
+  };
+  std::sort(features_.begin(), features_.end(), by_bearing);
+  std::sort(provisional_.begin(), provisional_.end(), by_bearing);
+  stats_.features = static_cast<int64_t>(features_.size());
+  stats_.provisional_legs = static_cast<int64_t>(provisional_.size());
+}
+
+const std::vector<Feature>& Segmenter::FindPeople() {
+  people_.clear();
+  stats_.leg_candidates = 0;
+  stats_.provisional_legs_used = 0;
+  stats_.people = 0;
+  stats_.people_one_leg = 0;
+  if (!options_.detect_people) return features_;
+  candidates_.clear();
+  const auto add = [this](const Feature& f, bool provisional, int32_t index) {
+    LegCandidate c;
+    c.range_m = f.range_m;
+    c.bearing_rad = f.bearing_rad;
+    c.covariance = f.covariance;
+    c.leg_likeness = f.leg_likeness;
+    c.provisional = provisional;
+    c.feature_index = index;
+    candidates_.push_back(c);
+  };
+  for (size_t i = 0; i < features_.size(); ++i) {
+    if (features_[i].leg_likeness >= options_.leg_threshold) {
+      add(features_[i], false, static_cast<int32_t>(i));
+    }
+  }
+  stats_.leg_candidates = static_cast<int64_t>(candidates_.size());
+  // Provisional legs get the codes -2, -3, ... until they have a place among the features.
+  for (size_t j = 0; j < provisional_.size(); ++j) add(provisional_[j], true, -2 - int32_t(j));
+  person_detector_.Detect(candidates_, options_.person, &people_, &candidate_used_);
+  for (const PersonFeature& p : people_) stats_.people_one_leg += p.num_legs == 1;
+  stats_.people = static_cast<int64_t>(people_.size());
+  // Provisional legs that joined a person become point features, in bearing order.
+  const size_t n = features_.size();
+  const size_t first_provisional_candidate = static_cast<size_t>(stats_.leg_candidates);
+  size_t used = 0;
+  for (size_t k = first_provisional_candidate; k < candidates_.size(); ++k) {
+    used += candidate_used_[k];
+  }
+  stats_.provisional_legs_used = static_cast<int64_t>(used);
+  if (used == 0) return features_;
+  // final_index_[old]: position in the merged list of feature `old` (features_ first, then
+  // provisional_); -1 for a provisional leg that is dropped.
+  final_index_.assign(n + provisional_.size(), -1);
+  merged_.clear();
+  size_t next_provisional = 0;
+  size_t i = 0;
+  while (i < n || next_provisional < provisional_.size()) {
+    // Skip provisional legs that no person uses.
+    while (next_provisional < provisional_.size() &&
+           !candidate_used_[first_provisional_candidate + next_provisional]) {
+      ++next_provisional;
+    }
+    const bool take_provisional =
+        next_provisional < provisional_.size() &&
+        (i >= n || provisional_[next_provisional].bearing_rad < features_[i].bearing_rad);
+    if (take_provisional) {
+      final_index_[n + next_provisional] = static_cast<int32_t>(merged_.size());
+      merged_.push_back(provisional_[next_provisional++]);
+    } else if (i < n) {
+      final_index_[i] = static_cast<int32_t>(merged_.size());
+      merged_.push_back(features_[i++]);
+    } else {
+      break;
+    }
+  }
+  for (PersonFeature& p : people_) {
+    for (int32_t& leg : p.leg_index) {
+      if (leg >= 0) {
+        leg = final_index_[static_cast<size_t>(leg)];
+      } else if (leg <= -2) {
+        leg = final_index_[n + static_cast<size_t>(-2 - leg)];
+      }
+    }
+  }
+  features_.swap(merged_);
   stats_.features = static_cast<int64_t>(features_.size());
   return features_;
 }
@@ -227,15 +331,330 @@ void Segmenter::FindClusters() {
   for (const Cluster& c : clusters_) {
     if (c.ring_start + c.count > m || (c.count == m && m > 1)) ++stats_.clusters_across_seam;
   }
+  CountDepthEdges();
+}
+
+void Segmenter::CountDepthEdges() {
+  stats_.depth_edges = 0;
+  const size_t m = beams_.size();
+  if (m < 2) return;
+  // Neighbours: no unusable beam between them and closer than the gap bound.
+  const auto adjacent = [this](size_t a, size_t b) {
+    return beams_[b].unusable_before == 0 &&
+           CcwDelta(beams_[a].angle_rad, beams_[b].angle_rad) <= options_.max_beam_gap_rad;
+  };
+  const double jump = options_.depth_edge_m;
+  for (size_t k = 0; k < m; ++k) {
+    const size_t b = Next(k);
+    if (!adjacent(k, b)) continue;
+    const double ra = beams_[k].range_m;
+    const double rb = beams_[b].range_m;
+    // A lone beam between the two sides of one edge (a mixed pixel) is one edge, not two: the
+    // edge is counted at the pair (lone beam, its successor) only when the lone beam does not
+    // lie between its neighbours.
+    const bool a_lone = splits_[Previous(k)] && splits_[k];
+    if (a_lone && m > 2) {
+      const size_t before = Previous(k);
+      if (adjacent(before, k)) {
+        const double r0 = beams_[before].range_m;
+        if (std::abs(r0 - rb) > jump && std::min(r0, rb) < ra && ra < std::max(r0, rb)) continue;
+      }
+    }
+    const bool b_lone = splits_[k] && splits_[b];
+    if (b_lone && m > 2) {
+      const size_t after = Next(b);
+      if (adjacent(b, after)) {
+        const double rc = beams_[after].range_m;
+        if (std::abs(ra - rc) > jump && std::min(ra, rc) < rb && rb < std::max(ra, rc)) {
+          ++stats_.depth_edges;
+          continue;
+        }
+      }
+    }
+    if (std::abs(ra - rb) > jump) ++stats_.depth_edges;
+  }
+}
+
+void Segmenter::FillSensorPoints(const Cluster& c) {
+  if (sensor_x_.size() < c.count) {
+    sensor_x_.resize(c.count);
+    sensor_y_.resize(c.count);
+  }
+  size_t k = c.ring_start;
+  for (size_t i = 0; i < c.count; ++i, k = Next(k)) {
+    double sin_a = 0.0;
+    double cos_a = 0.0;
+    SinCosSeries(beams_[k].angle_rad, &sin_a, &cos_a);  // wrapped: |angle| <= pi
+    sensor_x_[i] = beams_[k].range_m * cos_a;
+    sensor_y_[i] = beams_[k].range_m * sin_a;
+  }
+}
+
+bool Segmenter::ExplainedByCircle(size_t count, double lines_rms_m) const {
+  // Algebraic circle fit (Kasa 1976) about the centroid, then the geometric RMS residual.
+  const double n = static_cast<double>(count);
+  double mx = 0.0;
+  double my = 0.0;
+  for (size_t i = 0; i < count; ++i) {
+    mx += sensor_x_[i];
+    my += sensor_y_[i];
+  }
+  mx /= n;
+  my /= n;
+  Eigen::Matrix3d a = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d b = Eigen::Vector3d::Zero();
+  for (size_t i = 0; i < count; ++i) {
+    const double u = sensor_x_[i] - mx;
+    const double v = sensor_y_[i] - my;
+    const Eigen::Vector3d row(u, v, 1.0);
+    a.noalias() += row * row.transpose();
+    b.noalias() -= row * (u * u + v * v);
+  }
+  const Eigen::Vector3d solution = a.ldlt().solve(b);
+  if (!solution.allFinite()) return false;
+  const double cu = -0.5 * solution(0);
+  const double cv = -0.5 * solution(1);
+  const double r2 = cu * cu + cv * cv - solution(2);
+  if (!(r2 > 0.0)) return false;
+  const double radius = std::sqrt(r2);
+  if (radius > options_.max_width_m) return false;
+  const double cx = mx + cu;
+  const double cy = my + cv;
+  // The centre lies behind the points, seen from the sensor.
+  if (!(cx * cx + cy * cy > mx * mx + my * my)) return false;
+  double sum = 0.0;
+  for (size_t i = 0; i < count; ++i) {
+    const double e = std::hypot(sensor_x_[i] - cx, sensor_y_[i] - cy) - radius;
+    sum += e * e;
+  }
+  return std::sqrt(sum / n) <= std::max(options_.sigma_r_m, kRoundRmsRatio * lines_rms_m);
+}
+
+void Segmenter::FillRunPoints(size_t ring_start, size_t count, size_t offset) {
+  if (sensor_x_.size() < offset + count) {
+    sensor_x_.resize(offset + count);
+    sensor_y_.resize(offset + count);
+  }
+  size_t k = ring_start;
+  for (size_t i = offset; i < offset + count; ++i, k = Next(k)) {
+    double sin_a = 0.0;
+    double cos_a = 0.0;
+    SinCosSeries(beams_[k].angle_rad, &sin_a, &cos_a);
+    sensor_x_[i] = beams_[k].range_m * cos_a;
+    sensor_y_[i] = beams_[k].range_m * sin_a;
+  }
+}
+
+LineFeature Segmenter::MakeLine(size_t ring_start, size_t count) {
+  const double* x = sensor_x_.data();
+  const double* y = sensor_y_.data();
+  const LineFit fit = FitLine(x, y, count, options_.sigma_r_m, options_.bearing_sigma_rad);
+  LineFeature line;
+  line.rho_m = fit.rho_m;
+  line.alpha_rad = fit.alpha_rad;
+  line.covariance = fit.covariance;
+  line.num_points = static_cast<int>(count);
+  line.rms_residual_m = fit.rms_residual_m;
+  const double ca = std::cos(fit.alpha_rad);
+  const double sa = std::sin(fit.alpha_rad);
+  const auto project = [&](double px, double py) {
+    const double e = DistanceFromLine(fit.rho_m, ca, sa, px, py);
+    return Eigen::Vector2d(px - e * ca, py - e * sa);
+  };
+  line.first_point_m = project(x[0], y[0]);
+  line.last_point_m = project(x[count - 1], y[count - 1]);
+  size_t k = ring_start;
+  line.first_beam_index = beams_[k].index;
+  for (size_t i = 1; i < count; ++i) k = Next(k);
+  line.last_beam_index = beams_[k].index;
+  return line;
+}
+
+bool Segmenter::TryMergeLines(size_t first, size_t second, LineFeature* merged) {
+  const LineFeature& a = lines_[first];
+  const LineFeature& b = lines_[second];
+  if (line_runs_[first].merged || line_runs_[second].merged ||
+      !(std::abs(WrapAngle(a.alpha_rad - b.alpha_rad)) < kMergeAngleRad) ||
+      !(std::abs(a.rho_m - b.rho_m) < 2.0 * options_.line_split_distance_m)) {
+    return false;
+  }
+  const RingRun& ra = line_runs_[first];
+  const RingRun& rb = line_runs_[second];
+  FillRunPoints(ra.ring_start, ra.count, 0);
+  FillRunPoints(rb.ring_start, rb.count, ra.count);
+  const size_t n = ra.count + rb.count;
+  const LineFit fit = FitLine(sensor_x_.data(), sensor_y_.data(), n, options_.sigma_r_m,
+                              options_.bearing_sigma_rad);
+  const double ca = std::cos(fit.alpha_rad);
+  const double sa = std::sin(fit.alpha_rad);
+  for (size_t i = 0; i < n; ++i) {
+    if (!(std::abs(DistanceFromLine(fit.rho_m, ca, sa, sensor_x_[i], sensor_y_[i])) <=
+          options_.line_split_distance_m)) {
+      return false;
+    }
+  }
+  *merged = MakeLine(ra.ring_start, n);  // the points of both runs are in the buffer
+  merged->last_beam_index = b.last_beam_index;
+  return true;
+}
+
+void Segmenter::MergeCollinearLines() {
+  // Neighbours in scan order only, so that the extent stays the span the scan met; a line
+  // merges once (its beams are then two runs of the ring).
+  size_t kept = 0;
+  LineFeature merged;
+  for (size_t j = 1; j < lines_.size(); ++j) {
+    if (TryMergeLines(kept, j, &merged)) {
+      lines_[kept] = merged;
+      line_runs_[kept].merged = true;
+    } else {
+      ++kept;
+      lines_[kept] = lines_[j];
+      line_runs_[kept] = line_runs_[j];
+    }
+  }
+  if (lines_.empty()) return;
+  lines_.resize(kept + 1);
+  line_runs_.resize(kept + 1);
+  // Around a 360-degree scan the last line and the first may be one wall across the seam.
+  if (kept > 0 && TryMergeLines(kept, 0, &merged)) {
+    lines_[0] = merged;
+    line_runs_[0].merged = true;
+    lines_.pop_back();
+    line_runs_.pop_back();
+  }
+}
+
+void Segmenter::ExtractLines() {
+  lines_.clear();
+  line_runs_.clear();
+  structure_.assign(clusters_.size(), 0);
+  stats_.clusters_structure = 0;
+  stats_.clusters_round = 0;
+  stats_.beams_on_lines = 0;
+  stats_.lines = 0;
+  if (!options_.extract_lines) return;
+  const size_t min_points = static_cast<size_t>(options_.min_line_points);
+  const double min_length2 = options_.min_line_length_m * options_.min_line_length_m;
+  for (size_t ci = 0; ci < clusters_.size(); ++ci) {
+    const Cluster& c = clusters_[ci];
+    if (c.count < min_points) continue;
+    FillSensorPoints(c);
+    SplitAndMerge(sensor_x_.data(), sensor_y_.data(), c.count, options_.line_split_distance_m,
+                  &runs_, &run_stack_);
+    const auto qualifies = [&](const PointRun& run) {
+      if (run.size() < min_points) return false;
+      const double dx = sensor_x_[run.end - 1] - sensor_x_[run.begin];
+      const double dy = sensor_y_[run.end - 1] - sensor_y_[run.begin];
+      return dx * dx + dy * dy >= min_length2;
+    };
+    size_t qualifying = 0;
+    for (const PointRun& run : runs_) qualifying += qualifies(run);
+    if (qualifying == 0) continue;
+    const size_t last = c.count - 1;
+    const double width = std::hypot(sensor_x_[last] - sensor_x_[0], sensor_y_[last] - sensor_y_[0]);
+    // One straight run over (almost) the whole cluster is straight whatever a circle says.
+    const bool one_straight_run = runs_.size() == 1 ||
+                                  (qualifying == 1 && [&] {
+                                    for (const PointRun& run : runs_) {
+                                      if (qualifies(run)) return 10 * run.size() >= 9 * c.count;
+                                    }
+                                    return false;
+                                  }());
+    if (width <= options_.max_width_m && !one_straight_run) {
+      // A compact cluster may be a large round object that the runs only approximate.
+      double sum_e2 = 0.0;
+      double points = 0.0;
+      for (const PointRun& run : runs_) {
+        if (run.size() < 3) continue;
+        const LineFit fit = FitLine(sensor_x_.data() + run.begin, sensor_y_.data() + run.begin,
+                                    run.size(), options_.sigma_r_m, options_.bearing_sigma_rad);
+        sum_e2 += fit.rms_residual_m * fit.rms_residual_m * static_cast<double>(run.size());
+        points += static_cast<double>(run.size());
+      }
+      if (points > 0.0 && ExplainedByCircle(c.count, std::sqrt(sum_e2 / points))) {
+        ++stats_.clusters_round;
+        continue;
+      }
+    }
+    structure_[ci] = 1;
+    ++stats_.clusters_structure;
+    size_t covered_end = 0;  // runs share their corner points: count each beam once
+    for (const PointRun& run : runs_) {
+      if (!qualifies(run)) continue;
+      size_t k = c.ring_start;
+      for (size_t i = 0; i < run.begin; ++i) k = Next(k);
+      line_runs_.push_back(RingRun{k, run.size(), false});
+      stats_.beams_on_lines +=
+          static_cast<int64_t>(run.end - std::max(run.begin, std::min(covered_end, run.end)));
+      covered_end = std::max(covered_end, run.end);
+    }
+  }
+  for (const RingRun& run : line_runs_) {
+    FillRunPoints(run.ring_start, run.count, 0);
+    lines_.push_back(MakeLine(run.ring_start, run.count));
+  }
+  MergeCollinearLines();
+  stats_.lines = static_cast<int64_t>(lines_.size());
+}
+
+void Segmenter::ClassifyLoneBeam(const Cluster& c) {
+  const size_t k = c.ring_start;
+  const size_t m = beams_.size();
+  bool mixed = false;
+  if (m >= 3) {
+    const size_t before = Previous(k);
+    const size_t after = Next(k);
+    const double limit = options_.max_beam_gap_rad;
+    const bool neighbours = beams_[k].unusable_before == 0 && beams_[after].unusable_before == 0 &&
+                            CcwDelta(beams_[before].angle_rad, beams_[k].angle_rad) <= limit &&
+                            CcwDelta(beams_[k].angle_rad, beams_[after].angle_rad) <= limit;
+    const double r0 = beams_[before].range_m;
+    const double r1 = beams_[after].range_m;
+    const double r = beams_[k].range_m;
+    mixed = neighbours && std::abs(r0 - r1) > options_.depth_edge_m && std::min(r0, r1) < r &&
+            r < std::max(r0, r1);
+  }
+  if (mixed) {
+    ++stats_.beams_mixed_pixel;
+  } else {
+    ++stats_.beams_isolated;
+  }
+}
+
+bool Segmenter::LiesOnALine(size_t count) const {
+  const double tolerance = options_.line_split_distance_m;
+  for (const LineFeature& line : lines_) {
+    const double ca = std::cos(line.alpha_rad);
+    const double sa = std::sin(line.alpha_rad);
+    bool all = true;
+    for (size_t i = 0; i < count && all; ++i) {
+      all = std::abs(DistanceFromLine(line.rho_m, ca, sa, sensor_x_[i], sensor_y_[i])) <=
+            tolerance;
+    }
+    if (all) return true;
+  }
+  return false;
 }
 
 void Segmenter::MakeFeature(const Cluster& c) {
   const size_t ring_start = c.ring_start;
   const size_t count = c.count;
   const size_t m = beams_.size();
+  bool provisional = false;
   if (count < static_cast<size_t>(options_.min_points)) {
     ++stats_.clusters_too_few_points;
-    return;
+    if (count == 1) {
+      ClassifyLoneBeam(c);
+      return;
+    }
+    // Two points: a provisional leg where a leg shows fewer than min_points beams.
+    if (count != 2 || !options_.detect_people) return;
+    const Beam& a = beams_[ring_start];
+    const Beam& b = beams_[Next(ring_start)];
+    const double beam_m = 0.5 * (a.range_m + b.range_m) * CcwDelta(a.angle_rad, b.angle_rad);
+    if (!(options_.leg_nominal_diameter_m < options_.min_points * beam_m)) return;
+    provisional = true;
   }
   if (bearing_.size() < count) {
     bearing_.resize(count);
@@ -340,7 +759,29 @@ void Segmenter::MakeFeature(const Cluster& c) {
   feature.covariance(1, 0) = 0.0;
   feature.first_beam_index = beams_[ring_start].index;
   feature.last_beam_index = beams_[last_ring_index].index;
-  features_.push_back(feature);
+  feature.leg_likeness = LegLikeness(DescribeClusterShape(cluster, spacing), options_.leg,
+                                     options_.sigma_r_m);
+  const bool leg_like = feature.leg_likeness >= options_.leg_threshold;
+  if (provisional && !leg_like) return;
+  if (!lines_.empty() && (count <= 3 || !leg_like)) {
+    // A piece of a line of this scan? Test its points in the sensor frame.
+    double sin_r = 0.0;
+    double cos_r = 0.0;
+    SinCosSeries(WrapAngle(reference_bearing), &sin_r, &cos_r);
+    if (sensor_x_.size() < count) {
+      sensor_x_.resize(count);
+      sensor_y_.resize(count);
+    }
+    for (size_t i = 0; i < count; ++i) {
+      sensor_x_[i] = x_[i] * cos_r - y_[i] * sin_r;
+      sensor_y_[i] = x_[i] * sin_r + y_[i] * cos_r;
+    }
+    if (LiesOnALine(count)) {
+      ++stats_.clusters_on_lines;
+      return;
+    }
+  }
+  (provisional ? provisional_ : features_).push_back(feature);
 }
 
 std::vector<Feature> SegmentScan(const ScanView& scan, const SegmenterOptions& options) {

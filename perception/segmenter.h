@@ -24,11 +24,32 @@
 //     between its valid neighbours with their actual angular distance, which widens the
 //     threshold. More than max_dropped_beams markers between two neighbours always split, and
 //     so does a gap of more than max_beam_gap_rad (or lambda).
-//  4. A cluster becomes a feature when it has at least min_points points, the distance between
-//     its first and last point is at most max_width_m and it spans less than pi (a cluster that
-//     surrounds the sensor has no centre). Its centre follows options.centre_rule
-//     (centre_estimation.h), its width is the first-to-last distance (Algorithm 1, step 9).
-//  5. Features are returned in increasing bearing (ties: increasing range).
+//  4. Straight structure (options.extract_lines; line_extraction.h): every cluster of at least
+//     min_line_points points is split and merged into straight runs; runs of at least
+//     min_line_points points and min_line_length_m are fitted (total least squares) and become
+//     line features, and such a cluster gives no point feature, unless it is no wider than
+//     max_width_m, not one straight run over 90 % of it, and one circle (radius <=
+//     max_width_m, centre behind the points) fits it within sigma_r_m RMS or better than its
+//     straight runs do (RMS at most 0.8 times theirs): a large round object approximated by
+//     chords is not a wall.
+//  5. Every other cluster: fewer than min_points points is no feature; one point alone is
+//     counted as a mixed pixel (its range between those of both angular neighbours) or an
+//     isolated beam; two points may be a provisional leg (step 7). A cluster becomes a point
+//     feature when the distance between its first and last point is at most max_width_m and
+//     it spans less than pi (a cluster that surrounds the sensor has no centre), and it is not
+//     a piece of a line of this scan (every point within line_split_distance_m of one; kept if
+//     it has more than three points and looks like a leg). Its centre follows
+//     options.centre_rule (centre_estimation.h), its width is the first-to-last distance
+//     (Algorithm 1, step 9), its leg_likeness comes from its shape (leg_likeness.h).
+//     Lines of neighbouring clusters (a wall cut by eq. 15 at grazing incidence, or behind a
+//     leg) whose joint fit keeps every point within line_split_distance_m are one line.
+//  6. Point features are returned in increasing bearing (ties: increasing range), lines in the
+//     order of their clusters and runs (CCW from the first cluster).
+//  7. People (options.detect_people; person_detection.h): point features with leg_likeness >=
+//     leg_threshold, and two-point clusters as provisional legs where a leg of
+//     leg_nominal_diameter_m would show fewer than min_points beams, are paired into person
+//     features; a provisional leg that joins a person becomes a point feature (inserted in
+//     bearing order), the others are dropped. leg_index points into the final features.
 //
 // Measurement covariance of (range, bearing), with R the estimated object radius, D the centre
 // range, delta the cluster's mean beam spacing and f = shape_sigma_fraction:
@@ -51,6 +72,8 @@
 
 #include "perception/breakpoint_criterion.h"
 #include "perception/feature.h"
+#include "perception/line_extraction.h"
+#include "perception/person_detection.h"
 #include "perception/scan_view.h"
 #include "perception/segmenter_options.h"
 
@@ -71,7 +94,20 @@ struct SegmentationStats {
   int64_t clusters_too_wide = 0;       // wider than max_width_m or spanning pi or more
   int64_t clusters_across_seam = 0;    // clusters holding both the last and the first beam
   int64_t circle_fit_fallbacks = 0;    // kCircleFit only: features that used kRadiusCorrected
+  int64_t beams_mixed_pixel = 0;       // one-beam clusters between a nearer and a farther surface
+  int64_t beams_isolated = 0;          // other one-beam clusters
+  int64_t depth_edges = 0;             // neighbour pairs across a range jump > depth_edge_m
+  int64_t clusters_structure = 0;      // clusters that gave line features
+  int64_t clusters_round = 0;          // had straight runs, but a circle explains them as well
+  int64_t clusters_on_lines = 0;       // compact clusters lying on a line of the scan
+  int64_t beams_on_lines = 0;          // beams in the runs of line features
+  int64_t lines = 0;
   int64_t features = 0;
+  int64_t leg_candidates = 0;          // point features with leg_likeness >= leg_threshold
+  int64_t provisional_legs = 0;        // two-point clusters offered as provisional legs...
+  int64_t provisional_legs_used = 0;   // ...and those that joined a person
+  int64_t people = 0;
+  int64_t people_one_leg = 0;
 };
 
 class Segmenter {
@@ -83,13 +119,20 @@ class Segmenter {
   // beams are dropped and counted in stats(), never a crash or a NaN in the result.
   const std::vector<Feature>& Segment(const ScanView& scan);
 
-  // Segment() in its three steps, for a caller that times them (the stage adapter); call them
-  // in this order. PrepareBeams: steps 1-2 (filter, order, duplicates). FindClusters: step 3.
-  // MakeFeatures: steps 4-5, returns what Segment() returns.
+  // Segment() in its steps, for a caller that times them (the stage adapter); call them in
+  // this order. PrepareBeams: steps 1-2 (filter, order, duplicates). FindClusters: step 3.
+  // ExtractLines: step 4. MakeFeatures: steps 5-6. FindPeople: step 7, returns what Segment()
+  // returns.
   void PrepareBeams(const ScanView& scan);
   void FindClusters();
-  const std::vector<Feature>& MakeFeatures();
+  void ExtractLines();
+  void MakeFeatures();
+  const std::vector<Feature>& FindPeople();
 
+  // The point features, lines and people of the last scan (valid until the next call).
+  const std::vector<Feature>& features() const { return features_; }
+  const std::vector<LineFeature>& lines() const { return lines_; }
+  const std::vector<PersonFeature>& people() const { return people_; }
   const SegmentationStats& stats() const { return stats_; }
   const SegmenterOptions& options() const { return options_; }
 
@@ -108,6 +151,17 @@ class Segmenter {
   void CollectBeams(const ScanView& scan);
   void PutInCircularOrder();
   void CountGapsAndDropDuplicates();
+  size_t Next(size_t k) const { return k + 1 < beams_.size() ? k + 1 : 0; }
+  size_t Previous(size_t k) const { return k > 0 ? k - 1 : beams_.size() - 1; }
+  void CountDepthEdges();
+  void FillSensorPoints(const Cluster& cluster);
+  bool ExplainedByCircle(size_t count, double lines_rms_m) const;
+  void FillRunPoints(size_t ring_start, size_t count, size_t offset);
+  LineFeature MakeLine(size_t ring_start, size_t count);
+  bool TryMergeLines(size_t first, size_t second, LineFeature* merged);
+  void MergeCollinearLines();
+  void ClassifyLoneBeam(const Cluster& cluster);
+  bool LiesOnALine(size_t count) const;
   void MakeFeature(const Cluster& cluster);
 
   SegmenterOptions options_;
@@ -120,7 +174,26 @@ class Segmenter {
   std::vector<double> range_;        // ...ranges...
   std::vector<double> x_;            // ...and Cartesian points
   std::vector<double> y_;
+  std::vector<double> sensor_x_;     // one cluster's points in the sensor frame
+  std::vector<double> sensor_y_;
+  std::vector<PointRun> runs_;
+  std::vector<PointRun> run_stack_;
+  std::vector<uint8_t> structure_;   // structure_[c]: cluster c gave line features
   std::vector<Feature> features_;
+  std::vector<Feature> provisional_; // two-point leg candidates
+  std::vector<LineFeature> lines_;
+  struct RingRun {
+    size_t ring_start;
+    size_t count;
+    bool merged;  // two runs joined by MergeCollinearLines()
+  };
+  std::vector<RingRun> line_runs_;   // the beams of each line, parallel to lines_
+  std::vector<LegCandidate> candidates_;
+  std::vector<uint8_t> candidate_used_;
+  std::vector<int32_t> final_index_;
+  std::vector<Feature> merged_;
+  std::vector<PersonFeature> people_;
+  PersonDetector person_detector_;
 };
 
 // One-shot convenience: a Segmenter for one scan (allocates; use a Segmenter in loops).

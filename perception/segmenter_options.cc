@@ -70,6 +70,51 @@ std::string CheckSegmenterOptions(const SegmenterOptions& o) {
   if (!(o.shape_sigma_fraction >= 0.0) || !std::isfinite(o.shape_sigma_fraction)) {
     return Bad("shape_sigma_fraction", "non-negative and finite", o.shape_sigma_fraction);
   }
+  if (!(o.line_split_distance_m > 0.0) || !std::isfinite(o.line_split_distance_m)) {
+    return Bad("line_split_distance_m", "positive and finite", o.line_split_distance_m);
+  }
+  if (o.min_line_points < 3) return Bad("min_line_points", "at least 3", o.min_line_points);
+  if (!(o.min_line_length_m > 0.0) || !std::isfinite(o.min_line_length_m)) {
+    return Bad("min_line_length_m", "positive and finite", o.min_line_length_m);
+  }
+  if (!(o.leg.leg_min_diameter_m > 0.0) || !std::isfinite(o.leg.leg_min_diameter_m)) {
+    return Bad("leg_min_diameter_m", "positive and finite", o.leg.leg_min_diameter_m);
+  }
+  if (!(o.leg.leg_max_diameter_m >= o.leg.leg_min_diameter_m) ||
+      !std::isfinite(o.leg.leg_max_diameter_m)) {
+    return Bad("leg_max_diameter_m", "finite and at least leg_min_diameter_m",
+               o.leg.leg_max_diameter_m);
+  }
+  if (!(o.leg.leg_diameter_margin_m > 0.0) || !std::isfinite(o.leg.leg_diameter_margin_m)) {
+    return Bad("leg_diameter_margin_m", "positive and finite", o.leg.leg_diameter_margin_m);
+  }
+  if (!(o.leg_threshold >= 0.0 && o.leg_threshold <= 1.0)) {
+    return Bad("leg_threshold", "in [0, 1]", o.leg_threshold);
+  }
+  if (!(o.leg_nominal_diameter_m > 0.0) || !std::isfinite(o.leg_nominal_diameter_m)) {
+    return Bad("leg_nominal_diameter_m", "positive and finite", o.leg_nominal_diameter_m);
+  }
+  const PersonDetectionOptions& p = o.person;
+  if (!(p.min_leg_separation_m >= 0.0) || !std::isfinite(p.min_leg_separation_m)) {
+    return Bad("min_leg_separation_m", "non-negative and finite", p.min_leg_separation_m);
+  }
+  if (!(p.max_leg_separation_m > p.min_leg_separation_m) ||
+      !std::isfinite(p.max_leg_separation_m)) {
+    return Bad("max_leg_separation_m", "finite and greater than min_leg_separation_m",
+               p.max_leg_separation_m);
+  }
+  if (!(p.single_leg_threshold >= 0.0 && p.single_leg_threshold <= 1.0)) {
+    return Bad("single_leg_threshold", "in [0, 1]", p.single_leg_threshold);
+  }
+  if (!(p.pair_centre_sigma_m > 0.0) || !std::isfinite(p.pair_centre_sigma_m)) {
+    return Bad("pair_centre_sigma_m", "positive and finite", p.pair_centre_sigma_m);
+  }
+  if (!(p.single_leg_offset_sigma_m > 0.0) || !std::isfinite(p.single_leg_offset_sigma_m)) {
+    return Bad("single_leg_offset_sigma_m", "positive and finite", p.single_leg_offset_sigma_m);
+  }
+  if (!(o.depth_edge_m > 0.0) || !std::isfinite(o.depth_edge_m)) {
+    return Bad("depth_edge_m", "positive and finite", o.depth_edge_m);
+  }
   if (o.centre_rule != CentreRule::kMiddlePoint && o.centre_rule != CentreRule::kRadiusCorrected &&
       o.centre_rule != CentreRule::kCircleFit) {
     return "centre_rule is not one of middle_point, radius_corrected, circle_fit";

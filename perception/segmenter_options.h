@@ -10,6 +10,9 @@
 #include <limits>
 #include <string>
 
+#include "perception/leg_likeness.h"
+#include "perception/person_detection.h"
+
 namespace slammtt {
 
 // Where the feature's centre is put (the point handed to the estimator).
@@ -81,6 +84,40 @@ struct SegmenterOptions {
   // Fraction of the estimated object radius taken as the standard deviation of the centre's
   // position from the object's shape (objects are not exact circles).
   double shape_sigma_fraction = 0.3;
+
+  // Straight structure (line_extraction.h): inside every cluster of at least min_line_points
+  // points, split-and-merge with line_split_distance_m; each run of at least min_line_points
+  // points and min_line_length_m from end to end is a line feature, and the cluster gives no
+  // point feature (unless one circle of radius at most max_width_m explains it better than its
+  // lines: a large round object is not a wall). A compact cluster all of whose points
+  // lie within line_split_distance_m of a line of the same scan is a piece of that structure
+  // (a wall seen between two legs, a wall at grazing incidence broken up by eq. 15) and gives
+  // no point feature either, unless it looks like a leg (leg_likeness >= leg_threshold) and
+  // has more than three points. false: no line features, walls are clusters_too_wide as in
+  // the paper's algorithm.
+  bool extract_lines = true;
+  double line_split_distance_m = 0.05;
+  int min_line_points = 5;
+  double min_line_length_m = 0.4;
+
+  // Leg-likeness of every point feature (leg_likeness.h; sigma_r_m is this struct's).
+  LegLikenessOptions leg;
+  // People (person_detection.h) from the point features with leg_likeness >= leg_threshold.
+  // A cluster of only two points joins a person as a provisional leg (and then becomes a
+  // point feature) where a leg of leg_nominal_diameter_m would show fewer than min_points
+  // beams (range r, beam spacing delta: leg_nominal_diameter_m / (r delta) < min_points; at
+  // 0.9 degrees beyond about 2.5 m, never at 0.35 degrees within 6 m).
+  bool detect_people = true;
+  double leg_threshold = 0.5;
+  double leg_nominal_diameter_m = 0.12;
+  PersonDetectionOptions person;
+
+  // A cluster of one beam is never a feature. It is a mixed pixel when its range lies between
+  // those of its two angular neighbours (a beam that straddled a depth edge and returned a
+  // range between the two surfaces), an isolated beam otherwise; both are counted. A depth
+  // edge is a pair of neighbouring beams (or a neighbour pair with one lone beam between)
+  // whose ranges differ by more than depth_edge_m: the denominator of the mixed-pixel rate.
+  double depth_edge_m = 0.3;
 };
 
 // Empty when the options are usable; otherwise one line naming the first bad field

@@ -40,6 +40,12 @@ double NonNegativeDouble(const Config& section, const std::string& key, double f
   return value;
 }
 
+double UnitInterval(const Config& section, const std::string& key, double fallback) {
+  const double value = section.GetDouble(key, fallback);
+  if (!(value >= 0.0 && value <= 1.0)) section.FailKey(key, "must be in [0, 1]");
+  return value;
+}
+
 }  // namespace
 
 SegmenterOptions ReadSegmenterOptions(const Config& section) {
@@ -86,6 +92,35 @@ SegmenterOptions ReadSegmenterOptions(const Config& section) {
       PositiveDouble(section, "bearing_sigma_deg", o.bearing_sigma_rad / kDegToRad) * kDegToRad;
   o.shape_sigma_fraction =
       NonNegativeDouble(section, "shape_sigma_fraction", o.shape_sigma_fraction);
+  o.extract_lines = section.GetBool("extract_lines", o.extract_lines);
+  o.line_split_distance_m =
+      PositiveDouble(section, "line_split_distance_m", o.line_split_distance_m);
+  const int64_t min_line_points = section.GetInt("min_line_points", o.min_line_points);
+  if (min_line_points < 3 || min_line_points > 100000) {
+    section.FailKey("min_line_points", "must be between 3 and 100000");
+  }
+  o.min_line_points = static_cast<int>(min_line_points);
+  o.min_line_length_m = PositiveDouble(section, "min_line_length_m", o.min_line_length_m);
+  o.leg.leg_min_diameter_m =
+      PositiveDouble(section, "leg_min_diameter_m", o.leg.leg_min_diameter_m);
+  o.leg.leg_max_diameter_m =
+      PositiveDouble(section, "leg_max_diameter_m", o.leg.leg_max_diameter_m);
+  o.leg.leg_diameter_margin_m =
+      PositiveDouble(section, "leg_diameter_margin_m", o.leg.leg_diameter_margin_m);
+  o.detect_people = section.GetBool("detect_people", o.detect_people);
+  o.leg_threshold = UnitInterval(section, "leg_threshold", o.leg_threshold);
+  o.leg_nominal_diameter_m =
+      PositiveDouble(section, "leg_nominal_diameter_m", o.leg_nominal_diameter_m);
+  PersonDetectionOptions& p = o.person;
+  p.min_leg_separation_m =
+      NonNegativeDouble(section, "min_leg_separation_m", p.min_leg_separation_m);
+  p.max_leg_separation_m =
+      PositiveDouble(section, "max_leg_separation_m", p.max_leg_separation_m);
+  p.single_leg_threshold = UnitInterval(section, "single_leg_threshold", p.single_leg_threshold);
+  p.pair_centre_sigma_m = PositiveDouble(section, "pair_centre_sigma_m", p.pair_centre_sigma_m);
+  p.single_leg_offset_sigma_m =
+      PositiveDouble(section, "single_leg_offset_sigma_m", p.single_leg_offset_sigma_m);
+  o.depth_edge_m = PositiveDouble(section, "depth_edge_m", o.depth_edge_m);
   section.CheckUnused();
   const std::string problem = CheckSegmenterOptions(o);
   if (!problem.empty()) section.Fail(problem);
@@ -139,8 +174,12 @@ void SegmenterStage::Handle(const std::string& channel, const void* data, int si
   timer.Lap("sort");
   segmenter_.FindClusters();
   timer.Lap("cluster");
-  const std::vector<Feature>& features = segmenter_.MakeFeatures();
+  segmenter_.ExtractLines();
+  timer.Lap("lines");
+  segmenter_.MakeFeatures();
   timer.Lap("features");
+  const std::vector<Feature>& features = segmenter_.FindPeople();
+  timer.Lap("people");
 
   slammtt_msgs::features_t message{};
   message.utime = scan.utime;
@@ -156,7 +195,42 @@ void SegmenterStage::Handle(const std::string& channel, const void* data, int si
     m.range_var_m2 = f.covariance(0, 0);
     m.bearing_var_rad2 = f.covariance(1, 1);
     m.range_bearing_cov_m_rad = f.covariance(0, 1);
+    m.leg_likeness = f.leg_likeness;
     message.features.push_back(m);
+  }
+  const std::vector<LineFeature>& lines = segmenter_.lines();
+  message.num_lines = static_cast<int32_t>(lines.size());
+  message.lines.reserve(lines.size());
+  for (const LineFeature& l : lines) {
+    slammtt_msgs::line_feature_t m{};
+    m.rho_m = l.rho_m;
+    m.alpha_rad = l.alpha_rad;
+    m.rho_var_m2 = l.covariance(0, 0);
+    m.alpha_var_rad2 = l.covariance(1, 1);
+    m.rho_alpha_cov_m_rad = l.covariance(0, 1);
+    m.first_x_m = l.first_point_m.x();
+    m.first_y_m = l.first_point_m.y();
+    m.last_x_m = l.last_point_m.x();
+    m.last_y_m = l.last_point_m.y();
+    m.num_points = l.num_points;
+    m.rms_residual_m = l.rms_residual_m;
+    message.lines.push_back(m);
+  }
+  const std::vector<PersonFeature>& people = segmenter_.people();
+  message.num_people = static_cast<int32_t>(people.size());
+  message.people.reserve(people.size());
+  for (const PersonFeature& p : people) {
+    slammtt_msgs::person_feature_t m{};
+    m.range_m = p.range_m;
+    m.bearing_rad = p.bearing_rad;
+    m.range_var_m2 = p.covariance(0, 0);
+    m.bearing_var_rad2 = p.covariance(1, 1);
+    m.range_bearing_cov_m_rad = p.covariance(0, 1);
+    m.num_legs = p.num_legs;
+    m.leg_index[0] = p.leg_index[0];
+    m.leg_index[1] = p.leg_index[1];
+    m.confidence = p.confidence;
+    message.people.push_back(m);
   }
   out.PublishMessage(features_channel_, message);
   timer.Lap("publish");
@@ -171,6 +245,17 @@ void SegmenterStage::Handle(const std::string& channel, const void* data, int si
   timer.Count("clusters", stats.clusters);
   timer.Count("features", stats.features);
   timer.Count("circle_fit_fallbacks", stats.circle_fit_fallbacks);
+  timer.Count("beams_mixed_pixel", stats.beams_mixed_pixel);
+  timer.Count("beams_isolated", stats.beams_isolated);
+  timer.Count("depth_edges", stats.depth_edges);
+  timer.Count("lines", stats.lines);
+  timer.Count("beams_on_lines", stats.beams_on_lines);
+  timer.Count("clusters_on_lines", stats.clusters_on_lines);
+  timer.Count("clusters_round", stats.clusters_round);
+  timer.Count("leg_candidates", stats.leg_candidates);
+  timer.Count("provisional_legs_used", stats.provisional_legs_used);
+  timer.Count("people", stats.people);
+  timer.Count("people_one_leg", stats.people_one_leg);
   timer.Count("reversed", stats.beams_were_reversed ? 1 : 0);
   timer.Count("sorted", stats.beams_were_sorted ? 1 : 0);
   ++counters_.scans_handled;

@@ -94,7 +94,8 @@ TEST(SegmenterStageTest, PublishesFeaturesWithTheScanTimeAndTiming) {
   EXPECT_EQ(timing.utime, 1700000000123456);
   EXPECT_EQ(timing.stage, "segmenter");
   EXPECT_EQ(timing.substage,
-            (std::vector<std::string>{"decode", "sort", "cluster", "features", "publish"}));
+            (std::vector<std::string>{"decode", "sort", "cluster", "lines", "features", "people",
+                                      "publish"}));
   ASSERT_EQ(timing.num_counters, static_cast<int32_t>(timing.counter_name.size()));
   auto counter = [&](const std::string& name) -> int64_t {
     for (size_t i = 0; i < timing.counter_name.size(); ++i) {

@@ -477,7 +477,8 @@ TEST(SegmenterTest, A180DegreeScanDoesNotWrap) {
 
 // A scan covering all directions with a surface all around (robot inside a round room or a
 // ring of people shoulder to shoulder) has no breakpoint: that one cluster surrounds the sensor
-// and has no centre, so no feature, counted as too wide.
+// and has no centre, so no point feature: structure (its chords are lines), or, without line
+// extraction, counted as too wide.
 TEST(SegmenterTest, SurroundingRingGivesNoFeature) {
   TestScan scan;
   for (double a : RplidarAngles()) {
@@ -488,7 +489,14 @@ TEST(SegmenterTest, SurroundingRingGivesNoFeature) {
   Segmenter segmenter(SegmenterOptions{});
   EXPECT_TRUE(segmenter.Segment(scan.View()).empty());
   EXPECT_EQ(segmenter.stats().clusters, 1);
-  EXPECT_EQ(segmenter.stats().clusters_too_wide, 1);
+  EXPECT_EQ(segmenter.stats().clusters_structure, 1);
+  EXPECT_GT(segmenter.lines().size(), 3u);
+  SegmenterOptions no_lines;
+  no_lines.extract_lines = false;
+  Segmenter plain(no_lines);
+  EXPECT_TRUE(plain.Segment(scan.View()).empty());
+  EXPECT_EQ(plain.stats().clusters_too_wide, 1);
+  EXPECT_TRUE(plain.lines().empty());
 }
 
 TEST(SegmenterTest, WallsAndSmallClustersAreNotFeatures) {
@@ -506,8 +514,21 @@ TEST(SegmenterTest, WallsAndSmallClustersAreNotFeatures) {
   Segmenter segmenter(SegmenterOptions{});
   EXPECT_TRUE(segmenter.Segment(scan.View()).empty());
   EXPECT_EQ(segmenter.stats().clusters, 3);
-  EXPECT_EQ(segmenter.stats().clusters_too_wide, 1);
+  EXPECT_EQ(segmenter.stats().clusters_too_wide, 0);
   EXPECT_EQ(segmenter.stats().clusters_too_few_points, 2);
+  EXPECT_EQ(segmenter.stats().beams_isolated, 2);
+  // The wall is one line feature: 2 m ahead, normal along x.
+  ASSERT_EQ(segmenter.lines().size(), 1u);
+  EXPECT_NEAR(segmenter.lines()[0].rho_m, 2.0, 1e-6);
+  EXPECT_NEAR(segmenter.lines()[0].alpha_rad, 0.0, 1e-6);
+  EXPECT_EQ(segmenter.lines()[0].num_points, 89);
+  EXPECT_EQ(segmenter.stats().beams_on_lines, 89);
+  // Without line extraction, the paper's algorithm: the wall is too wide for a point feature.
+  SegmenterOptions no_lines;
+  no_lines.extract_lines = false;
+  Segmenter plain(no_lines);
+  EXPECT_TRUE(plain.Segment(scan.View()).empty());
+  EXPECT_EQ(plain.stats().clusters_too_wide, 1);
 }
 
 TEST(SegmenterTest, ScansWithNothingUsableGiveNoFeatures) {

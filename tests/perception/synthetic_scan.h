@@ -1,5 +1,5 @@
-// A small, independent ray caster for the perception unit tests: circles seen from a sensor at
-// the origin. Deliberately not the world library, so that the segmenter's unit tests check it
+// A small, independent ray caster for the perception unit tests: circles and straight segments
+// seen from a sensor at the origin. Deliberately not the world library, so that the segmenter's unit tests check it
 // against geometry written here, not against another module's conventions.
 #pragma once
 
@@ -18,6 +18,13 @@ struct Circle {
   double x_m;
   double y_m;
   double radius_m;
+};
+
+struct WallSegment {
+  double x0_m;
+  double y0_m;
+  double x1_m;
+  double y1_m;
 };
 
 struct TestScan {
@@ -52,6 +59,62 @@ inline double RayCircle(double angle_rad, const Circle& c) {
   const double q = c.radius_m * c.radius_m - across * across;
   if (q < 0.0 || along <= 0.0) return -1.0;
   return along - std::sqrt(q);
+}
+
+// Range from the origin along angle to the segment, or a negative value on a miss.
+inline double RaySegment(double angle_rad, const WallSegment& w) {
+  const double ux = std::cos(angle_rad);
+  const double uy = std::sin(angle_rad);
+  const double ex = w.x1_m - w.x0_m;
+  const double ey = w.y1_m - w.y0_m;
+  const double denominator = ux * ey - uy * ex;
+  if (std::abs(denominator) < 1e-12) return -1.0;
+  const double t = (w.x0_m * ey - w.y0_m * ex) / denominator;      // along the ray
+  const double s = (w.x0_m * uy - w.y0_m * ux) / denominator;      // along the segment
+  if (t <= 0.0 || s < 0.0 || s > 1.0) return -1.0;
+  return t;
+}
+
+// Casts every angle against every circle and segment (first hit); no hit or beyond range_max:
+// valid 0. Range noise sigma0 + sigma_per_m * range (Gaussian) when rng is given. A beam whose
+// neighbour (previous angle) hit a surface more than 0.3 m away in range becomes a mixed pixel
+// with probability mixed_probability: a range uniformly between the two.
+inline TestScan CastScene(const std::vector<Circle>& circles,
+                          const std::vector<WallSegment>& segments,
+                          const std::vector<double>& angles, double range_max_m,
+                          double sigma0_m, double sigma_per_m, std::mt19937_64* rng,
+                          double mixed_probability = 0.0) {
+  TestScan scan;
+  scan.range_max_m = range_max_m;
+  std::normal_distribution<double> unit_noise(0.0, 1.0);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  std::vector<double> truth(angles.size(), -1.0);
+  for (size_t i = 0; i < angles.size(); ++i) {
+    double best = -1.0;
+    for (const Circle& c : circles) {
+      const double r = RayCircle(angles[i], c);
+      if (r > 0.0 && (best < 0.0 || r < best)) best = r;
+    }
+    for (const WallSegment& w : segments) {
+      const double r = RaySegment(angles[i], w);
+      if (r > 0.0 && (best < 0.0 || r < best)) best = r;
+    }
+    truth[i] = best;
+  }
+  for (size_t i = 0; i < angles.size(); ++i) {
+    double r = truth[i];
+    const double neighbour = i > 0 ? truth[i - 1] : -1.0;
+    if (rng != nullptr && r > 0.0 && neighbour > 0.0 && std::abs(neighbour - r) > 0.3 &&
+        uniform(*rng) < mixed_probability) {
+      r = std::min(r, neighbour) + uniform(*rng) * std::abs(neighbour - r);
+    }
+    if (r > 0.0 && rng != nullptr) r += (sigma0_m + sigma_per_m * r) * unit_noise(*rng);
+    const bool hit = r > 0.0 && r <= range_max_m;
+    scan.angle_rad.push_back(static_cast<float>(angles[i]));
+    scan.range_m.push_back(hit ? static_cast<float>(r) : 0.0f);
+    scan.valid.push_back(hit ? 1 : 0);
+  }
+  return scan;
 }
 
 // Casts every angle against every circle (first hit); no hit or beyond range_max: valid 0,
