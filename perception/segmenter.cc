@@ -430,6 +430,16 @@ bool Segmenter::ExplainedByCircle(size_t count, double lines_rms_m) const {
   return std::sqrt(sum / n) <= std::max(options_.sigma_r_m, kRoundRmsRatio * lines_rms_m);
 }
 
+double Segmenter::SplitDistance(double range_m) const {
+  return options_.line_split_distance_m + options_.line_split_range_fraction * range_m;
+}
+
+double Segmenter::MeanRange(size_t count) const {
+  double sum = 0.0;
+  for (size_t i = 0; i < count; ++i) sum += std::hypot(sensor_x_[i], sensor_y_[i]);
+  return count > 0 ? sum / static_cast<double>(count) : 0.0;
+}
+
 void Segmenter::FillRunPoints(size_t ring_start, size_t count, size_t offset) {
   if (sensor_x_.size() < offset + count) {
     sensor_x_.resize(offset + count);
@@ -475,7 +485,7 @@ bool Segmenter::TryMergeLines(size_t first, size_t second, LineFeature* merged) 
   const LineFeature& b = lines_[second];
   if (line_runs_[first].merged || line_runs_[second].merged ||
       !(std::abs(WrapAngle(a.alpha_rad - b.alpha_rad)) < kMergeAngleRad) ||
-      !(std::abs(a.rho_m - b.rho_m) < 2.0 * options_.line_split_distance_m)) {
+      !(std::abs(a.rho_m - b.rho_m) < 2.0 * SplitDistance(std::max(a.rho_m, b.rho_m)))) {
     return false;
   }
   const RingRun& ra = line_runs_[first];
@@ -487,9 +497,10 @@ bool Segmenter::TryMergeLines(size_t first, size_t second, LineFeature* merged) 
                               options_.bearing_sigma_rad);
   const double ca = std::cos(fit.alpha_rad);
   const double sa = std::sin(fit.alpha_rad);
+  const double tolerance = SplitDistance(MeanRange(n));
   for (size_t i = 0; i < n; ++i) {
     if (!(std::abs(DistanceFromLine(fit.rho_m, ca, sa, sensor_x_[i], sensor_y_[i])) <=
-          options_.line_split_distance_m)) {
+          tolerance)) {
       return false;
     }
   }
@@ -540,7 +551,7 @@ void Segmenter::ExtractLines() {
     const Cluster& c = clusters_[ci];
     if (c.count < min_points) continue;
     FillSensorPoints(c);
-    SplitAndMerge(sensor_x_.data(), sensor_y_.data(), c.count, options_.line_split_distance_m,
+    SplitAndMerge(sensor_x_.data(), sensor_y_.data(), c.count, SplitDistance(MeanRange(c.count)),
                   &runs_, &run_stack_);
     const auto qualifies = [&](const PointRun& run) {
       if (run.size() < min_points) return false;
@@ -623,7 +634,7 @@ void Segmenter::ClassifyLoneBeam(const Cluster& c) {
 }
 
 bool Segmenter::LiesOnALine(size_t count) const {
-  const double tolerance = options_.line_split_distance_m;
+  const double tolerance = SplitDistance(MeanRange(count));
   for (const LineFeature& line : lines_) {
     const double ca = std::cos(line.alpha_rad);
     const double sa = std::sin(line.alpha_rad);
@@ -734,6 +745,15 @@ void Segmenter::MakeFeature(const Cluster& c) {
       centre = CircleFitCentre(cluster, options_.max_object_radius_m, options_.sigma_r_m);
       if (centre.fell_back) ++stats_.circle_fit_fallbacks;
       break;
+  }
+  // A centre far behind every point (a circle fitted to a nearly straight cluster) is no
+  // better than the radius-corrected one.
+  double farthest_point = 0.0;
+  for (size_t i = 0; i < count; ++i) farthest_point = std::max(farthest_point, range_[i]);
+  if (options_.centre_rule == CentreRule::kCircleFit &&
+      centre.range_m > farthest_point + options_.max_object_radius_m) {
+    centre = corrected;
+    ++stats_.circle_fit_fallbacks;
   }
   if (!std::isfinite(centre.range_m) || !(centre.range_m > 0.0) ||
       !std::isfinite(centre.bearing_rad)) {

@@ -24,7 +24,9 @@
 //     between its valid neighbours with their actual angular distance, which widens the
 //     threshold. More than max_dropped_beams markers between two neighbours always split, and
 //     so does a gap of more than max_beam_gap_rad (or lambda).
-//  4. Straight structure (options.extract_lines; line_extraction.h): every cluster of at least
+//  4. Straight structure (options.extract_lines; line_extraction.h), with the split distance
+//     line_split_distance_m + line_split_range_fraction * (the cluster's mean range): every
+//     cluster of at least
 //     min_line_points points is split and merged into straight runs; runs of at least
 //     min_line_points points and min_line_length_m are fitted (total least squares) and become
 //     line features, and such a cluster gives no point feature, unless it is no wider than
@@ -37,12 +39,12 @@
 //     isolated beam; two points may be a provisional leg (step 7). A cluster becomes a point
 //     feature when the distance between its first and last point is at most max_width_m and
 //     it spans less than pi (a cluster that surrounds the sensor has no centre), and it is not
-//     a piece of a line of this scan (every point within line_split_distance_m of one; kept if
+//     a piece of a line of this scan (every point within the split distance of one; kept if
 //     it has more than three points and looks like a leg). Its centre follows
 //     options.centre_rule (centre_estimation.h), its width is the first-to-last distance
 //     (Algorithm 1, step 9), its leg_likeness comes from its shape (leg_likeness.h).
 //     Lines of neighbouring clusters (a wall cut by eq. 15 at grazing incidence, or behind a
-//     leg) whose joint fit keeps every point within line_split_distance_m are one line.
+//     leg) whose joint fit keeps every point within the split distance are one line.
 //  6. Point features are returned in increasing bearing (ties: increasing range), lines in the
 //     order of their clusters and runs (CCW from the first cluster).
 //  7. People (options.detect_people; person_detection.h): point features with leg_likeness >=
@@ -157,6 +159,8 @@ class Segmenter {
   void FillSensorPoints(const Cluster& cluster);
   bool ExplainedByCircle(size_t count, double lines_rms_m) const;
   void FillRunPoints(size_t ring_start, size_t count, size_t offset);
+  double SplitDistance(double range_m) const;
+  double MeanRange(size_t count) const;  // of sensor_x_, sensor_y_ [0, count)
   LineFeature MakeLine(size_t ring_start, size_t count);
   bool TryMergeLines(size_t first, size_t second, LineFeature* merged);
   void MergeCollinearLines();

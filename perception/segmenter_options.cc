@@ -73,6 +73,9 @@ std::string CheckSegmenterOptions(const SegmenterOptions& o) {
   if (!(o.line_split_distance_m > 0.0) || !std::isfinite(o.line_split_distance_m)) {
     return Bad("line_split_distance_m", "positive and finite", o.line_split_distance_m);
   }
+  if (!(o.line_split_range_fraction >= 0.0 && o.line_split_range_fraction < 1.0)) {
+    return Bad("line_split_range_fraction", "in [0, 1)", o.line_split_range_fraction);
+  }
   if (o.min_line_points < 3) return Bad("min_line_points", "at least 3", o.min_line_points);
   if (!(o.min_line_length_m > 0.0) || !std::isfinite(o.min_line_length_m)) {
     return Bad("min_line_length_m", "positive and finite", o.min_line_length_m);

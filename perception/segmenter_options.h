@@ -97,6 +97,10 @@ struct SegmenterOptions {
   // the paper's algorithm.
   bool extract_lines = true;
   double line_split_distance_m = 0.05;
+  // Range noise grows with range (about 1 % for Hokuyo URG-class scanners and the RPLIDAR A2
+  // beyond a few metres): the split distance is line_split_distance_m plus this fraction of
+  // the cluster's mean range (0.09 m at 4 m), for fragments and merges too.
+  double line_split_range_fraction = 0.01;
   int min_line_points = 5;
   double min_line_length_m = 0.4;
 
@@ -108,7 +112,7 @@ struct SegmenterOptions {
   // beams (range r, beam spacing delta: leg_nominal_diameter_m / (r delta) < min_points; at
   // 0.9 degrees beyond about 2.5 m, never at 0.35 degrees within 6 m).
   bool detect_people = true;
-  double leg_threshold = 0.5;
+  double leg_threshold = 0.4;
   double leg_nominal_diameter_m = 0.12;
   PersonDetectionOptions person;
 

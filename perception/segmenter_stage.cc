@@ -95,6 +95,8 @@ SegmenterOptions ReadSegmenterOptions(const Config& section) {
   o.extract_lines = section.GetBool("extract_lines", o.extract_lines);
   o.line_split_distance_m =
       PositiveDouble(section, "line_split_distance_m", o.line_split_distance_m);
+  o.line_split_range_fraction =
+      NonNegativeDouble(section, "line_split_range_fraction", o.line_split_range_fraction);
   const int64_t min_line_points = section.GetInt("min_line_points", o.min_line_points);
   if (min_line_points < 3 || min_line_points > 100000) {
     section.FailKey("min_line_points", "must be between 3 and 100000");
