@@ -13,9 +13,6 @@ double Trapezoid(double d, double low, double high, double margin_below, double 
   return 1.0;
 }
 
-// Nominal diameters above this may be two legs in one cluster.
-constexpr double kTwoLegDiameterM = 0.18;
-
 double StandardNormalCdf(double z) { return 0.5 * std::erfc(-z / std::sqrt(2.0)); }
 
 }  // namespace
@@ -82,7 +79,8 @@ double LegLikeness(const ClusterShape& shape, const LegLikenessOptions& options,
   width /= kSamples;
   if (width <= 0.0) return 0.0;
 
-  double convexity = 0.7;  // two points: no curvature to see
+  // Two points: no curvature to see, halfway between flat and round.
+  double convexity = 0.5 * (1.0 + options.convexity_floor);
   if (shape.bulge_points > 0) {
     const double diameter = shape.mean_range_m * (shape.extent_rad + shape.spacing_rad);
     if (!(diameter > 0.0)) return 0.0;
@@ -91,10 +89,8 @@ double LegLikeness(const ClusterShape& shape, const LegLikenessOptions& options,
     const double sigma_bulge2 = sigma_r_m * sigma_r_m *
                                 (1.0 / static_cast<double>(shape.bulge_points) + 0.5);
     const double sigma_c2 = sigma_bulge2 / (half * half);
-    convexity = 0.2 + 0.8 * StandardNormalCdf((c - 0.2) / std::sqrt(sigma_c2 + 0.01));
-    // Wider than one leg: possibly two legs side by side, whose notch says nothing against a
-    // person.
-    if (diameter > kTwoLegDiameterM) convexity = std::max(convexity, 0.6);
+    const double b = options.convexity_floor;
+    convexity = b + (1.0 - b) * StandardNormalCdf((c - 0.2) / std::sqrt(sigma_c2 + 0.01));
   }
 
   const int occluded = static_cast<int>(shape.first_edge_occluded) +

@@ -50,6 +50,9 @@ struct LegLikenessOptions {
   // The factor falls to 0 over this margin below the minimum and three times it above the
   // maximum.
   double leg_diameter_margin_m = 0.03;
+  // The convexity factor's value for a clearly flat or concave cluster (b below): how much the
+  // shape may count against the width.
+  double convexity_floor = 0.6;
 };
 
 // Shape cues of one cluster (points as ClusterView gives them, count >= 1).

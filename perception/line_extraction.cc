@@ -41,6 +41,12 @@ double FarthestFromChord(const double* x, const double* y, size_t begin, size_t 
 
 }  // namespace
 
+double MaxDistanceFromChord(const double* x_m, const double* y_m, size_t count) {
+  if (count < 3) return 0.0;
+  size_t farthest = 0;
+  return FarthestFromChord(x_m, y_m, 0, count, &farthest);
+}
+
 LineFit FitLine(const double* x_m, const double* y_m, size_t count, double range_sigma_m,
                 double bearing_sigma_rad) {
   LineFit fit;

@@ -70,6 +70,10 @@ inline double DistanceFromLine(double rho_m, double cos_alpha, double sin_alpha,
   return x_m * cos_alpha + y_m * sin_alpha - rho_m;
 }
 
+// Largest distance of the points [0, count) from the chord between the first and the last (0
+// for fewer than three points).
+double MaxDistanceFromChord(const double* x_m, const double* y_m, size_t count);
+
 // A run of consecutive points [begin, end) of a cluster.
 struct PointRun {
   size_t begin = 0;

@@ -47,7 +47,7 @@ struct LegCandidate {
 struct PersonDetectionOptions {
   double min_leg_separation_m = 0.1;
   double max_leg_separation_m = 0.6;
-  double single_leg_threshold = 0.5;
+  double single_leg_threshold = 0.65;
   double pair_centre_sigma_m = 0.05;
   double single_leg_offset_sigma_m = 0.15;
 };

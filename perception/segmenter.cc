@@ -17,11 +17,14 @@ namespace {
 constexpr double kTwoPi = 2.0 * M_PI;
 // Beam::unusable_before of a beam without a usable return, before CountGapsAndDropDuplicates().
 constexpr int32_t kMarker = -1;
-// A compact cluster with straight runs (and not one straight run over almost all of it) is a
-// round object when one circle's RMS residual is at most sigma_r_m or this fraction of the
-// runs' pooled RMS residual (chords of a circle leave a systematic residual that the circle
-// does not).
-constexpr double kRoundRmsRatio = 0.8;
+// A compact cluster with straight runs is a round object when one circle (3 parameters) fits
+// it about as well as its runs (2 per run): with two runs or more, when the circle's RMS
+// residual is at most 1.1 times the runs' pooled RMS (the simpler model wins; chords of a
+// large disc are as good as the circle only when the noise hides their sagitta); with one run,
+// when it is at most 0.7 times the run's (on a straight surface the circle only fits noise
+// and its RMS is sqrt((n - 3) / (n - 2)) of the line's, 0.82 or more for five points or more).
+constexpr double kRoundRmsRatioRuns = 1.1;
+constexpr double kRoundRmsRatioOneRun = 0.7;
 // Lines of neighbouring clusters are tried for one line only when their normals are this close.
 constexpr double kMergeAngleRad = 5.0 * M_PI / 180.0;
 
@@ -76,6 +79,7 @@ void Segmenter::MakeFeatures() {
   stats_.beams_mixed_pixel = 0;
   stats_.beams_isolated = 0;
   stats_.clusters_on_lines = 0;
+  stats_.clusters_structure_pieces = 0;
   stats_.provisional_legs = 0;
   const bool have_structure = structure_.size() == clusters_.size();
   for (size_t c = 0; c < clusters_.size(); ++c) {
@@ -390,7 +394,7 @@ void Segmenter::FillSensorPoints(const Cluster& c) {
   }
 }
 
-bool Segmenter::ExplainedByCircle(size_t count, double lines_rms_m) const {
+bool Segmenter::ExplainedByCircle(size_t count, double lines_rms_m, size_t runs) const {
   // Algebraic circle fit (Kasa 1976) about the centroid, then the geometric RMS residual.
   const double n = static_cast<double>(count);
   double mx = 0.0;
@@ -427,7 +431,7 @@ bool Segmenter::ExplainedByCircle(size_t count, double lines_rms_m) const {
     const double e = std::hypot(sensor_x_[i] - cx, sensor_y_[i] - cy) - radius;
     sum += e * e;
   }
-  return std::sqrt(sum / n) <= std::max(options_.sigma_r_m, kRoundRmsRatio * lines_rms_m);
+  return std::sqrt(sum / n) <= (runs >= 2 ? kRoundRmsRatioRuns : kRoundRmsRatioOneRun) * lines_rms_m;
 }
 
 double Segmenter::SplitDistance(double range_m) const {
@@ -564,15 +568,7 @@ void Segmenter::ExtractLines() {
     if (qualifying == 0) continue;
     const size_t last = c.count - 1;
     const double width = std::hypot(sensor_x_[last] - sensor_x_[0], sensor_y_[last] - sensor_y_[0]);
-    // One straight run over (almost) the whole cluster is straight whatever a circle says.
-    const bool one_straight_run = runs_.size() == 1 ||
-                                  (qualifying == 1 && [&] {
-                                    for (const PointRun& run : runs_) {
-                                      if (qualifies(run)) return 10 * run.size() >= 9 * c.count;
-                                    }
-                                    return false;
-                                  }());
-    if (width <= options_.max_width_m && !one_straight_run) {
+    if (width <= options_.max_width_m) {
       // A compact cluster may be a large round object that the runs only approximate.
       double sum_e2 = 0.0;
       double points = 0.0;
@@ -583,7 +579,7 @@ void Segmenter::ExtractLines() {
         sum_e2 += fit.rms_residual_m * fit.rms_residual_m * static_cast<double>(run.size());
         points += static_cast<double>(run.size());
       }
-      if (points > 0.0 && ExplainedByCircle(c.count, std::sqrt(sum_e2 / points))) {
+      if (points > 0.0 && ExplainedByCircle(c.count, std::sqrt(sum_e2 / points), runs_.size())) {
         ++stats_.clusters_round;
         continue;
       }
@@ -607,6 +603,55 @@ void Segmenter::ExtractLines() {
   }
   MergeCollinearLines();
   stats_.lines = static_cast<int64_t>(lines_.size());
+}
+
+void Segmenter::FillSensorFromCluster(size_t count, double reference_bearing_rad) {
+  double sin_r = 0.0;
+  double cos_r = 0.0;
+  SinCosSeries(WrapAngle(reference_bearing_rad), &sin_r, &cos_r);
+  if (sensor_x_.size() < count) {
+    sensor_x_.resize(count);
+    sensor_y_.resize(count);
+  }
+  for (size_t i = 0; i < count; ++i) {
+    sensor_x_[i] = x_[i] * cos_r - y_[i] * sin_r;
+    sensor_y_[i] = x_[i] * sin_r + y_[i] * cos_r;
+  }
+}
+
+bool Segmenter::IsStructurePiece(const ClusterView& cluster, double width_m, bool leg_like) {
+  const size_t count = cluster.count;
+  double sum_range = 0.0;
+  for (size_t i = 0; i < count; ++i) sum_range += cluster.range_m[i];
+  const double split = SplitDistance(sum_range / static_cast<double>(count));
+  // Straight, and too wide for a leg (with enough points for straightness to mean something:
+  // three points of a far post are always "straight") or seen only between two nearer objects.
+  const bool enough_points = count >= static_cast<size_t>(options_.min_line_points);
+  if (MaxDistanceFromChord(cluster.x_m, cluster.y_m, count) <= split) {
+    return (enough_points && width_m >= options_.straight_piece_width_m) ||
+           (cluster.first_edge_occluded && cluster.last_edge_occluded);
+  }
+  // Wider than a leg, not leg-like and not round: a few straight pieces (a corner).
+  if (!enough_points || width_m < options_.straight_piece_width_m || leg_like) return false;
+  SplitAndMerge(cluster.x_m, cluster.y_m, count, split, &runs_, &run_stack_);
+  double sum_e2 = 0.0;
+  double points = 0.0;
+  for (const PointRun& run : runs_) {
+    if (run.size() < 3) continue;
+    const LineFit fit = FitLine(cluster.x_m + run.begin, cluster.y_m + run.begin, run.size(),
+                                options_.sigma_r_m, options_.bearing_sigma_rad);
+    sum_e2 += fit.rms_residual_m * fit.rms_residual_m * static_cast<double>(run.size());
+    points += static_cast<double>(run.size());
+  }
+  if (!(points > 0.0)) return false;  // runs of two points: curved all along, no corner
+  // ExplainedByCircle reads sensor_x_/sensor_y_: the rotated frame serves as well.
+  if (sensor_x_.size() < count) {
+    sensor_x_.resize(count);
+    sensor_y_.resize(count);
+  }
+  std::copy(cluster.x_m, cluster.x_m + count, sensor_x_.begin());
+  std::copy(cluster.y_m, cluster.y_m + count, sensor_y_.begin());
+  return !ExplainedByCircle(count, std::sqrt(sum_e2 / points), runs_.size());
 }
 
 void Segmenter::ClassifyLoneBeam(const Cluster& c) {
@@ -783,19 +828,15 @@ void Segmenter::MakeFeature(const Cluster& c) {
                                      options_.sigma_r_m);
   const bool leg_like = feature.leg_likeness >= options_.leg_threshold;
   if (provisional && !leg_like) return;
+  // Pieces of structure are looked for in scans that show structure (a line feature): in a
+  // world of round objects, a far post of five points is as flat as the noise allows.
+  if (!lines_.empty() && count >= 3 && IsStructurePiece(cluster, width, leg_like)) {
+    ++stats_.clusters_structure_pieces;
+    return;
+  }
   if (!lines_.empty() && (count <= 3 || !leg_like)) {
     // A piece of a line of this scan? Test its points in the sensor frame.
-    double sin_r = 0.0;
-    double cos_r = 0.0;
-    SinCosSeries(WrapAngle(reference_bearing), &sin_r, &cos_r);
-    if (sensor_x_.size() < count) {
-      sensor_x_.resize(count);
-      sensor_y_.resize(count);
-    }
-    for (size_t i = 0; i < count; ++i) {
-      sensor_x_[i] = x_[i] * cos_r - y_[i] * sin_r;
-      sensor_y_[i] = x_[i] * sin_r + y_[i] * cos_r;
-    }
+    FillSensorFromCluster(count, reference_bearing);
     if (LiesOnALine(count)) {
       ++stats_.clusters_on_lines;
       return;

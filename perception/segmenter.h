@@ -30,17 +30,21 @@
 //     min_line_points points is split and merged into straight runs; runs of at least
 //     min_line_points points and min_line_length_m are fitted (total least squares) and become
 //     line features, and such a cluster gives no point feature, unless it is no wider than
-//     max_width_m, not one straight run over 90 % of it, and one circle (radius <=
-//     max_width_m, centre behind the points) fits it within sigma_r_m RMS or better than its
-//     straight runs do (RMS at most 0.8 times theirs): a large round object approximated by
-//     chords is not a wall.
+//     max_width_m and one circle (radius <= max_width_m, centre behind the points) fits it
+//     about as well as its straight runs (RMS at most 1.1 times theirs with two runs or more,
+//     0.7 times with one): a large round object approximated by chords is not a wall.
 //  5. Every other cluster: fewer than min_points points is no feature; one point alone is
 //     counted as a mixed pixel (its range between those of both angular neighbours) or an
 //     isolated beam; two points may be a provisional leg (step 7). A cluster becomes a point
 //     feature when the distance between its first and last point is at most max_width_m and
 //     it spans less than pi (a cluster that surrounds the sensor has no centre), and it is not
 //     a piece of a line of this scan (every point within the split distance of one; kept if
-//     it has more than three points and looks like a leg). Its centre follows
+//     it has more than three points and looks like a leg), and, in a scan with a line
+//     feature, not a piece of structure too short for a line: straight (every point within the split distance of its chord) and
+//     either at least straight_piece_width_m wide with at least min_line_points points, or
+//     with both edges hidden by nearer objects; or at least straight_piece_width_m wide with
+//     at least min_line_points points, not leg-like and not explained by a circle as in
+//     step 4 (a corner of short walls). Its centre follows
 //     options.centre_rule (centre_estimation.h), its width is the first-to-last distance
 //     (Algorithm 1, step 9), its leg_likeness comes from its shape (leg_likeness.h).
 //     Lines of neighbouring clusters (a wall cut by eq. 15 at grazing incidence, or behind a
@@ -102,6 +106,7 @@ struct SegmentationStats {
   int64_t clusters_structure = 0;      // clusters that gave line features
   int64_t clusters_round = 0;          // had straight runs, but a circle explains them as well
   int64_t clusters_on_lines = 0;       // compact clusters lying on a line of the scan
+  int64_t clusters_structure_pieces = 0;  // too short for lines, but straight or corners
   int64_t beams_on_lines = 0;          // beams in the runs of line features
   int64_t lines = 0;
   int64_t features = 0;
@@ -157,7 +162,7 @@ class Segmenter {
   size_t Previous(size_t k) const { return k > 0 ? k - 1 : beams_.size() - 1; }
   void CountDepthEdges();
   void FillSensorPoints(const Cluster& cluster);
-  bool ExplainedByCircle(size_t count, double lines_rms_m) const;
+  bool ExplainedByCircle(size_t count, double lines_rms_m, size_t runs) const;
   void FillRunPoints(size_t ring_start, size_t count, size_t offset);
   double SplitDistance(double range_m) const;
   double MeanRange(size_t count) const;  // of sensor_x_, sensor_y_ [0, count)
@@ -166,6 +171,8 @@ class Segmenter {
   void MergeCollinearLines();
   void ClassifyLoneBeam(const Cluster& cluster);
   bool LiesOnALine(size_t count) const;
+  void FillSensorFromCluster(size_t count, double reference_bearing_rad);
+  bool IsStructurePiece(const ClusterView& cluster, double width_m, bool leg_like);
   void MakeFeature(const Cluster& cluster);
 
   SegmenterOptions options_;

@@ -76,6 +76,9 @@ std::string CheckSegmenterOptions(const SegmenterOptions& o) {
   if (!(o.line_split_range_fraction >= 0.0 && o.line_split_range_fraction < 1.0)) {
     return Bad("line_split_range_fraction", "in [0, 1)", o.line_split_range_fraction);
   }
+  if (!(o.straight_piece_width_m > 0.0) || !std::isfinite(o.straight_piece_width_m)) {
+    return Bad("straight_piece_width_m", "positive and finite", o.straight_piece_width_m);
+  }
   if (o.min_line_points < 3) return Bad("min_line_points", "at least 3", o.min_line_points);
   if (!(o.min_line_length_m > 0.0) || !std::isfinite(o.min_line_length_m)) {
     return Bad("min_line_length_m", "positive and finite", o.min_line_length_m);

@@ -95,12 +95,19 @@ struct SegmenterOptions {
   // no point feature either, unless it looks like a leg (leg_likeness >= leg_threshold) and
   // has more than three points. false: no line features, walls are clusters_too_wide as in
   // the paper's algorithm.
+  // In a scan with a line feature, a compact cluster is a piece of structure too short for a
+  // line, not a point feature, when it is straight (every point within the split distance of its chord) and at least
+  // straight_piece_width_m wide (wider than a leg; with min_line_points points at least) or
+  // both its edges are hidden by nearer objects (background seen between two of them); or
+  // when it is at least straight_piece_width_m wide with min_line_points points, not
+  // leg-like and no circle explains it (a corner).
   bool extract_lines = true;
+  double straight_piece_width_m = 0.2;
   double line_split_distance_m = 0.05;
   // Range noise grows with range (about 1 % for Hokuyo URG-class scanners and the RPLIDAR A2
   // beyond a few metres): the split distance is line_split_distance_m plus this fraction of
   // the cluster's mean range (0.09 m at 4 m), for fragments and merges too.
-  double line_split_range_fraction = 0.01;
+  double line_split_range_fraction = 0.005;
   int min_line_points = 5;
   double min_line_length_m = 0.4;
 
@@ -112,7 +119,7 @@ struct SegmenterOptions {
   // beams (range r, beam spacing delta: leg_nominal_diameter_m / (r delta) < min_points; at
   // 0.9 degrees beyond about 2.5 m, never at 0.35 degrees within 6 m).
   bool detect_people = true;
-  double leg_threshold = 0.4;
+  double leg_threshold = 0.65;
   double leg_nominal_diameter_m = 0.12;
   PersonDetectionOptions person;
 

@@ -97,6 +97,8 @@ SegmenterOptions ReadSegmenterOptions(const Config& section) {
       PositiveDouble(section, "line_split_distance_m", o.line_split_distance_m);
   o.line_split_range_fraction =
       NonNegativeDouble(section, "line_split_range_fraction", o.line_split_range_fraction);
+  o.straight_piece_width_m =
+      PositiveDouble(section, "straight_piece_width_m", o.straight_piece_width_m);
   const int64_t min_line_points = section.GetInt("min_line_points", o.min_line_points);
   if (min_line_points < 3 || min_line_points > 100000) {
     section.FailKey("min_line_points", "must be between 3 and 100000");
@@ -254,6 +256,7 @@ void SegmenterStage::Handle(const std::string& channel, const void* data, int si
   timer.Count("beams_on_lines", stats.beams_on_lines);
   timer.Count("clusters_on_lines", stats.clusters_on_lines);
   timer.Count("clusters_round", stats.clusters_round);
+  timer.Count("clusters_structure_pieces", stats.clusters_structure_pieces);
   timer.Count("leg_candidates", stats.leg_candidates);
   timer.Count("provisional_legs_used", stats.provisional_legs_used);
   timer.Count("people", stats.people);

@@ -31,10 +31,12 @@ std::vector<double> Angles(double spacing_deg) {
 
 // The leg-likeness of the one point feature of a scene (or -1 when there is none).
 double LikenessOf(const std::vector<Circle>& circles, const std::vector<WallSegment>& walls,
-                  double spacing_deg, uint64_t seed, double sigma_m = 0.01) {
+                  double spacing_deg, uint64_t seed, double sigma_m = 0.01,
+                  double configured_sigma_r_m = 0.03) {
   std::mt19937_64 rng(seed);
   const TestScan scan = CastScene(circles, walls, Angles(spacing_deg), 12.0, sigma_m, 0.0, &rng);
   SegmenterOptions options;
+  options.sigma_r_m = configured_sigma_r_m;
   options.min_points = 1;  // see every cluster
   Segmenter segmenter(options);
   const std::vector<Feature>& features = segmenter.Segment(scan.View());
@@ -55,12 +57,17 @@ TEST(LegLikenessTest, LegsScoreHighAndOtherThingsLow) {
   }
 }
 
-TEST(LegLikenessTest, FlatBoardScoresBelowTheThreshold) {
+// A 0.15 m board face on at 1.5 m, 0.35 degrees, 5 mm noise: always below a leg of the same
+// width there; below the threshold when sigma_r_m says how noisy the sensor is (with the
+// paper's 0.03 m the flatness of 0.15 m is not significant).
+TEST(LegLikenessTest, FlatBoardScoresBelowALeg) {
   const SegmenterOptions defaults;
-  // A 0.15 m board face on at 1.5 m, 0.35 degrees, little noise.
   const std::vector<WallSegment> board = {{1.5, -0.075, 1.5, 0.075}, {6.0, -5.0, 6.0, 5.0}};
+  const std::vector<WallSegment> back = {{6.0, -5.0, 6.0, 5.0}};
   for (uint64_t seed = 1; seed <= 5; ++seed) {
-    EXPECT_LT(LikenessOf({}, board, 0.35, seed, 0.005), defaults.leg_threshold) << seed;
+    EXPECT_LT(LikenessOf({}, board, 0.35, seed, 0.005),
+              LikenessOf({{1.575, 0.0, 0.075}}, back, 0.35, seed, 0.005)) << seed;
+    EXPECT_LT(LikenessOf({}, board, 0.35, seed, 0.005, 0.005), defaults.leg_threshold) << seed;
   }
 }
 
@@ -207,7 +214,9 @@ TEST(SegmenterPeopleTest, TwoLegsGiveOnePersonAtBothResolutions) {
       std::mt19937_64 rng(seed);
       std::uniform_real_distribution<double> u(-1.0, 1.0);
       const double cx = 2.0 + 0.3 * u(rng), cy = 0.5 * u(rng);
-      const double stride = 0.3 * u(rng);  // legs apart along the walking direction (y)...
+      // Legs apart along the walking direction (y) by up to 0.5 m (within max_leg_separation_m
+      // with the 0.2 m across)...
+      const double stride = 0.25 * u(rng);
       const std::vector<Circle> legs = {{cx + 0.1, cy + stride, 0.06},  // ...and 0.2 m across
                                         {cx - 0.1, cy - stride, 0.06}};
       const TestScan scan = CastScene(legs, {{5.0, -4.0, 5.0, 4.0}}, Angles(spacing), 12.0, 0.01,
@@ -230,7 +239,7 @@ TEST(SegmenterPeopleTest, TwoLegsGiveOnePersonAtBothResolutions) {
       }
     }
     std::printf("%.2f deg: %d of 20 scenes give a two-leg person\n", spacing, two_legs);
-    EXPECT_GE(two_legs, spacing < 0.5 ? 14 : 10) << spacing;  // measured 16 and 12
+    EXPECT_GE(two_legs, spacing < 0.5 ? 16 : 15) << spacing;  // measured 18 and 17
   }
 }
 

@@ -59,15 +59,6 @@ double FeatureScore::WallPointShare() const {
                             : std::nan("");
 }
 
-double Percentile(std::vector<double> values, double q) {
-  if (values.empty()) return std::nan("");
-  std::sort(values.begin(), values.end());
-  const double position = std::clamp(q, 0.0, 1.0) * static_cast<double>(values.size() - 1);
-  const size_t below = static_cast<size_t>(std::floor(position));
-  const size_t above = std::min(below + 1, values.size() - 1);
-  return values[below] + (position - static_cast<double>(below)) * (values[above] - values[below]);
-}
-
 void ScorePeople(const std::vector<Eigen::Vector2d>& person_features,
                  const std::vector<TruthPerson>& people, const FeatureScoreOptions& options,
                  FeatureScore* score) {

@@ -72,9 +72,6 @@ struct FeatureScore {
   double WallPointShare() const;   // NaN without point features
 };
 
-// Linearly interpolated percentile (q in [0, 1]) of values; NaN when empty.
-double Percentile(std::vector<double> values, double q);
-
 // Non-finite inputs are skipped (a NaN feature is neither matched nor counted).
 void ScorePeople(const std::vector<Eigen::Vector2d>& person_features,
                  const std::vector<TruthPerson>& people, const FeatureScoreOptions& options,
