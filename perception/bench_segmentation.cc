@@ -2,11 +2,17 @@
 // 20 round objects (people 0.2-0.3 m, posts 0.05-0.15 m) seen from inside, 1 cm range noise,
 // 400 / 800 / 1600 / 8000 beams. items_per_second is beams per second on one core.
 //   build/bin/bench_segmentation --benchmark_repetitions=5 --benchmark_report_aggregates_only
+// BM_Cluster_PaperPipeline: Algorithm 1 alone (extract_lines and detect_people off).
+// BM_PerceptionStage_OfficeRplidar: the whole perception of an office-like RPLIDAR scan, per
+// scan thread-CPU percentiles (cpu_p50_ms, cpu_p99_ms, cpu_max_ms).
 // Variants: the three centre rules; an RPLIDAR-like revolution (clockwise as the A2 turns,
 // angles corrected by 0-2 degrees per sample as in express mode, so neighbours swap; starting
 // at an arbitrary angle; 1 % dropped beams); the beams shuffled (a worst case for the sort).
 #include <benchmark/benchmark.h>
 
+#include <time.h>
+
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <random>
@@ -121,7 +127,122 @@ void BM_Segment_CircleFit_Shuffled(benchmark::State& state) {
   Run(state, CentreRule::kCircleFit, false, true);
 }
 
+// The clustering alone (Algorithm 1 with point features, as the paper): line extraction and
+// people off.
+void BM_Cluster_PaperPipeline(benchmark::State& state) {
+  const int beams = static_cast<int>(state.range(0));
+  RoomScan scan = MakeRoomScan(beams, false, 7);
+  ScanView view = MakeScanView(scan.angle_rad, scan.range_m, scan.valid);
+  view.range_min_m = 0.15;
+  view.range_max_m = 12.0;
+  SegmenterOptions options;
+  options.extract_lines = false;
+  options.detect_people = false;
+  Segmenter segmenter(options);
+  for (auto _ : state) benchmark::DoNotOptimize(segmenter.Segment(view).data());
+  state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * beams);
+}
+
+// Thread CPU time [ms].
+double ThreadCpuMs() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
+}
+
+// An office-like RPLIDAR revolution: 400 beams (0.9 degrees) in a 10 x 7 m room with an inner
+// wall and a door, a desk, a chair on four thin legs and four people on two legs each, range
+// noise 0.01 m + 0.5 %, beams clockwise and corrected by 0-2 degrees as in express mode. The
+// whole perception stage (clustering, lines, point features with leg-likeness, people) per
+// scan, 200 different scans, thread CPU time per scan: p50, p99 and max (nearest rank).
+void BM_PerceptionStage_OfficeRplidar(benchmark::State& state) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::normal_distribution<double> noise(0.0, 1.0);
+  struct Seg {
+    double x0, y0, x1, y1;
+  };
+  const std::vector<Seg> walls = {{-5, -3.5, 5, -3.5}, {5, -3.5, 5, 3.5},   {5, 3.5, -5, 3.5},
+                                  {-5, 3.5, -5, -3.5}, {1, -3.5, 1, -0.5},  {1, 0.5, 1, 3.5},
+                                  {-3, 2, -1.6, 2},    {-1.6, 2, -1.6, 2.7}, {-1.6, 2.7, -3, 2.7},
+                                  {-3, 2.7, -3, 2}};
+  std::vector<RoomScan> scans;
+  for (int k = 0; k < 200; ++k) {
+    struct Circle {
+      double x, y, r;
+    };
+    std::vector<Circle> circles = {{-2.5, 1.2, 0.02}, {-2.05, 1.2, 0.02}, {-2.5, 0.75, 0.02},
+                                   {-2.05, 0.75, 0.02}};
+    for (int p = 0; p < 4; ++p) {
+      const double px = -4.0 + 8.0 * unit(rng), py = -3.0 + 6.0 * unit(rng);
+      const double h = 2.0 * M_PI * unit(rng), stride = 0.5 * (unit(rng) - 0.5);
+      for (double side : {1.0, -1.0}) {
+        circles.push_back({px + side * (0.5 * stride * std::cos(h) - 0.1 * std::sin(h)),
+                           py + side * (0.5 * stride * std::sin(h) + 0.1 * std::cos(h)), 0.06});
+      }
+    }
+    const double sx = -0.5 + unit(rng), sy = -1.0 + 2.0 * unit(rng);
+    const double start = 2.0 * M_PI * unit(rng);
+    RoomScan scan;
+    for (int i = 0; i < 400; ++i) {
+      double angle = start - 2.0 * M_PI / 400 * i + 2.0 * M_PI / 180.0 * unit(rng);
+      angle = std::fmod(angle + 4.0 * M_PI, 2.0 * M_PI);
+      const double ux = std::cos(angle), uy = std::sin(angle);
+      double best = 1e9;
+      for (const Seg& w : walls) {
+        const double ex = w.x1 - w.x0, ey = w.y1 - w.y0;
+        const double den = ux * ey - uy * ex;
+        if (std::abs(den) < 1e-12) continue;
+        const double ax = w.x0 - sx, ay = w.y0 - sy;
+        const double t = (ax * ey - ay * ex) / den, u = (ax * uy - ay * ux) / den;
+        if (t > 0.0 && u >= 0.0 && u <= 1.0) best = std::min(best, t);
+      }
+      for (const Circle& c : circles) {
+        const double r = RayToCircle(ux, uy, c.x - sx, c.y - sy, c.r);
+        if (r > 0.0) best = std::min(best, r);
+      }
+      const bool hit = best < 12.0;
+      scan.angle_rad.push_back(static_cast<float>(angle));
+      scan.range_m.push_back(
+          hit ? static_cast<float>(best + (0.01 + 0.005 * best) * noise(rng)) : 0.0f);
+      scan.valid.push_back(hit ? 1 : 0);
+    }
+    scans.push_back(std::move(scan));
+  }
+  Segmenter segmenter(SegmenterOptions{});
+  std::vector<double> cpu_ms;
+  double lines = 0.0, features = 0.0, people = 0.0;
+  for (auto _ : state) {
+    for (const RoomScan& scan : scans) {
+      ScanView view = MakeScanView(scan.angle_rad, scan.range_m, scan.valid);
+      view.range_min_m = 0.15;
+      view.range_max_m = 12.0;
+      const double start_ms = ThreadCpuMs();
+      benchmark::DoNotOptimize(segmenter.Segment(view).data());
+      cpu_ms.push_back(ThreadCpuMs() - start_ms);
+      lines += static_cast<double>(segmenter.lines().size());
+      features += static_cast<double>(segmenter.features().size());
+      people += static_cast<double>(segmenter.people().size());
+    }
+  }
+  std::sort(cpu_ms.begin(), cpu_ms.end());
+  const auto rank = [&](double q) {
+    const size_t i = static_cast<size_t>(std::ceil(q * static_cast<double>(cpu_ms.size()))) - 1;
+    return cpu_ms[std::min(i, cpu_ms.size() - 1)];
+  };
+  const double n = static_cast<double>(cpu_ms.size());
+  state.counters["cpu_p50_ms"] = rank(0.5);
+  state.counters["cpu_p99_ms"] = rank(0.99);
+  state.counters["cpu_max_ms"] = cpu_ms.back();
+  state.counters["lines"] = lines / n;
+  state.counters["features"] = features / n;
+  state.counters["people"] = people / n;
+  state.SetItemsProcessed(static_cast<int64_t>(cpu_ms.size()) * 400);
+}
+
 BENCHMARK(BM_Segment_CircleFit)->Arg(400)->Arg(800)->Arg(1600)->Arg(8000);
+BENCHMARK(BM_Cluster_PaperPipeline)->Arg(400)->Arg(800)->Arg(1600)->Arg(8000);
+BENCHMARK(BM_PerceptionStage_OfficeRplidar);
 BENCHMARK(BM_Segment_RadiusCorrected)->Arg(400)->Arg(800)->Arg(1600)->Arg(8000);
 BENCHMARK(BM_Segment_MiddlePoint)->Arg(400)->Arg(800)->Arg(1600)->Arg(8000);
 // An RPLIDAR A2 revolution has 400 (express) or 800 (boost) samples at 10 Hz.
