@@ -47,20 +47,21 @@ double MaxDistanceFromChord(const double* x_m, const double* y_m, size_t count) 
   return FarthestFromChord(x_m, y_m, 0, count, &farthest);
 }
 
+Eigen::Vector2d Centroid(const double* x_m, const double* y_m, size_t count) {
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  for (size_t i = 0; i < count; ++i) sum += Eigen::Vector2d(x_m[i], y_m[i]);
+  return count > 0 ? Eigen::Vector2d(sum / static_cast<double>(count)) : sum;
+}
+
 LineFit FitLine(const double* x_m, const double* y_m, size_t count, double range_sigma_m,
                 double bearing_sigma_rad) {
   LineFit fit;
   fit.covariance = 1e6 * Eigen::Matrix2d::Identity();
   if (count == 0) return fit;
   const double n = static_cast<double>(count);
-  double mx = 0.0;
-  double my = 0.0;
-  for (size_t i = 0; i < count; ++i) {
-    mx += x_m[i];
-    my += y_m[i];
-  }
-  mx /= n;
-  my /= n;
+  const Eigen::Vector2d centroid = Centroid(x_m, y_m, count);
+  const double mx = centroid.x();
+  const double my = centroid.y();
   fit.centroid_x_m = mx;
   fit.centroid_y_m = my;
   double sxx = 0.0;

@@ -64,6 +64,9 @@ struct LineFit {
 LineFit FitLine(const double* x_m, const double* y_m, size_t count, double range_sigma_m,
                 double bearing_sigma_rad);
 
+// Mean of the points (x_m[i], y_m[i]), i < count; the origin for count 0.
+Eigen::Vector2d Centroid(const double* x_m, const double* y_m, size_t count);
+
 // Signed distance of (x, y) from the line of a fit (positive on the far side from the sensor).
 inline double DistanceFromLine(double rho_m, double cos_alpha, double sin_alpha, double x_m,
                                double y_m) {

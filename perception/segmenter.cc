@@ -379,32 +379,12 @@ void Segmenter::CountDepthEdges() {
   }
 }
 
-void Segmenter::FillSensorPoints(const Cluster& c) {
-  if (sensor_x_.size() < c.count) {
-    sensor_x_.resize(c.count);
-    sensor_y_.resize(c.count);
-  }
-  size_t k = c.ring_start;
-  for (size_t i = 0; i < c.count; ++i, k = Next(k)) {
-    double sin_a = 0.0;
-    double cos_a = 0.0;
-    SinCosSeries(beams_[k].angle_rad, &sin_a, &cos_a);  // wrapped: |angle| <= pi
-    sensor_x_[i] = beams_[k].range_m * cos_a;
-    sensor_y_[i] = beams_[k].range_m * sin_a;
-  }
-}
-
 bool Segmenter::ExplainedByCircle(size_t count, double lines_rms_m, size_t runs) const {
   // Algebraic circle fit (Kasa 1976) about the centroid, then the geometric RMS residual.
   const double n = static_cast<double>(count);
-  double mx = 0.0;
-  double my = 0.0;
-  for (size_t i = 0; i < count; ++i) {
-    mx += sensor_x_[i];
-    my += sensor_y_[i];
-  }
-  mx /= n;
-  my /= n;
+  const Eigen::Vector2d centroid = Centroid(sensor_x_.data(), sensor_y_.data(), count);
+  const double mx = centroid.x();
+  const double my = centroid.y();
   Eigen::Matrix3d a = Eigen::Matrix3d::Zero();
   Eigen::Vector3d b = Eigen::Vector3d::Zero();
   for (size_t i = 0; i < count; ++i) {
@@ -554,7 +534,7 @@ void Segmenter::ExtractLines() {
   for (size_t ci = 0; ci < clusters_.size(); ++ci) {
     const Cluster& c = clusters_[ci];
     if (c.count < min_points) continue;
-    FillSensorPoints(c);
+    FillRunPoints(c.ring_start, c.count, 0);
     SplitAndMerge(sensor_x_.data(), sensor_y_.data(), c.count, SplitDistance(MeanRange(c.count)),
                   &runs_, &run_stack_);
     const auto qualifies = [&](const PointRun& run) {

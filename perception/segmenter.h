@@ -33,6 +33,8 @@
 //     max_width_m and one circle (radius <= max_width_m, centre behind the points) fits it
 //     about as well as its straight runs (RMS at most 1.1 times theirs with two runs or more,
 //     0.7 times with one): a large round object approximated by chords is not a wall.
+//     Lines of neighbouring clusters (a wall cut by eq. 15 at grazing incidence, or behind a
+//     leg) whose joint fit keeps every point within the split distance are one line.
 //  5. Every other cluster: fewer than min_points points is no feature; one point alone is
 //     counted as a mixed pixel (its range between those of both angular neighbours) or an
 //     isolated beam; two points may be a provisional leg (step 7). A cluster becomes a point
@@ -40,15 +42,13 @@
 //     it spans less than pi (a cluster that surrounds the sensor has no centre), and it is not
 //     a piece of a line of this scan (every point within the split distance of one; kept if
 //     it has more than three points and looks like a leg), and, in a scan with a line
-//     feature, not a piece of structure too short for a line: straight (every point within the split distance of its chord) and
-//     either at least straight_piece_width_m wide with at least min_line_points points, or
-//     with both edges hidden by nearer objects; or at least straight_piece_width_m wide with
-//     at least min_line_points points, not leg-like and not explained by a circle as in
-//     step 4 (a corner of short walls). Its centre follows
+//     feature, not a piece of structure too short for a line: straight (every point within
+//     the split distance of its chord) and either at least straight_piece_width_m wide with
+//     at least min_line_points points, or with both edges hidden by nearer objects; or at
+//     least straight_piece_width_m wide with at least min_line_points points, not leg-like
+//     and not explained by a circle as in step 4 (a corner of short walls). Its centre follows
 //     options.centre_rule (centre_estimation.h), its width is the first-to-last distance
 //     (Algorithm 1, step 9), its leg_likeness comes from its shape (leg_likeness.h).
-//     Lines of neighbouring clusters (a wall cut by eq. 15 at grazing incidence, or behind a
-//     leg) whose joint fit keeps every point within the split distance are one line.
 //  6. Point features are returned in increasing bearing (ties: increasing range), lines in the
 //     order of their clusters and runs (CCW from the first cluster).
 //  7. People (options.detect_people; person_detection.h): point features with leg_likeness >=
@@ -161,7 +161,6 @@ class Segmenter {
   size_t Next(size_t k) const { return k + 1 < beams_.size() ? k + 1 : 0; }
   size_t Previous(size_t k) const { return k > 0 ? k - 1 : beams_.size() - 1; }
   void CountDepthEdges();
-  void FillSensorPoints(const Cluster& cluster);
   bool ExplainedByCircle(size_t count, double lines_rms_m, size_t runs) const;
   void FillRunPoints(size_t ring_start, size_t count, size_t offset);
   double SplitDistance(double range_m) const;

@@ -85,22 +85,23 @@ struct SegmenterOptions {
   // position from the object's shape (objects are not exact circles).
   double shape_sigma_fraction = 0.3;
 
-  // Straight structure (line_extraction.h): inside every cluster of at least min_line_points
-  // points, split-and-merge with line_split_distance_m; each run of at least min_line_points
-  // points and min_line_length_m from end to end is a line feature, and the cluster gives no
-  // point feature (unless one circle of radius at most max_width_m explains it better than its
-  // lines: a large round object is not a wall). A compact cluster all of whose points
-  // lie within line_split_distance_m of a line of the same scan is a piece of that structure
-  // (a wall seen between two legs, a wall at grazing incidence broken up by eq. 15) and gives
-  // no point feature either, unless it looks like a leg (leg_likeness >= leg_threshold) and
-  // has more than three points. false: no line features, walls are clusters_too_wide as in
-  // the paper's algorithm.
+  // Straight structure (line_extraction.h; segmenter.h, steps 4-5): inside every cluster of
+  // at least min_line_points points, split-and-merge with the split distance
+  // (line_split_distance_m + line_split_range_fraction * mean range); each run of at least
+  // min_line_points points and min_line_length_m from end to end is a line feature, and the
+  // cluster gives no point feature (unless one circle of radius at most max_width_m explains
+  // it as well as its runs: a large round object is not a wall). A compact cluster all of
+  // whose points lie within the split distance of a line of the same scan is a piece of that
+  // structure (a wall seen between two legs, a wall at grazing incidence broken up by eq. 15)
+  // and gives no point feature either, unless it looks like a leg (leg_likeness >=
+  // leg_threshold) and has more than three points. false: no line features, walls are
+  // clusters_too_wide as in the paper's algorithm.
   // In a scan with a line feature, a compact cluster is a piece of structure too short for a
-  // line, not a point feature, when it is straight (every point within the split distance of its chord) and at least
-  // straight_piece_width_m wide (wider than a leg; with min_line_points points at least) or
-  // both its edges are hidden by nearer objects (background seen between two of them); or
-  // when it is at least straight_piece_width_m wide with min_line_points points, not
-  // leg-like and no circle explains it (a corner).
+  // line, not a point feature, when it is straight (every point within the split distance of
+  // its chord) and either at least straight_piece_width_m wide (wider than a leg) with at
+  // least min_line_points points, or with both edges hidden by nearer objects (background
+  // seen between two of them); or when it is at least straight_piece_width_m wide with
+  // min_line_points points, not leg-like, and no circle explains it (a corner).
   bool extract_lines = true;
   double straight_piece_width_m = 0.2;
   double line_split_distance_m = 0.05;

@@ -157,7 +157,8 @@ TEST(SegmenterLinesTest, WallsOfARoomAreLinesNeverPointFeatures) {
     for (const auto& e : expected) {
       int found = 0;
       for (const LineFeature& l : lines) {
-        if (std::abs(l.rho_m - e[0]) < 0.02 && std::abs(WrapAngle(l.alpha_rad - e[1])) < 0.5 * kDeg) {
+        if (std::abs(l.rho_m - e[0]) < 0.02 &&
+            std::abs(WrapAngle(l.alpha_rad - e[1])) < 0.5 * kDeg) {
           ++found;
           EXPECT_GT(l.covariance.determinant(), 0.0);
           EXPECT_LT(l.rms_residual_m, 0.02);

@@ -1,11 +1,10 @@
-// Measures the perception figures of issue 11 (Measure) on synthetic offices (tests/perception/
-// office_scene.h), seeds 1-20 (the defaults were chosen on these) and 21-40 (held out), 30
-// scans each, at 0.35 degrees (a Hokuyo's spacing) and at
-// 0.9 degrees (the RPLIDAR A2's, people within 4 m): person recall and precision (people with
-// at least 3 beams on a leg, 0.3 m match), centre error median and p95, the share of point
-// features on walls, line angle and distance errors against the true walls and furniture sides
-// (tools/metrics/feature_score.h for the definitions). Per-seed recall and precision: worst
-// seed and median are printed and asserted, the pooled figures too.
+// Measures the perception figures of issue 11 (Measure) on synthetic offices
+// (tests/perception/office_scene.h), 20 seeds from first_seed, 30 scans each, at one beam
+// spacing (0.35 degrees: a Hokuyo's; 0.9: the RPLIDAR A2's) within a range: person recall and
+// precision (people with at least 3 beams on a leg, 0.3 m match), centre error median and p95,
+// the share of point features on walls, line angle and distance errors against the true walls
+// and furniture sides (tools/metrics/feature_score.h for the definitions). Pooled figures, and
+// per-seed recall and precision (worst seed and median printed).
 #pragma once
 
 #include <algorithm>
@@ -64,7 +63,8 @@ inline Figures Measure(double spacing_deg, double max_range_m, uint64_t first_se
   }
   const FeatureScore& f = figures.pooled;
   std::printf(
-      "seeds %llu-%llu, %.2f deg, within %.0f m: people %lld, person features %lld (ignored %lld): recall %.4f "
+      "seeds %llu-%llu, %.2f deg, within %.0f m: people %lld, person features %lld "
+      "(ignored %lld): recall %.4f "
       "(worst seed %.4f, median %.4f), precision %.4f (worst %.4f, median %.4f); centre error "
       "median %.4f m, p95 %.4f m; point features %lld, on walls %lld (share %.4f); lines %lld, "
       "matched %lld, angle error median %.3f deg p95 %.3f deg, distance error median %.4f m "

@@ -96,7 +96,9 @@ inline OfficeScan MakeOfficeScan(const OfficeLayout& layout, double spacing_deg,
     const double px = 12.0 * u(*rng), py = 8.0 * u(*rng);
     if (!Clear(px, py, 0.45, layout) || std::hypot(px - sx, py - sy) < 0.8) continue;
     bool apart = true;
-    for (const Eigen::Vector2d& c : centres) apart = apart && (c - Eigen::Vector2d(px, py)).norm() > 0.7;
+    for (const Eigen::Vector2d& c : centres) {
+      apart = apart && (c - Eigen::Vector2d(px, py)).norm() > 0.7;
+    }
     if (!apart) continue;
     centres.emplace_back(px, py);
     const double heading = 2.0 * M_PI * u(*rng);

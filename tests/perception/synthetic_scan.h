@@ -1,6 +1,7 @@
-// A small, independent ray caster for the perception unit tests: circles and straight segments
-// seen from a sensor at the origin. Deliberately not the world library, so that the segmenter's unit tests check it
-// against geometry written here, not against another module's conventions.
+// A small, independent ray caster for the perception unit tests: circles and straight
+// segments seen from a sensor at the origin. Deliberately not the world library, so that the
+// segmenter's unit tests check it against geometry written here, not against another module's
+// conventions.
 #pragma once
 
 #include <algorithm>
