@@ -94,6 +94,9 @@ std::string CheckSegmenterOptions(const SegmenterOptions& o) {
   if (!(o.leg.leg_diameter_margin_m > 0.0) || !std::isfinite(o.leg.leg_diameter_margin_m)) {
     return Bad("leg_diameter_margin_m", "positive and finite", o.leg.leg_diameter_margin_m);
   }
+  if (!(o.leg.convexity_floor >= 0.0 && o.leg.convexity_floor <= 1.0)) {
+    return Bad("convexity_floor", "in [0, 1]", o.leg.convexity_floor);
+  }
   if (!(o.leg_threshold >= 0.0 && o.leg_threshold <= 1.0)) {
     return Bad("leg_threshold", "in [0, 1]", o.leg_threshold);
   }

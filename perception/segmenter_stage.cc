@@ -111,6 +111,7 @@ SegmenterOptions ReadSegmenterOptions(const Config& section) {
       PositiveDouble(section, "leg_max_diameter_m", o.leg.leg_max_diameter_m);
   o.leg.leg_diameter_margin_m =
       PositiveDouble(section, "leg_diameter_margin_m", o.leg.leg_diameter_margin_m);
+  o.leg.convexity_floor = UnitInterval(section, "convexity_floor", o.leg.convexity_floor);
   o.detect_people = section.GetBool("detect_people", o.detect_people);
   o.leg_threshold = UnitInterval(section, "leg_threshold", o.leg_threshold);
   o.leg_nominal_diameter_m =

@@ -4,12 +4,18 @@
 //
 // Per laser_scan_t message it publishes, in this order:
 //  - features_t on the `features` channel: the scan's utime and sequence, one feature_t per
-//    Feature (range, bearing, width, points, covariance); an empty list when nothing was found.
+//    Feature (range, bearing, width, points, covariance, leg-likeness), one line_feature_t per
+//    LineFeature, one person_feature_t per PersonFeature (leg_index into the features); empty
+//    lists when nothing was found.
 //  - stage_timing_t on the `stage_timing` channel: stage "segmenter", substages "decode",
-//    "sort" (filter, order, duplicates), "cluster" (eq. 15), "features" (centres, covariance),
-//    "publish"; counters "beams", "beams_used", "beams_dropped" (invalid, non-finite, out of
-//    range), "beams_duplicate", "clusters", "features", "circle_fit_fallbacks", "reversed" (1
-//    for a clockwise scan), "sorted" (1 when the beams were in no circular order).
+//    "sort" (filter, order, duplicates), "cluster" (eq. 15), "lines", "features" (centres,
+//    covariance, leg-likeness), "people", "publish"; counters "beams", "beams_used",
+//    "beams_dropped" (invalid, non-finite, out of range), "beams_duplicate", "clusters",
+//    "features", "circle_fit_fallbacks", "beams_mixed_pixel", "beams_isolated", "depth_edges",
+//    "lines", "beams_on_lines", "clusters_on_lines", "clusters_round",
+//    "clusters_structure_pieces", "leg_candidates", "provisional_legs_used", "people",
+//    "people_one_leg", "reversed" (1 for a clockwise scan), "sorted" (1 when the beams were in
+//    no circular order).
 // A message that is not a laser_scan_t, or whose size does not match its num_beams, is counted
 // (counters().scans_rejected) and reported on stderr (the 1st, 10th, 100th, ... time), and
 // nothing is published for it: there is no trustworthy utime to publish with.
@@ -34,7 +40,14 @@ namespace slammtt {
 //   duplicate_angle_tolerance_deg (0.001), min_range_m (0), max_range_m (no limit),
 //   min_points (3), max_width_m (1.5),
 //   centre_rule (circle_fit | radius_corrected | middle_point), max_object_radius_m (1.0),
-//   bearing_sigma_deg (0.5), shape_sigma_fraction (0.3).
+//   bearing_sigma_deg (0.5), shape_sigma_fraction (0.3);
+//   classification (docs/perception.md): extract_lines (true), line_split_distance_m (0.05),
+//   line_split_range_fraction (0.005), min_line_points (5), min_line_length_m (0.4),
+//   straight_piece_width_m (0.2), leg_min_diameter_m (0.08), leg_max_diameter_m (0.3),
+//   leg_diameter_margin_m (0.03), convexity_floor (0.6), detect_people (true),
+//   leg_threshold (0.65), leg_nominal_diameter_m (0.12), min_leg_separation_m (0.1),
+//   max_leg_separation_m (0.6), single_leg_threshold (0.65), pair_centre_sigma_m (0.05),
+//   single_leg_offset_sigma_m (0.15), depth_edge_m (0.3).
 // Throws ConfigError naming file, line and key for a wrong type, a bad value or an unknown key
 // (CheckUnused()).
 SegmenterOptions ReadSegmenterOptions(const Config& section);

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -274,6 +275,98 @@ TEST(SegmenterStageTest, BadConfigurationNamesTheKey) {
   ExpectConfigError("segmenter:\n  centre_rule: centroid\n", "centre_rule");
   ExpectConfigError("segmenter:\n  min_range_m: 5\n  max_range_m: 4\n", "max_range_m");
   ExpectConfigError("segmenter:\n  bearing_sigma_deg: 0\n", "bearing_sigma_deg");
+}
+
+TEST(SegmenterStageTest, ReadsTheClassificationOptions) {
+  const Config config = Config::FromString(
+      "segmenter:\n"
+      "  extract_lines: false\n"
+      "  line_split_distance_m: 0.04\n"
+      "  line_split_range_fraction: 0.01\n"
+      "  min_line_points: 7\n"
+      "  min_line_length_m: 0.6\n"
+      "  straight_piece_width_m: 0.25\n"
+      "  leg_min_diameter_m: 0.07\n"
+      "  leg_max_diameter_m: 0.2\n"
+      "  leg_diameter_margin_m: 0.02\n"
+      "  convexity_floor: 0.3\n"
+      "  detect_people: false\n"
+      "  leg_threshold: 0.7\n"
+      "  leg_nominal_diameter_m: 0.1\n"
+      "  min_leg_separation_m: 0.05\n"
+      "  max_leg_separation_m: 0.7\n"
+      "  single_leg_threshold: 0.8\n"
+      "  pair_centre_sigma_m: 0.04\n"
+      "  single_leg_offset_sigma_m: 0.2\n"
+      "  depth_edge_m: 0.5\n",
+      "stack.yaml");
+  const SegmenterOptions o = ReadSegmenterOptions(config.Child("segmenter"));
+  EXPECT_FALSE(o.extract_lines);
+  EXPECT_DOUBLE_EQ(o.line_split_distance_m, 0.04);
+  EXPECT_DOUBLE_EQ(o.line_split_range_fraction, 0.01);
+  EXPECT_EQ(o.min_line_points, 7);
+  EXPECT_DOUBLE_EQ(o.min_line_length_m, 0.6);
+  EXPECT_DOUBLE_EQ(o.straight_piece_width_m, 0.25);
+  EXPECT_DOUBLE_EQ(o.leg.leg_min_diameter_m, 0.07);
+  EXPECT_DOUBLE_EQ(o.leg.leg_max_diameter_m, 0.2);
+  EXPECT_DOUBLE_EQ(o.leg.leg_diameter_margin_m, 0.02);
+  EXPECT_DOUBLE_EQ(o.leg.convexity_floor, 0.3);
+  EXPECT_FALSE(o.detect_people);
+  EXPECT_DOUBLE_EQ(o.leg_threshold, 0.7);
+  EXPECT_DOUBLE_EQ(o.leg_nominal_diameter_m, 0.1);
+  EXPECT_DOUBLE_EQ(o.person.min_leg_separation_m, 0.05);
+  EXPECT_DOUBLE_EQ(o.person.max_leg_separation_m, 0.7);
+  EXPECT_DOUBLE_EQ(o.person.single_leg_threshold, 0.8);
+  EXPECT_DOUBLE_EQ(o.person.pair_centre_sigma_m, 0.04);
+  EXPECT_DOUBLE_EQ(o.person.single_leg_offset_sigma_m, 0.2);
+  EXPECT_DOUBLE_EQ(o.depth_edge_m, 0.5);
+  ExpectConfigError("segmenter:\n  leg_threshold: 1.5\n", "leg_threshold");
+  ExpectConfigError("segmenter:\n  min_line_points: 2\n", "min_line_points");
+  ExpectConfigError("segmenter:\n  extract_lines: maybe\n", "extract_lines");
+  ExpectConfigError("segmenter:\n  max_leg_separation_m: 0.05\n", "max_leg_separation_m");
+  ExpectConfigError("segmenter:\n  leg_max_diameter_m: 0.05\n", "leg_max_diameter_m");
+  ExpectConfigError("segmenter:\n  convexity_floor: -0.1\n", "convexity_floor");
+  ExpectConfigError("segmenter:\n  line_split_range_fraction: 1.5\n",
+                    "line_split_range_fraction");
+  ExpectConfigError("segmenter:\n  depth_edge_m: 0\n", "depth_edge_m");
+}
+
+// A wall behind a person on two legs: FEATURES carries the wall as a line, both legs as point
+// features with their leg-likeness, and one person whose leg_index names them.
+TEST(SegmenterStageTest, PublishesLinesAndPeople) {
+  std::mt19937_64 rng(2);
+  const testing_support::TestScan scan = testing_support::CastScene(
+      {{2.0, 0.12, 0.06}, {2.0, -0.12, 0.06}}, {{4.0, -3.0, 4.0, 3.0}},
+      EvenAngles(-M_PI, 2.0 * M_PI, 1024, true), 12.0, 0.01, 0.0, &rng);
+  const std::vector<uint8_t> bytes = Encode(testing_support::ScanMessage(scan, 1000, 1));
+  SegmenterStage stage = MakeStage();
+  CapturingSink sink;
+  stage.Handle("LASER_SCAN", bytes.data(), static_cast<int>(bytes.size()), sink);
+  ASSERT_EQ(sink.messages.size(), 2u);
+  slammtt_msgs::features_t features;
+  ASSERT_TRUE(Decode(sink.messages[0].bytes.data(),
+                     static_cast<int>(sink.messages[0].bytes.size()), &features));
+  ASSERT_EQ(features.num_lines, 1);
+  EXPECT_NEAR(features.lines[0].rho_m, 4.0, 0.02);
+  EXPECT_NEAR(features.lines[0].alpha_rad, 0.0, 0.01);
+  EXPECT_GT(features.lines[0].rho_var_m2, 0.0);
+  EXPECT_GT(features.lines[0].alpha_var_rad2, 0.0);
+  EXPECT_GT(features.lines[0].num_points, 100);
+  EXPECT_NEAR(features.lines[0].first_x_m, 4.0, 0.05);
+  ASSERT_EQ(features.num_features, 2);
+  for (const slammtt_msgs::feature_t& f : features.features) {
+    EXPECT_GE(f.leg_likeness, 0.65);
+    EXPECT_LE(f.leg_likeness, 1.0);
+  }
+  ASSERT_EQ(features.num_people, 1);
+  const slammtt_msgs::person_feature_t& person = features.people[0];
+  EXPECT_EQ(person.num_legs, 2);
+  EXPECT_EQ(std::min(person.leg_index[0], person.leg_index[1]), 0);
+  EXPECT_EQ(std::max(person.leg_index[0], person.leg_index[1]), 1);
+  EXPECT_NEAR(person.range_m, 2.0, 0.05);  // midpoint of the legs' centres
+  EXPECT_NEAR(person.bearing_rad, 0.0, 0.02);
+  EXPECT_GT(person.confidence, 0.5);
+  EXPECT_GT(person.range_var_m2, 0.0);
 }
 
 TEST(SegmenterStageTest, FactoryUsesTheStackConfigurationAndChannelNames) {
