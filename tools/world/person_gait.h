@@ -5,7 +5,8 @@
 // Cadence and step length (published gait figures): the walk ratio W = step length / cadence is
 // nearly constant over ordinary walking speeds, about 0.006 m per (step/min) in healthy adults
 // (the walk ratio of Sekiya and Nagasaki; Murakami and Otaka, J. Phys. Ther. Sci. 2017,
-// PMC5430280: constancy holds above about 62 m/min = 1.03 m/s). With speed v = L * C / 60 and L = W * C this gives
+// PMC5430280: constancy holds above about 62 m/min = 1.03 m/s). With speed v = L * C / 60 and
+// L = W * C this gives
 //   cadence C = sqrt(60 v / W) steps/min, step length L = v * 60 / C,
 // e.g. 1.67 Hz (100 steps/min) and 0.60 m at 1.0 m/s, 1.90 Hz and 0.68 m at 1.3 m/s, 2.04 Hz and
 // 0.73 m at 1.5 m/s. Below min_cadence_hz (slow walking, where the ratio is no longer constant)

@@ -141,7 +141,25 @@ double Orientation(double ax, double ay, double bx, double by, double cx, double
   return (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
 }
 
-double PointSegmentDistance2(double px, double py, const Segment& s) {
+bool SegmentsCross(const Segment& a, const Segment& b) {
+  const double o1 = Orientation(a.x0_m, a.y0_m, a.x1_m, a.y1_m, b.x0_m, b.y0_m);
+  const double o2 = Orientation(a.x0_m, a.y0_m, a.x1_m, a.y1_m, b.x1_m, b.y1_m);
+  const double o3 = Orientation(b.x0_m, b.y0_m, b.x1_m, b.y1_m, a.x0_m, a.y0_m);
+  const double o4 = Orientation(b.x0_m, b.y0_m, b.x1_m, b.y1_m, a.x1_m, a.y1_m);
+  if (((o1 > 0.0 && o2 < 0.0) || (o1 < 0.0 && o2 > 0.0)) &&
+      ((o3 > 0.0 && o4 < 0.0) || (o3 < 0.0 && o4 > 0.0))) {
+    return true;
+  }
+  // Touching or collinear overlap: an end point lies on the other segment.
+  return SquaredDistanceToSegment(b.x0_m, b.y0_m, a) == 0.0 ||
+         SquaredDistanceToSegment(b.x1_m, b.y1_m, a) == 0.0 ||
+         SquaredDistanceToSegment(a.x0_m, a.y0_m, b) == 0.0 ||
+         SquaredDistanceToSegment(a.x1_m, a.y1_m, b) == 0.0;
+}
+
+}  // namespace
+
+double SquaredDistanceToSegment(double px, double py, const Segment& s) {
   const double sx = s.x1_m - s.x0_m;
   const double sy = s.y1_m - s.y0_m;
   const double length2 = sx * sx + sy * sy;
@@ -153,26 +171,8 @@ double PointSegmentDistance2(double px, double py, const Segment& s) {
   return ex * ex + ey * ey;
 }
 
-bool SegmentsCross(const Segment& a, const Segment& b) {
-  const double o1 = Orientation(a.x0_m, a.y0_m, a.x1_m, a.y1_m, b.x0_m, b.y0_m);
-  const double o2 = Orientation(a.x0_m, a.y0_m, a.x1_m, a.y1_m, b.x1_m, b.y1_m);
-  const double o3 = Orientation(b.x0_m, b.y0_m, b.x1_m, b.y1_m, a.x0_m, a.y0_m);
-  const double o4 = Orientation(b.x0_m, b.y0_m, b.x1_m, b.y1_m, a.x1_m, a.y1_m);
-  if (((o1 > 0.0 && o2 < 0.0) || (o1 < 0.0 && o2 > 0.0)) &&
-      ((o3 > 0.0 && o4 < 0.0) || (o3 < 0.0 && o4 > 0.0))) {
-    return true;
-  }
-  // Touching or collinear overlap: an end point lies on the other segment.
-  return PointSegmentDistance2(b.x0_m, b.y0_m, a) == 0.0 ||
-         PointSegmentDistance2(b.x1_m, b.y1_m, a) == 0.0 ||
-         PointSegmentDistance2(a.x0_m, a.y0_m, b) == 0.0 ||
-         PointSegmentDistance2(a.x1_m, a.y1_m, b) == 0.0;
-}
-
-}  // namespace
-
 bool CircleTouchesSegment(const Circle& circle, const Segment& segment) {
-  return PointSegmentDistance2(circle.x_m, circle.y_m, segment) <=
+  return SquaredDistanceToSegment(circle.x_m, circle.y_m, segment) <=
          circle.radius_m * circle.radius_m;
 }
 

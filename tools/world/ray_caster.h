@@ -64,6 +64,9 @@ bool SegmentBlocked(double x0_m, double y0_m, double x1_m, double y1_m,
                     const std::vector<Circle>& circles, int ignore_first, int ignore_count,
                     const std::vector<Segment>& walls);
 
+// Squared distance from the point (x, y) to the nearest point of the segment.
+double SquaredDistanceToSegment(double x_m, double y_m, const Segment& segment);
+
 // True when the circle touches or crosses the segment (the distance from its centre to the
 // segment is at most its radius).
 bool CircleTouchesSegment(const Circle& circle, const Segment& segment);
