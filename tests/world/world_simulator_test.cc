@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 
 #include "tools/world/world_simulator.h"
 
@@ -387,6 +388,72 @@ TEST(WorldSimulatorTest, WallHidesWhatStandsBehindIt) {
     ASSERT_EQ(post.id, 50);
     EXPECT_EQ(post.beams_on_object, 0);
     EXPECT_FALSE(post.visible);  // no feature through the wall
+  }
+}
+
+TEST(WorldSimulatorTest, EveryMoverKindCanWalkOnLegs) {
+  Scenario s;
+  s.duration_s = 20.0;
+  s.people = MoverBody::kLegs;
+  MoverSpec constant;
+  constant.id = 1;
+  constant.kind = MoverKind::kConstantVelocity;
+  constant.start_x_m = -5.0;
+  constant.start_y_m = 3.0;
+  constant.vx_mps = 1.0;
+  MoverSpec waypoints;
+  waypoints.id = 2;
+  waypoints.kind = MoverKind::kWaypoints;
+  waypoints.waypoints = {{0.0, -3.0, 0.0}, {6.0, -3.0, 5.0}, {6.0, 3.0, 0.0}};
+  MoverSpec recorded;
+  recorded.id = 3;
+  recorded.kind = MoverKind::kTrajectory;
+  recorded.trajectory = {{0.0, -6.0, 0.0}, {10.0, -6.0, 12.0}, {20.0, 6.0, 12.0}};
+  MoverSpec walker;
+  walker.id = 4;
+  walker.kind = MoverKind::kRandomWalk;
+  walker.start_x_m = 10.0;
+  walker.start_y_m = 10.0;
+  walker.random_walk.area_min_x_m = 5.0;
+  walker.random_walk.area_min_y_m = 5.0;
+  walker.random_walk.area_max_x_m = 15.0;
+  walker.random_walk.area_max_y_m = 15.0;
+  MoverSpec disc = constant;
+  disc.id = 5;
+  disc.start_y_m = -9.0;
+  disc.body = MoverBody::kDisc;
+  s.movers = {constant, waypoints, recorded, walker, disc};
+  WorldSimulator world(s, 3, SensorOutput::kScans);
+  std::map<int64_t, double> widest;
+  std::map<int64_t, int> stance_changes;
+  std::map<int64_t, bool> last_stance;
+  while (!world.Done()) {
+    const WorldEvent e = world.Next();
+    if (e.kind != WorldEvent::Kind::kSensor) continue;
+    const std::vector<ObjectTruth>& objects = e.sensor.truth.objects;
+    ASSERT_EQ(objects.size(), 4u * 3u + 1u);
+    for (size_t i = 0; i + 2 < objects.size(); i += 3) {
+      ASSERT_EQ(objects[i].kind, ObjectKind::kPerson);
+      const ObjectTruth& left = objects[i + 1];
+      const ObjectTruth& right = objects[i + 2];
+      EXPECT_EQ(left.parent_id, objects[i].id);
+      EXPECT_EQ(right.parent_id, objects[i].id);
+      EXPECT_DOUBLE_EQ(left.radius_m, s.legs.leg_radius_m);
+      const double apart = std::hypot(left.x_m - right.x_m, left.y_m - right.y_m);
+      widest[objects[i].id] = std::max(widest[objects[i].id], apart);
+      EXPECT_NEAR(objects[i].radius_m, 0.5 * apart + s.legs.leg_radius_m, 1e-12);
+      // The legs stay with the body.
+      EXPECT_LT(std::hypot(left.x_m - objects[i].x_m, left.y_m - objects[i].y_m), 0.9);
+      const bool moving = left.vx_mps != 0.0 || left.vy_mps != 0.0;
+      if (moving != last_stance[objects[i].id]) ++stance_changes[objects[i].id];
+      last_stance[objects[i].id] = moving;
+    }
+    EXPECT_EQ(objects.back().kind, ObjectKind::kDisc);
+  }
+  for (int64_t id = 1; id <= 4; ++id) {
+    EXPECT_GT(widest[id], 0.45) << id;  // steps of about 0.6 m at 1 m/s
+    EXPECT_LT(widest[id], 0.9) << id;
+    EXPECT_GT(stance_changes[id], 10) << id;  // the left leg stops and goes: bursts
   }
 }
 
