@@ -130,3 +130,21 @@ TEST(StaticGeometryTest, ShapeProblemsAreFound) {
 
 }  // namespace
 }  // namespace slammtt
+
+namespace slammtt {
+namespace {
+
+TEST(StaticGeometryTest, HostileSizesAreRefused) {
+  Scenario s;
+  StaticObjectSpec wall;
+  wall.shape = StaticShape::kPolyline;
+  for (int i = 0; i <= 100000; ++i) wall.vertices.push_back({static_cast<double>(i), 0.0});
+  s.statics = {wall};
+  EXPECT_EQ(FindScenarioProblems(s).at(0), "statics[0].vertices: more than 100000 vertices");
+  StaticObjectSpec post;
+  s.statics.assign(100001, post);
+  EXPECT_EQ(FindScenarioProblems(s).at(0), "statics: more than 100000 static objects");
+}
+
+}  // namespace
+}  // namespace slammtt

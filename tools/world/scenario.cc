@@ -111,6 +111,9 @@ class Problems {
 };
 
 constexpr double kMaxMoverSpeedMps = 50.0;
+// Bounds on the static world's size: every beam is tested against every circle and segment.
+constexpr size_t kMaxVertices = 100000;
+constexpr size_t kMaxStaticObjects = 100000;
 // Person ids stay within this bound so that their legs' ids (10 * id + 1, + 2) cannot overflow.
 constexpr int64_t kMaxPersonId = 100000000000000000;
 constexpr double kMaxRadiusM = 1000.0;
@@ -153,6 +156,14 @@ void FindShapeProblems(const std::string& path, const StaticObjectSpec& o, Probl
   }
   const bool closed = o.shape == StaticShape::kPolygon;
   const size_t n = o.vertices.size();
+  if (n > kMaxVertices) {
+    p.Add(path + ".vertices", "more than 100000 vertices");
+    return;
+  }
+  if (o.openings.size() > kMaxVertices) {
+    p.Add(path + ".openings", "more than 100000 openings");
+    return;
+  }
   if (n < (closed ? 3u : 2u)) {
     p.Add(path + ".vertices", closed ? "a polygon needs at least 3 vertices"
                                      : "a polyline needs at least 2 vertices");
@@ -299,7 +310,8 @@ std::vector<std::string> FindScenarioProblems(const Scenario& s) {
   auto check_id = [&](const std::string& path, int64_t id) {
     if (!ids.insert(id).second) p.Add(path + ".id", "duplicate object id " + std::to_string(id));
   };
-  for (size_t i = 0; i < s.statics.size(); ++i) {
+  if (s.statics.size() > kMaxStaticObjects) p.Add("statics", "more than 100000 static objects");
+  for (size_t i = 0; i < s.statics.size() && i < kMaxStaticObjects; ++i) {
     const std::string path = Indexed("statics", i);
     const StaticObjectSpec& o2 = s.statics[i];
     if (!(std::abs(o2.id) <= kMaxPersonId)) {

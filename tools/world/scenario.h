@@ -278,7 +278,9 @@ MoverBody BodyOf(const Scenario& scenario, const MoverSpec& mover);
 // Every problem of a scenario built in code, one line each ("movers[2].radius_m: must be
 // positive, got -1"); empty when the scenario can be simulated. Besides signs and orders it
 // bounds magnitudes so that nothing overflows: durations and times up to 1e6 s, coordinates
-// within +-kMaxCoordinateM, mover speeds up to 50 m/s, radii up to 1000 m. The YAML loader
+// within +-kMaxCoordinateM, mover speeds up to 50 m/s, radii up to 1000 m, at most 100000
+// static objects and 100000 vertices or openings per polygon (every beam is tested against every
+// circle and segment), person ids within +-1e17 (leg ids 10 * id + 1, + 2). The YAML loader
 // reports the same problems with file and line; WorldSimulator refuses a scenario with any.
 std::vector<std::string> FindScenarioProblems(const Scenario& scenario);
 
