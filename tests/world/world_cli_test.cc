@@ -78,6 +78,21 @@ TEST_F(WorldCliTest, SameSeedGivesIdenticalBytesAndAnotherSeedDoesNot) {
   }
 }
 
+TEST_F(WorldCliTest, OfficeWithLegsAndArtefactsIsByteIdenticalForASeed) {
+  auto run = [&](const std::string& seed, const std::string& log) {
+    return World({"--scenario", "office", "--seed", seed, "--output", "both", "--duration", "20",
+                  "--log", Path(log)})
+        .exit_code;
+  };
+  ASSERT_EQ(run("3", "a.lcm"), 0);
+  ASSERT_EQ(run("3", "b.lcm"), 0);
+  ASSERT_EQ(run("4", "c.lcm"), 0);
+  const std::string a = ReadWholeFile(Path("a.lcm"));
+  EXPECT_GT(a.size(), 1000000u);
+  EXPECT_TRUE(a == ReadWholeFile(Path("b.lcm")));
+  EXPECT_FALSE(a == ReadWholeFile(Path("c.lcm")));
+}
+
 TEST_F(WorldCliTest, S1LogFollowsTheChannelContract) {
   const ProcessResult run =
       World({"--scenario", "s1-crossing", "--seed", "7", "--log", Path("s1.lcm")});
