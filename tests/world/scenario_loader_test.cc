@@ -375,6 +375,9 @@ TEST_F(ScenarioLoaderTest, BadRoomsAndPeopleNameFileLineAndKey) {
   EXPECT_EQ(ErrorOf("laser: {sample_rate_hz: 5}\n"),
             BadPath() + ":1: laser.sample_rate_hz: must be 0 (even beams) or within [10, 1e6], "
                         "got 5");
+  EXPECT_EQ(ErrorOf("laser: {sample_rate_hz: 4000, fov_deg: 270}\n"),
+            BadPath() + ":1: laser.sample_rate_hz: sampled beam angles need a 360-degree laser "
+                        "(fov_deg 360)");
   EXPECT_EQ(ErrorOf("laser: {mixed_pixel_probability: 1.5}\n"),
             BadPath() + ":1: laser.mixed_pixel_probability: must be within [0, 1], got 1.5");
   EXPECT_EQ(ErrorOf("statics:\n  - {x_m: 0, y_m: 0, dropout_probability: -0.1}\n"),

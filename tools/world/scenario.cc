@@ -255,6 +255,8 @@ std::vector<std::string> FindScenarioProblems(const Scenario& s) {
           "must be 0 (even beams) or within [10, 1e6], got " + Problems::Text(a.sample_rate_hz));
   } else if (a.sample_rate_hz > 0.0 && a.sample_rate_hz / l.rate_hz > 100000.0) {
     p.Add("laser.sample_rate_hz", "gives more than 100000 beams per scan");
+  } else if (a.sample_rate_hz > 0.0 && l.fov_deg < 360.0) {
+    p.Add("laser.sample_rate_hz", "sampled beam angles need a 360-degree laser (fov_deg 360)");
   }
   p.Between("laser.rotation_jitter", a.rotation_jitter, 0.0, 0.2);
   p.Between("laser.angle_jitter_deg", a.angle_jitter_deg, 0.0, 5.0);
