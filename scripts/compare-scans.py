@@ -17,7 +17,7 @@ inside both: what mixed pixels leave, though a slanted surface can leave one too
 beams and per edge.
 
 LCM logs are read with the project's own laser_scan_t layout (no LCM module needed); bags need
-the `rosbags` package (scripts/compare-scans.sh makes a venv with the pinned version).
+the `rosbags` package (scripts/compare-scans.sh runs it in the venv of scripts/python-env.sh).
 """
 import argparse
 import math

@@ -1,11 +1,7 @@
-#!/usr/bin/env bash
-# Runs scripts/compare-scans.py in a venv of its own (build/venv-compare-scans) with the pinned
-# rosbags version, which reads ROS 1 and ROS 2 bags. Arguments are passed on.
-set -euo pipefail
+#!/bin/sh
+# Runs scripts/compare-scans.py with the project's Python venv (scripts/python-env.sh: build/venv
+# with the pinned rosbags, which reads ROS 1 and ROS 2 bags). Arguments are passed on.
+set -eu
 root="$(cd "$(dirname "$0")/.." && pwd)"
-venv="$root/build/venv-compare-scans"
-if [[ ! -x "$venv/bin/python" ]]; then
-  python3 -m venv "$venv"
-  "$venv/bin/pip" install --quiet rosbags==0.11.9
-fi
-exec "$venv/bin/python" "$root/scripts/compare-scans.py" "$@"
+"$root/scripts/python-env.sh" >&2
+exec "$root/build/venv/bin/python" "$root/scripts/compare-scans.py" "$@"
