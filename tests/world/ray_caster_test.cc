@@ -178,3 +178,73 @@ TEST(LaserGeometryTest, ObjectOutsideTheFieldOfViewGetsNoBeam) {
 
 }  // namespace
 }  // namespace slammtt
+
+namespace slammtt {
+namespace {
+
+TEST(RayCasterSegmentTest, BeamHitsAWallHeadOnAndAtAnAngle) {
+  const std::vector<Segment> wall = {Segment{4.0, -2.0, 4.0, 2.0}};
+  const BeamHit ahead = CastRay(0.0, 0.0, 0.0, {}, wall);
+  ASSERT_EQ(ahead.segment, 0);
+  EXPECT_EQ(ahead.circle, -1);
+  EXPECT_DOUBLE_EQ(ahead.range_m, 4.0);
+  EXPECT_NEAR(ahead.incidence_cos, 1.0, 1e-12);
+  // 20 degrees up: hits x = 4 at y = 4 tan 20, range 4 / cos 20, incidence 20 degrees.
+  const double up = 20.0 * M_PI / 180.0;
+  const BeamHit oblique = CastRay(0.0, 0.0, up, {}, wall);
+  ASSERT_EQ(oblique.segment, 0);
+  EXPECT_NEAR(oblique.range_m, 4.0 / std::cos(up), 1e-12);
+  EXPECT_NEAR(oblique.incidence_cos, std::cos(up), 1e-12);
+  // Past the wall's end (y = 4 tan 40 = 3.36 > 2): no hit; behind the sensor: no hit.
+  EXPECT_FALSE(CastRay(0.0, 0.0, 40.0 * M_PI / 180.0, {}, wall).hit());
+  EXPECT_FALSE(CastRay(0.0, 0.0, M_PI, {}, wall).hit());
+  // Seen from the other side too.
+  EXPECT_DOUBLE_EQ(CastRay(6.0, 0.0, M_PI, {}, wall).range_m, 2.0);
+}
+
+TEST(RayCasterSegmentTest, NearestOfCirclesAndSegmentsWins) {
+  const std::vector<Circle> circles = {Circle{3.0, 0.0, 0.5}, Circle{6.0, 0.0, 0.5}};
+  const std::vector<Segment> wall = {Segment{4.0, -2.0, 4.0, 2.0}};
+  const BeamHit hit = CastRay(0.0, 0.0, 0.0, circles, wall);
+  EXPECT_EQ(hit.circle, 0);
+  EXPECT_EQ(hit.segment, -1);
+  EXPECT_DOUBLE_EQ(hit.range_m, 2.5);
+  // The wall hides the circle behind it.
+  const BeamHit hidden = CastRay(0.0, 0.0, 0.0, {circles[1]}, wall);
+  EXPECT_EQ(hidden.segment, 0);
+  EXPECT_EQ(hidden.circle, -1);
+  // Circle incidence: a beam through the centre meets the surface head-on; one offset by
+  // r sin(60) meets it at 60 degrees.
+  EXPECT_NEAR(CastRay(0.0, 0.0, 0.0, {circles[0]}).incidence_cos, 1.0, 1e-12);
+  const BeamHit off = CastRay(0.0, 0.5 * std::sin(M_PI / 3.0), 0.0, {circles[0]});
+  EXPECT_NEAR(off.incidence_cos, 0.5, 1e-9);
+}
+
+TEST(RayCasterSegmentTest, CastBeamsReportsSegmentsAndMaxRange) {
+  const std::vector<Segment> walls = {Segment{5.0, -5.0, 5.0, 5.0}, Segment{-5.0, 5.0, 5.0, 5.0}};
+  const std::vector<double> angles = {0.0, M_PI / 2.0, M_PI};
+  const std::vector<BeamHit> hits = CastBeams(Pose2D{0.0, 0.0, 0.0}, angles, {}, walls, 10.0);
+  EXPECT_EQ(hits[0].segment, 0);
+  EXPECT_EQ(hits[1].segment, 1);
+  EXPECT_FALSE(hits[2].hit());
+  const std::vector<BeamHit> short_range =
+      CastBeams(Pose2D{0.0, 0.0, 0.0}, angles, {}, walls, 4.0);
+  EXPECT_FALSE(short_range[0].hit());
+}
+
+TEST(RayCasterSegmentTest, WallsBlockTheLineOfSight) {
+  const std::vector<Segment> wall = {Segment{4.0, -2.0, 4.0, 2.0}};
+  EXPECT_TRUE(SegmentBlocked(0.0, 0.0, 6.0, 0.0, {}, -1, 0, wall));
+  EXPECT_FALSE(SegmentBlocked(0.0, 0.0, 3.0, 0.0, {}, -1, 0, wall));
+  EXPECT_FALSE(SegmentBlocked(0.0, 3.0, 6.0, 3.0, {}, -1, 0, wall));
+  EXPECT_TRUE(SegmentBlocked(0.0, 2.0, 6.0, 2.0, {}, -1, 0, wall));  // touches its end
+  // Ignored circles (a person's own legs) do not block; others do.
+  const std::vector<Circle> legs = {Circle{2.0, 0.1, 0.06}, Circle{2.0, -0.1, 0.06}};
+  EXPECT_FALSE(SegmentBlocked(0.0, 0.0, 2.0, -0.1, legs, 0, 2, {}));
+  EXPECT_TRUE(SegmentBlocked(0.0, 0.0, 2.0, -0.1, legs, 0, 1, {}));
+  EXPECT_TRUE(CircleTouchesSegment(Circle{4.05, 0.0, 0.06}, wall[0]));
+  EXPECT_FALSE(CircleTouchesSegment(Circle{4.07, 0.0, 0.06}, wall[0]));
+}
+
+}  // namespace
+}  // namespace slammtt

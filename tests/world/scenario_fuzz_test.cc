@@ -76,7 +76,7 @@ bool Finite(const Pose2D& p) {
 TEST(ScenarioFuzzTest, DamagedScenariosLoadOrFailCleanlyAndSimulate) {
   const std::string dir = std::string(SLAMMTT_SOURCE_DIR) + "/config/scenarios";
   const std::vector<std::string> names = {"s1-crossing", "s2-lobby", "s3-no-static", "rplidar-a2",
-                                          "crowd-zara02"};
+                                          "crowd-zara02", "office", "corridor"};
   std::vector<std::string> texts;
   for (const std::string& name : names) texts.push_back(ReadText(dir + "/" + name + ".yaml"));
   std::mt19937_64 rng(20180101);

@@ -285,5 +285,104 @@ TEST_F(ScenarioLoaderTest, ResolveFindsNamesAndListsShippedScenarios) {
   EXPECT_THROW(ResolveScenarioPath("./beta.yaml", {root}), ConfigError);
 }
 
+TEST_F(ScenarioLoaderTest, RoomsFurnitureAndLeggedPeopleInAFewLines) {
+  const Scenario s = LoadScenarioFromString(R"(
+people: legs
+legs: {radius_m: 0.055, hip_width_m: 0.22}
+laser: {mixed_pixel_probability: 0.5, grazing_dropout_deg: 80, range_noise_per_m: 0.002,
+        sample_rate_hz: 4000, rotation_jitter: 0.01, angle_jitter_deg: 0.1}
+statics:
+  - {type: polygon, vertices: [[0, 0], [6, 0], [6, 4], [0, 4]], openings: [[0, 2, 0.9]]}
+  - {type: box, center: [2, 2], size_m: [1.6, 0.8], heading_deg: 90, dropout_probability: 0.3}
+  - {type: chair, center: [3, 2]}
+  - {type: table, center: [4, 2], size_m: [1, 1], kind: furniture}
+  - {x_m: 5, y_m: 1}
+  - {type: polyline, vertices: [[0, 5], [10, 5]], kind: furniture}
+movers:
+  - {type: constant_velocity, start: [1, 1], velocity_mps: [1, 0]}
+  - {type: constant_velocity, start: [1, 2], velocity_mps: [1, 0], body: disc}
+)",
+                                            "inline", ".");
+  EXPECT_EQ(s.people, MoverBody::kLegs);
+  EXPECT_DOUBLE_EQ(s.legs.leg_radius_m, 0.055);
+  EXPECT_DOUBLE_EQ(s.legs.hip_width_m, 0.22);
+  EXPECT_DOUBLE_EQ(s.laser.artefacts.mixed_pixel_probability, 0.5);
+  EXPECT_DOUBLE_EQ(s.laser.artefacts.grazing_dropout_deg, 80.0);
+  EXPECT_DOUBLE_EQ(s.laser.artefacts.sample_rate_hz, 4000.0);
+  ASSERT_EQ(s.statics.size(), 6u);
+  EXPECT_EQ(s.statics[0].shape, StaticShape::kPolygon);
+  EXPECT_EQ(s.statics[0].kind, ObjectKind::kWall);
+  ASSERT_EQ(s.statics[0].openings.size(), 1u);
+  EXPECT_DOUBLE_EQ(s.statics[0].openings[0].width_m, 0.9);
+  EXPECT_EQ(s.statics[1].shape, StaticShape::kBox);
+  EXPECT_EQ(s.statics[1].kind, ObjectKind::kFurniture);
+  EXPECT_NEAR(s.statics[1].heading_rad, M_PI / 2.0, 1e-12);
+  EXPECT_DOUBLE_EQ(s.statics[1].dropout_probability, 0.3);
+  EXPECT_EQ(s.statics[2].shape, StaticShape::kLegs);
+  EXPECT_DOUBLE_EQ(s.statics[2].size_x_m, 0.45);
+  EXPECT_DOUBLE_EQ(s.statics[2].leg_radius_m, 0.015);
+  EXPECT_DOUBLE_EQ(s.statics[3].size_x_m, 1.0);
+  EXPECT_DOUBLE_EQ(s.statics[3].leg_radius_m, 0.025);
+  EXPECT_EQ(s.statics[4].kind, ObjectKind::kPost);
+  EXPECT_EQ(s.statics[5].kind, ObjectKind::kFurniture);
+  // Default ids count on past the four ids of each chair and table.
+  EXPECT_EQ(s.statics[0].id, 1);
+  EXPECT_EQ(s.statics[2].id, 3);
+  EXPECT_EQ(s.statics[3].id, 7);
+  EXPECT_EQ(s.statics[4].id, 11);
+  EXPECT_EQ(s.statics[5].id, 12);
+  EXPECT_EQ(BodyOf(s, s.movers[0]), MoverBody::kLegs);
+  EXPECT_EQ(BodyOf(s, s.movers[1]), MoverBody::kDisc);
+}
+
+TEST_F(ScenarioLoaderTest, BadRoomsAndPeopleNameFileLineAndKey) {
+  EXPECT_EQ(ErrorOf("statics:\n  - {type: polygon, vertices: [[0, 0], [4, 0], [4, 3]],\n"
+                    "     openings: [[0, 3.5, 1]]}\n"),
+            BadPath() +
+                ":3: statics[0].openings[0]: must lie within side 0 (length 4 m) with offset >= "
+                "0 and width > 0");
+  EXPECT_EQ(ErrorOf("statics:\n  - {type: polygon, vertices: [[0, 0], [4, 0]]}\n"),
+            BadPath() + ":2: statics[0].vertices: a polygon needs at least 3 vertices");
+  EXPECT_EQ(ErrorOf("statics:\n  - {type: wall}\n"),
+            BadPath() + ":2: statics[0].type: expected circle, polygon, polyline, box, chair or "
+                        "table, got \"wall\"");
+  EXPECT_EQ(ErrorOf("statics:\n  - {type: box, center: [0, 0], size_m: [1, 1], kind: glass}\n"),
+            BadPath() + ":2: statics[0].kind: expected wall, furniture or post, got \"glass\"");
+  EXPECT_EQ(ErrorOf("statics:\n  - {type: box, center: [0, 0], size_m: [1, -1]}\n"),
+            BadPath() + ":2: statics[0].size_m: must be positive, got -1");
+  EXPECT_EQ(ErrorOf("statics:\n  - {type: chair, center: [0, 0], radius_m: 1}\n"),
+            BadPath() + ":2: statics[0].radius_m: unknown key (known here: id, type, kind, "
+                        "dropout_probability, center, size_m, heading_deg, leg_radius_m)");
+  EXPECT_EQ(ErrorOf("statics:\n  - {type: polyline, vertices: [[0, 0], [1, 0]], "
+                    "openings: [[0.5, 0, 0.1]]}\n"),
+            BadPath() + ":2: statics[0].openings[0]: side must be a whole number >= 0");
+  EXPECT_EQ(ErrorOf("statics:\n  - {type: chair, id: 5, center: [0, 0]}\n  - {id: 7, x_m: 3, "
+                    "y_m: 0}\n"),
+            BadPath() + ":3: statics[1].id: duplicate object id 7");
+  EXPECT_EQ(ErrorOf("people: crowds\n"),
+            BadPath() + ":1: people: expected discs or legs, got \"crowds\"");
+  EXPECT_EQ(ErrorOf("movers:\n  - {type: constant_velocity, start: [0, 0], velocity_mps: [1, 0],"
+                    " body: wheel}\n"),
+            BadPath() + ":2: movers[0].body: expected disc or legs, got \"wheel\"");
+  EXPECT_EQ(ErrorOf("legs: {radius_m: 0.9}\n"),
+            BadPath() + ":1: legs.radius_m: must be within [0.001, 0.5], got 0.9");
+  // A person's legs take ids 10 * id + 1 and + 2.
+  EXPECT_EQ(ErrorOf("people: legs\nstatics:\n  - {id: 11, x_m: 5, y_m: 5}\nmovers:\n"
+                    "  - {id: 1, type: constant_velocity, start: [0, 0], velocity_mps: [1, 0]}\n"),
+            BadPath() + ":5: movers[0].id: duplicate object id 11");
+  EXPECT_EQ(ErrorOf("laser: {grazing_dropout_deg: 0}\n"),
+            BadPath() + ":1: laser.grazing_dropout_deg: must be within (0, 90], got 0");
+  EXPECT_EQ(ErrorOf("laser: {sample_rate_hz: 5}\n"),
+            BadPath() + ":1: laser.sample_rate_hz: must be 0 (even beams) or within [10, 1e6], "
+                        "got 5");
+  EXPECT_EQ(ErrorOf("laser: {sample_rate_hz: 4000, fov_deg: 270}\n"),
+            BadPath() + ":1: laser.sample_rate_hz: sampled beam angles need a 360-degree laser "
+                        "(fov_deg 360)");
+  EXPECT_EQ(ErrorOf("laser: {mixed_pixel_probability: 1.5}\n"),
+            BadPath() + ":1: laser.mixed_pixel_probability: must be within [0, 1], got 1.5");
+  EXPECT_EQ(ErrorOf("statics:\n  - {x_m: 0, y_m: 0, dropout_probability: -0.1}\n"),
+            BadPath() + ":2: statics[0].dropout_probability: must be within [0, 1], got -0.1");
+}
+
 }  // namespace
 }  // namespace slammtt

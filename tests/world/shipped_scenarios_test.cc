@@ -17,8 +17,9 @@ namespace slammtt {
 namespace {
 
 const std::vector<std::string>& ShippedNames() {
-  static const std::vector<std::string> names = {"s1-crossing", "s2-lobby", "s3-no-static",
-                                                 "rplidar-a2", "crowd-zara02"};
+  static const std::vector<std::string> names = {
+      "s1-crossing", "s2-lobby", "s3-no-static", "rplidar-a2", "crowd-zara02",
+      "office",      "corridor", "office-hokuyo"};
   return names;
 }
 

@@ -78,6 +78,21 @@ TEST_F(WorldCliTest, SameSeedGivesIdenticalBytesAndAnotherSeedDoesNot) {
   }
 }
 
+TEST_F(WorldCliTest, OfficeWithLegsAndArtefactsIsByteIdenticalForASeed) {
+  auto run = [&](const std::string& seed, const std::string& log) {
+    return World({"--scenario", "office", "--seed", seed, "--output", "both", "--duration", "20",
+                  "--log", Path(log)})
+        .exit_code;
+  };
+  ASSERT_EQ(run("3", "a.lcm"), 0);
+  ASSERT_EQ(run("3", "b.lcm"), 0);
+  ASSERT_EQ(run("4", "c.lcm"), 0);
+  const std::string a = ReadWholeFile(Path("a.lcm"));
+  EXPECT_GT(a.size(), 1000000u);
+  EXPECT_TRUE(a == ReadWholeFile(Path("b.lcm")));
+  EXPECT_FALSE(a == ReadWholeFile(Path("c.lcm")));
+}
+
 TEST_F(WorldCliTest, S1LogFollowsTheChannelContract) {
   const ProcessResult run =
       World({"--scenario", "s1-crossing", "--seed", "7", "--log", Path("s1.lcm")});
@@ -192,6 +207,66 @@ TEST_F(WorldCliTest, ScansBothOutputsDurationAndChannelNames) {
   EXPECT_EQ(count["SIM_SCAN"], 21);
   EXPECT_EQ(count["FEATURES"], 21);
   EXPECT_EQ(count.count("LASER_SCAN"), 0u);
+}
+
+TEST_F(WorldCliTest, OfficeGroundTruthNamesKindsLegsAndSegments) {
+  const ProcessResult run =
+      World({"--scenario", "office", "--duration", "30", "--log", Path("office.lcm")});
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  LogReader log(Path("office.lcm"));
+  using slammtt_msgs::object_truth_t;
+  int truths = 0;
+  int scans = 0;
+  int uneven_scans = 0;
+  int person_beams = 0;
+  while (const std::optional<LogEvent> event = log.Next()) {
+    const int size = static_cast<int>(event->data.size());
+    if (event->channel == "LASER_SCAN") {
+      slammtt_msgs::laser_scan_t scan{};
+      ASSERT_TRUE(Decode(event->data.data(), size, &scan));
+      ++scans;
+      uneven_scans += scan.num_beams != 400 ? 1 : 0;  // the A2's revolutions vary
+      continue;
+    }
+    if (event->channel != "GROUND_TRUTH") continue;
+    slammtt_msgs::ground_truth_t m{};
+    ASSERT_TRUE(Decode(event->data.data(), size, &m));
+    ++truths;
+    ASSERT_EQ(m.num_segments, static_cast<int32_t>(m.segments.size()));
+    ASSERT_EQ(m.num_segments, 58);  // 18 pieces of wall (one of glass), 10 boxes of 4 sides
+    int walls = 0;
+    for (const auto& segment : m.segments) {
+      ASSERT_TRUE(segment.kind == object_truth_t::KIND_WALL ||
+                  segment.kind == object_truth_t::KIND_FURNITURE);
+      walls += segment.kind == object_truth_t::KIND_WALL;
+    }
+    EXPECT_EQ(walls, 18);
+    std::map<int64_t, int> legs_of;
+    std::map<int64_t, int> person_beams_of;
+    for (size_t i = 0; i < m.objects.size(); ++i) {
+      const auto& o = m.objects[i];
+      if (o.kind == object_truth_t::KIND_PERSON) {
+        EXPECT_EQ(o.object_class, +object_truth_t::CLASS_MOVING);
+        EXPECT_EQ(o.parent_id, -1);
+        person_beams_of[o.id] = o.beams_on_object;
+        person_beams += o.beams_on_object;
+      } else if (o.kind == object_truth_t::KIND_LEG) {
+        ++legs_of[o.parent_id];
+        person_beams_of[o.parent_id] -= o.beams_on_object;
+        EXPECT_EQ(o.id, 10 * o.parent_id + legs_of[o.parent_id]);
+      } else {
+        EXPECT_TRUE(o.kind == object_truth_t::KIND_FURNITURE ||
+                    o.kind == object_truth_t::KIND_POST);
+        EXPECT_EQ(o.object_class, +object_truth_t::CLASS_STATIC);
+      }
+    }
+    for (const auto& [person, legs] : legs_of) EXPECT_EQ(legs, 2) << person;
+    for (const auto& [person, rest] : person_beams_of) EXPECT_EQ(rest, 0) << person;
+  }
+  EXPECT_EQ(truths, 301);
+  EXPECT_EQ(scans, 301);
+  EXPECT_GT(uneven_scans, 100);
+  EXPECT_GT(person_beams, 0);
 }
 
 // Runs a bad scenario file; expects exit status 1, one error line starting with `expected`, and

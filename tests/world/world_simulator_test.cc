@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 
 #include "tools/world/world_simulator.h"
 
@@ -18,7 +19,12 @@ Scenario SmallScenario() {
   s.laser.rate_hz = 8.0;
   s.odometry.rate_hz = 20.0;
   s.robot.profile = {VelocitySegment{10.0, 1.0, 0.0}};
-  s.statics = {StaticObjectSpec{1, 6.0, 2.0, 0.3}};
+  StaticObjectSpec post;
+  post.id = 1;
+  post.x_m = 6.0;
+  post.y_m = 2.0;
+  post.radius_m = 0.3;
+  s.statics = {post};
   MoverSpec m;
   m.id = 101;
   m.kind = MoverKind::kConstantVelocity;
@@ -264,6 +270,191 @@ TEST(WorldSimulatorTest, CommandOverrideDrivesTheRobotAndIsClamped) {
   world.SetCommandOverride(VelocityCommand{5.0, 0.0});
   while (!world.Done()) world.Next();
   EXPECT_NEAR(world.robot().pose.x_m, 2.0 * kMaxRobotSpeedMps, 1e-9);
+}
+
+// A 6 x 4 m room with a door in its bottom side, a chair and a legged person walking inside it.
+Scenario RoomWithAPerson() {
+  Scenario s;
+  s.duration_s = 4.0;
+  s.laser.range_noise_m = 0.0;
+  s.robot.start = Pose2D{1.0, 2.0, 0.0};
+  StaticObjectSpec room;
+  room.id = 1;
+  room.kind = ObjectKind::kWall;
+  room.shape = StaticShape::kPolygon;
+  room.vertices = {{0.0, 0.0}, {6.0, 0.0}, {6.0, 4.0}, {0.0, 4.0}};
+  room.openings = {WallOpening{0, 2.0, 1.0}};
+  StaticObjectSpec chair;
+  chair.id = 2;
+  chair.kind = ObjectKind::kFurniture;
+  chair.shape = StaticShape::kLegs;
+  chair.x_m = 2.0;
+  chair.y_m = 3.0;
+  chair.size_x_m = 0.45;
+  chair.size_y_m = 0.45;
+  chair.leg_radius_m = 0.02;
+  s.statics = {room, chair};
+  MoverSpec person;
+  person.id = 100;
+  person.kind = MoverKind::kConstantVelocity;
+  person.start_x_m = 3.0;
+  person.start_y_m = 1.0;
+  person.vx_mps = 0.5;
+  person.body = MoverBody::kLegs;
+  s.movers = {person};
+  return s;
+}
+
+TEST(WorldSimulatorTest, WallsFurnitureAndLegsInTheTruthAndTheScan) {
+  WorldSimulator world(RoomWithAPerson(), 1, SensorOutput::kBoth);
+  int frames = 0;
+  while (!world.Done()) {
+    const WorldEvent e = world.Next();
+    if (e.kind != WorldEvent::Kind::kSensor) continue;
+    ++frames;
+    const TruthSnapshot& truth = e.sensor.truth;
+    // 4 chair legs, then the person and its two legs.
+    ASSERT_EQ(truth.objects.size(), 7u);
+    for (int k = 0; k < 4; ++k) {
+      EXPECT_EQ(truth.objects[static_cast<size_t>(k)].kind, ObjectKind::kFurniture);
+      EXPECT_EQ(truth.objects[static_cast<size_t>(k)].id, 2 + k);
+    }
+    const ObjectTruth& person = truth.objects[4];
+    EXPECT_EQ(person.kind, ObjectKind::kPerson);
+    EXPECT_EQ(person.vx_mps, 0.5);
+    for (size_t k = 5; k < 7; ++k) {
+      EXPECT_EQ(truth.objects[k].kind, ObjectKind::kLeg);
+      EXPECT_EQ(truth.objects[k].parent_id, 100);
+      EXPECT_EQ(truth.objects[k].id, 1001 + static_cast<int64_t>(k - 5));
+      EXPECT_LT(std::hypot(truth.objects[k].x_m - person.x_m, truth.objects[k].y_m - person.y_m),
+                0.6);
+    }
+    EXPECT_EQ(person.beams_on_object, truth.objects[5].beams_on_object +
+                                          truth.objects[6].beams_on_object);
+    EXPECT_GE(person.beams_on_object, 3);
+    // 5 wall segments (the bottom side is cut by the door).
+    ASSERT_EQ(truth.segments.size(), 5u);
+    int on_walls = 0;
+    for (const SegmentTruth& segment : truth.segments) {
+      EXPECT_EQ(segment.id, 1);
+      EXPECT_EQ(segment.kind, ObjectKind::kWall);
+      on_walls += segment.beams_on_segment;
+    }
+    // Every beam hits something inside a closed room except those through the door; each beam
+    // names its surface, and a wall beam's range is the distance to the wall.
+    int through_door = 0;
+    int on_objects = 0;
+    for (const SimulatedBeam& beam : e.sensor.scan) {
+      if (!beam.valid) {
+        ++through_door;
+        EXPECT_EQ(beam.segment, -1);
+        EXPECT_EQ(beam.object, -1);
+        continue;
+      }
+      EXPECT_NE(beam.segment >= 0, beam.object >= 0);
+      on_objects += beam.object >= 0 ? 1 : 0;
+    }
+    EXPECT_GT(through_door, 0);
+    EXPECT_LT(through_door, 40);
+    int counted = 0;
+    for (const ObjectTruth& o : truth.objects) {
+      if (o.kind != ObjectKind::kPerson) counted += o.beams_on_object;
+    }
+    EXPECT_EQ(counted, on_objects);
+    EXPECT_EQ(on_walls + on_objects + through_door, static_cast<int>(e.sensor.scan.size()));
+    // Features: chair legs and the person, never a wall or a leg.
+    for (const PointFeature& f : e.sensor.features) {
+      const ObjectKind kind = truth.objects[static_cast<size_t>(f.object)].kind;
+      EXPECT_TRUE(kind == ObjectKind::kFurniture || kind == ObjectKind::kPerson);
+    }
+  }
+  EXPECT_EQ(frames, 41);
+}
+
+TEST(WorldSimulatorTest, WallHidesWhatStandsBehindIt) {
+  Scenario s = RoomWithAPerson();
+  s.duration_s = 0.5;
+  StaticObjectSpec outside;
+  outside.id = 50;
+  outside.x_m = 8.0;
+  outside.y_m = 2.0;
+  outside.radius_m = 0.3;
+  s.statics.push_back(outside);
+  WorldSimulator world(s, 1, SensorOutput::kBoth);
+  while (!world.Done()) {
+    const WorldEvent e = world.Next();
+    if (e.kind != WorldEvent::Kind::kSensor) continue;
+    const ObjectTruth& post = e.sensor.truth.objects[4];
+    ASSERT_EQ(post.id, 50);
+    EXPECT_EQ(post.beams_on_object, 0);
+    EXPECT_FALSE(post.visible);  // no feature through the wall
+  }
+}
+
+TEST(WorldSimulatorTest, EveryMoverKindCanWalkOnLegs) {
+  Scenario s;
+  s.duration_s = 20.0;
+  s.people = MoverBody::kLegs;
+  MoverSpec constant;
+  constant.id = 1;
+  constant.kind = MoverKind::kConstantVelocity;
+  constant.start_x_m = -5.0;
+  constant.start_y_m = 3.0;
+  constant.vx_mps = 1.0;
+  MoverSpec waypoints;
+  waypoints.id = 2;
+  waypoints.kind = MoverKind::kWaypoints;
+  waypoints.waypoints = {{0.0, -3.0, 0.0}, {6.0, -3.0, 5.0}, {6.0, 3.0, 0.0}};
+  MoverSpec recorded;
+  recorded.id = 3;
+  recorded.kind = MoverKind::kTrajectory;
+  recorded.trajectory = {{0.0, -6.0, 0.0}, {10.0, -6.0, 12.0}, {20.0, 6.0, 12.0}};
+  MoverSpec walker;
+  walker.id = 4;
+  walker.kind = MoverKind::kRandomWalk;
+  walker.start_x_m = 10.0;
+  walker.start_y_m = 10.0;
+  walker.random_walk.area_min_x_m = 5.0;
+  walker.random_walk.area_min_y_m = 5.0;
+  walker.random_walk.area_max_x_m = 15.0;
+  walker.random_walk.area_max_y_m = 15.0;
+  MoverSpec disc = constant;
+  disc.id = 5;
+  disc.start_y_m = -9.0;
+  disc.body = MoverBody::kDisc;
+  s.movers = {constant, waypoints, recorded, walker, disc};
+  WorldSimulator world(s, 3, SensorOutput::kScans);
+  std::map<int64_t, double> widest;
+  std::map<int64_t, int> stance_changes;
+  std::map<int64_t, bool> last_stance;
+  while (!world.Done()) {
+    const WorldEvent e = world.Next();
+    if (e.kind != WorldEvent::Kind::kSensor) continue;
+    const std::vector<ObjectTruth>& objects = e.sensor.truth.objects;
+    ASSERT_EQ(objects.size(), 4u * 3u + 1u);
+    for (size_t i = 0; i + 2 < objects.size(); i += 3) {
+      ASSERT_EQ(objects[i].kind, ObjectKind::kPerson);
+      const ObjectTruth& left = objects[i + 1];
+      const ObjectTruth& right = objects[i + 2];
+      EXPECT_EQ(left.parent_id, objects[i].id);
+      EXPECT_EQ(right.parent_id, objects[i].id);
+      EXPECT_DOUBLE_EQ(left.radius_m, s.legs.leg_radius_m);
+      const double apart = std::hypot(left.x_m - right.x_m, left.y_m - right.y_m);
+      widest[objects[i].id] = std::max(widest[objects[i].id], apart);
+      EXPECT_NEAR(objects[i].radius_m, 0.5 * apart + s.legs.leg_radius_m, 1e-12);
+      // The legs stay with the body.
+      EXPECT_LT(std::hypot(left.x_m - objects[i].x_m, left.y_m - objects[i].y_m), 0.9);
+      const bool moving = left.vx_mps != 0.0 || left.vy_mps != 0.0;
+      if (moving != last_stance[objects[i].id]) ++stance_changes[objects[i].id];
+      last_stance[objects[i].id] = moving;
+    }
+    EXPECT_EQ(objects.back().kind, ObjectKind::kDisc);
+  }
+  for (int64_t id = 1; id <= 4; ++id) {
+    EXPECT_GT(widest[id], 0.45) << id;  // steps of about 0.6 m at 1 m/s
+    EXPECT_LT(widest[id], 0.9) << id;
+    EXPECT_GT(stance_changes[id], 10) << id;  // the left leg stops and goes: bursts
+  }
 }
 
 }  // namespace

@@ -22,7 +22,7 @@
 namespace slammtt {
 
 struct PointFeature {
-  int object = -1;          // index of the object in the circle list (truth, not published)
+  int object = -1;          // index of the target (truth, not published)
   double range_m = 0.0;     // noisy range of the centre from the sensor
   double bearing_rad = 0.0; // noisy bearing, sensor frame, wrapped to (-pi, pi]
   double width_m = 0.0;     // the object's diameter
@@ -30,12 +30,33 @@ struct PointFeature {
   double bearing_var_rad2 = 0.0;
 };
 
-// The features of one scan, sorted by increasing noisy bearing (as a scan would list them; the
-// order says nothing about identity). `beams_on_object` comes from CountBeamsPerObject() for the
-// same scan. `visible` (resized to circles.size()) tells for every object whether rules 1-3 held
-// and the detection draw succeeded. Draws: for each object passing rules 1-3, one uniform number
-// when detection_probability < 1, then one normal number each for range and bearing noise when
-// non-zero.
+// Something that gives one point feature: a compact object (one circle) or a person (its centre;
+// its legs are its surface). The line-of-sight rule ignores the target's own circles
+// [first_circle, first_circle + num_circles).
+struct FeatureTarget {
+  double x_m = 0.0;
+  double y_m = 0.0;
+  double width_m = 0.0;     // published width
+  int beams_on_target = 0;  // valid beams whose first hit is the target (rule 3)
+  int first_circle = -1;
+  int num_circles = 0;
+};
+
+// The features of one scan from `targets`, occluded by `circles` and `walls` (rule 3), sorted by
+// increasing noisy bearing; `visible` is resized to targets.size(). Same draws as below.
+std::vector<PointFeature> EmitPointFeatures(const Pose2D& sensor,
+                                            const std::vector<FeatureTarget>& targets,
+                                            const std::vector<Circle>& circles,
+                                            const std::vector<Segment>& walls,
+                                            const LaserSpec& laser, const FeatureSpec& spec,
+                                            std::mt19937_64& rng, std::vector<bool>* visible);
+
+// Every circle a target of its own diameter: the features of one scan, sorted by increasing noisy
+// bearing (as a scan would list them; the order says nothing about identity). `beams_on_object`
+// comes from CountBeamsPerObject() for the same scan. `visible` (resized to circles.size()) tells
+// for every object whether rules 1-3 held and the detection draw succeeded. Draws: for each object
+// passing rules 1-3, one uniform number when detection_probability < 1, then one normal number each
+// for range and bearing noise when non-zero.
 std::vector<PointFeature> EmitPointFeatures(const Pose2D& sensor,
                                             const std::vector<Circle>& circles,
                                             const std::vector<int>& beams_on_object,

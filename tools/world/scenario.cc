@@ -32,6 +32,45 @@ const char* SensorOutputName(SensorOutput output) {
   return "?";
 }
 
+const char* ObjectKindName(ObjectKind kind) {
+  switch (kind) {
+    case ObjectKind::kWall:
+      return "wall";
+    case ObjectKind::kFurniture:
+      return "furniture";
+    case ObjectKind::kPost:
+      return "post";
+    case ObjectKind::kDisc:
+      return "disc";
+    case ObjectKind::kPerson:
+      return "person";
+    case ObjectKind::kLeg:
+      return "leg";
+  }
+  return "?";
+}
+
+bool ParseMoverBody(const std::string& text, MoverBody* body) {
+  if (text == "discs" || text == "disc") {
+    *body = MoverBody::kDisc;
+  } else if (text == "legs") {
+    *body = MoverBody::kLegs;
+  } else {
+    return false;
+  }
+  return true;
+}
+
+int StaticIdCount(const StaticObjectSpec& spec) {
+  return spec.shape == StaticShape::kLegs ? 4 : 1;
+}
+
+int64_t LegId(int64_t person_id, int leg) { return 10 * person_id + 1 + leg; }
+
+MoverBody BodyOf(const Scenario& scenario, const MoverSpec& mover) {
+  return mover.body.value_or(scenario.people);
+}
+
 namespace {
 
 // Collects "path: message" lines.
@@ -72,10 +111,105 @@ class Problems {
 };
 
 constexpr double kMaxMoverSpeedMps = 50.0;
+// Bounds on the static world's size: every beam is tested against every circle and segment.
+constexpr size_t kMaxVertices = 100000;
+constexpr size_t kMaxStaticObjects = 100000;
+// Person ids stay within this bound so that their legs' ids (10 * id + 1, + 2) cannot overflow.
+constexpr int64_t kMaxPersonId = 100000000000000000;
 constexpr double kMaxRadiusM = 1000.0;
 
 std::string Indexed(const std::string& list, size_t i) {
   return list + "[" + std::to_string(i) + "]";
+}
+
+}  // namespace
+
+namespace {
+
+void FindShapeProblems(const std::string& path, const StaticObjectSpec& o, Problems* problems) {
+  Problems& p = *problems;
+  switch (o.shape) {
+    case StaticShape::kCircle:
+      p.Coordinate(path + ".x_m", o.x_m);
+      p.Coordinate(path + ".y_m", o.y_m);
+      p.Positive(path + ".radius_m", o.radius_m);
+      if (o.radius_m > kMaxRadiusM) p.Add(path + ".radius_m", "must not exceed 1000 m");
+      return;
+    case StaticShape::kBox:
+    case StaticShape::kLegs:
+      p.Coordinate(path + ".center", std::max(std::abs(o.x_m), std::abs(o.y_m)));
+      p.Positive(path + ".size_m", std::min(o.size_x_m, o.size_y_m));
+      if (std::max(o.size_x_m, o.size_y_m) > kMaxRadiusM) {
+        p.Add(path + ".size_m", "must not exceed 1000 m");
+      }
+      p.Finite(path + ".heading_deg", o.heading_rad);
+      if (o.shape == StaticShape::kLegs) {
+        p.Positive(path + ".leg_radius_m", o.leg_radius_m);
+        if (o.leg_radius_m * 2.0 > std::min(o.size_x_m, o.size_y_m)) {
+          p.Add(path + ".leg_radius_m", "legs must fit inside size_m");
+        }
+      }
+      return;
+    case StaticShape::kPolygon:
+    case StaticShape::kPolyline:
+      break;
+  }
+  const bool closed = o.shape == StaticShape::kPolygon;
+  const size_t n = o.vertices.size();
+  if (n > kMaxVertices) {
+    p.Add(path + ".vertices", "more than 100000 vertices");
+    return;
+  }
+  if (o.openings.size() > kMaxVertices) {
+    p.Add(path + ".openings", "more than 100000 openings");
+    return;
+  }
+  if (n < (closed ? 3u : 2u)) {
+    p.Add(path + ".vertices", closed ? "a polygon needs at least 3 vertices"
+                                     : "a polyline needs at least 2 vertices");
+    return;
+  }
+  bool coordinates_ok = true;
+  for (size_t k = 0; k < n; ++k) {
+    const double extent = std::max(std::abs(o.vertices[k].x_m), std::abs(o.vertices[k].y_m));
+    if (!(extent <= kMaxCoordinateM)) {
+      p.Coordinate(Indexed(path + ".vertices", k), extent);
+      coordinates_ok = false;
+    }
+  }
+  if (!coordinates_ok) return;
+  const size_t sides = closed ? n : n - 1;
+  for (size_t k = 0; k < sides; ++k) {
+    const PlanarPoint& a = o.vertices[k];
+    const PlanarPoint& b = o.vertices[(k + 1) % n];
+    if (a.x_m == b.x_m && a.y_m == b.y_m) {
+      p.Add(Indexed(path + ".vertices", (k + 1) % n), "repeats the vertex before it");
+    }
+  }
+  for (size_t k = 0; k < o.openings.size(); ++k) {
+    const std::string opening = Indexed(path + ".openings", k);
+    const WallOpening& w = o.openings[k];
+    if (w.side < 0 || static_cast<size_t>(w.side) >= sides) {
+      p.Add(opening, "side " + std::to_string(w.side) + " does not exist (sides 0-" +
+                         std::to_string(sides - 1) + ")");
+      continue;
+    }
+    const PlanarPoint& a = o.vertices[static_cast<size_t>(w.side)];
+    const PlanarPoint& b = o.vertices[(static_cast<size_t>(w.side) + 1) % n];
+    const double length = std::hypot(b.x_m - a.x_m, b.y_m - a.y_m);
+    if (!(w.offset_m >= 0.0) || !(w.width_m > 0.0) || !(w.offset_m + w.width_m <= length)) {
+      p.Add(opening, "must lie within side " + std::to_string(w.side) + " (length " +
+                         Problems::Text(length) + " m) with offset >= 0 and width > 0");
+      continue;
+    }
+    for (size_t j = 0; j < k; ++j) {
+      const WallOpening& v = o.openings[j];
+      if (v.side == w.side && w.offset_m < v.offset_m + v.width_m &&
+          v.offset_m < w.offset_m + w.width_m) {
+        p.Add(opening, "overlaps opening " + std::to_string(j));
+      }
+    }
+  }
 }
 
 }  // namespace
@@ -103,6 +237,33 @@ std::vector<std::string> FindScenarioProblems(const Scenario& s) {
   p.NonNegative("laser.range_noise_m", l.range_noise_m);
   p.Coordinate("laser.mount_a_m", l.mount_a_m);
   p.Coordinate("laser.mount_b_m", l.mount_b_m);
+  const LaserArtefactSpec& a = l.artefacts;
+  p.Between("laser.mixed_pixel_probability", a.mixed_pixel_probability, 0.0, 1.0);
+  if (!(a.beam_divergence_deg > 0.0 && a.beam_divergence_deg <= 10.0)) {
+    p.Add("laser.beam_divergence_deg",
+          "must be within (0, 10], got " + Problems::Text(a.beam_divergence_deg));
+  }
+  p.Positive("laser.mixed_pixel_min_gap_m", a.mixed_pixel_min_gap_m);
+  if (!(a.grazing_dropout_deg > 0.0 && a.grazing_dropout_deg <= 90.0)) {
+    p.Add("laser.grazing_dropout_deg",
+          "must be within (0, 90], got " + Problems::Text(a.grazing_dropout_deg));
+  }
+  p.NonNegative("laser.range_noise_per_m", a.range_noise_per_m);
+  if (a.range_noise_per_m > 1.0) p.Add("laser.range_noise_per_m", "must not exceed 1");
+  if (!(a.sample_rate_hz == 0.0 || (a.sample_rate_hz >= 10.0 && a.sample_rate_hz <= 1e6))) {
+    p.Add("laser.sample_rate_hz",
+          "must be 0 (even beams) or within [10, 1e6], got " + Problems::Text(a.sample_rate_hz));
+  } else if (a.sample_rate_hz > 0.0 && a.sample_rate_hz / l.rate_hz > 100000.0) {
+    p.Add("laser.sample_rate_hz", "gives more than 100000 beams per scan");
+  } else if (a.sample_rate_hz > 0.0 && l.fov_deg < 360.0) {
+    p.Add("laser.sample_rate_hz", "sampled beam angles need a 360-degree laser (fov_deg 360)");
+  }
+  p.Between("laser.rotation_jitter", a.rotation_jitter, 0.0, 0.2);
+  p.Between("laser.angle_jitter_deg", a.angle_jitter_deg, 0.0, 5.0);
+
+  p.Between("legs.radius_m", s.legs.leg_radius_m, 1e-3, 0.5);
+  p.Between("legs.hip_width_m", s.legs.hip_width_m, 0.0, 2.0);
+  p.Between("legs.sway_m", s.legs.sway_m, 0.0, 0.2);
 
   p.NonNegative("features.range_noise_m", s.features.range_noise_m);
   p.NonNegative("features.bearing_noise_deg", s.features.bearing_noise_deg);
@@ -151,19 +312,34 @@ std::vector<std::string> FindScenarioProblems(const Scenario& s) {
   auto check_id = [&](const std::string& path, int64_t id) {
     if (!ids.insert(id).second) p.Add(path + ".id", "duplicate object id " + std::to_string(id));
   };
-  for (size_t i = 0; i < s.statics.size(); ++i) {
+  if (s.statics.size() > kMaxStaticObjects) p.Add("statics", "more than 100000 static objects");
+  for (size_t i = 0; i < s.statics.size() && i < kMaxStaticObjects; ++i) {
     const std::string path = Indexed("statics", i);
     const StaticObjectSpec& o2 = s.statics[i];
-    check_id(path, o2.id);
-    p.Coordinate(path + ".x_m", o2.x_m);
-    p.Coordinate(path + ".y_m", o2.y_m);
-    p.Positive(path + ".radius_m", o2.radius_m);
-    if (o2.radius_m > kMaxRadiusM) p.Add(path + ".radius_m", "must not exceed 1000 m");
+    if (!(std::abs(o2.id) <= kMaxPersonId)) {
+      p.Add(path + ".id", "must be within +-1e17");
+    } else {
+      for (int k = 0; k < StaticIdCount(o2); ++k) check_id(path, o2.id + k);
+    }
+    if (o2.kind != ObjectKind::kWall && o2.kind != ObjectKind::kFurniture &&
+        o2.kind != ObjectKind::kPost) {
+      p.Add(path + ".kind", "a static object is a wall, furniture or a post");
+    }
+    p.Between(path + ".dropout_probability", o2.dropout_probability, 0.0, 1.0);
+    FindShapeProblems(path, o2, &p);
   }
   for (size_t i = 0; i < s.movers.size(); ++i) {
     const std::string path = Indexed("movers", i);
     const MoverSpec& m = s.movers[i];
     check_id(path, m.id);
+    if (BodyOf(s, m) == MoverBody::kLegs) {
+      if (!(std::abs(m.id) <= kMaxPersonId)) {
+        p.Add(path + ".id", "a person's id must be within +-1e17");
+      } else {
+        check_id(path, LegId(m.id, 0));
+        check_id(path, LegId(m.id, 1));
+      }
+    }
     p.Positive(path + ".radius_m", m.radius_m);
     if (m.radius_m > kMaxRadiusM) p.Add(path + ".radius_m", "must not exceed 1000 m");
     p.NonNegative(path + ".appear_s", m.appear_s);

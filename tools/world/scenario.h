@@ -3,13 +3,15 @@
 // YAML file by tools/world/scenario_loader.h; docs/world.md lists every key with its units and
 // default. Nothing here reads files or clocks.
 //
-// Objects are circles (centre, radius) in the world frame: static landmarks and movers. The
-// paper treats detected objects as points (section 2); circles give the ray caster something to
-// hit and the point features a width.
+// Static objects are circles (posts, pillars, chair and table legs), polygons and polylines
+// (walls of rooms and corridors with door openings, desks, cabinets, boxes), each with a kind
+// (wall, furniture, post). Movers are discs (the paper's objects: it treats detected objects as
+// points, section 2) or people on two legs driven by a walking gait (person_gait.h).
 #pragma once
 
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,6 +36,30 @@ enum class SensorOutput {
 bool ParseSensorOutput(const std::string& text, SensorOutput* output);
 const char* SensorOutputName(SensorOutput output);
 
+// Effects of real scanners that the ideal ray caster lacks (laser_model.h; all off by default so
+// that a scenario without them gives exactly the scans it gave before they existed).
+struct LaserArtefactSpec {
+  // Mixed pixels at depth edges: a beam's footprint is beam_divergence_deg wide; when its two
+  // edges meet different surfaces more than mixed_pixel_min_gap_m apart in range, the beam
+  // straddles a depth edge and, with probability mixed_pixel_probability, returns a range drawn
+  // uniformly between the two surfaces' ranges.
+  double mixed_pixel_probability = 0.0;  // [0, 1]
+  double beam_divergence_deg = 0.18;     // (0, 10]
+  double mixed_pixel_min_gap_m = 0.05;   // > 0
+  // No return when the angle between the beam and the surface normal exceeds this (90: never).
+  double grazing_dropout_deg = 90.0;     // (0, 90]
+  // Range noise that grows with range: sigma = range_noise_m + range_noise_per_m * range.
+  double range_noise_per_m = 0.0;        // >= 0
+  // RPLIDAR-like beam angles: samples at sample_rate_hz while the head turns at about rate_hz,
+  // the turn rate of each revolution scaled by 1 + N(0, rotation_jitter^2), each sample's angle
+  // off by N(0, angle_jitter_deg^2); a revolution starts where the previous one ended, so the
+  // first angle and the number of beams change from scan to scan. 0 (off): even beams of
+  // resolution_deg.
+  double sample_rate_hz = 0.0;           // 0 or [10, 1e6]
+  double rotation_jitter = 0.0;          // [0, 0.2]
+  double angle_jitter_deg = 0.0;         // [0, 5]
+};
+
 // A 2D laser scanner. Beam i points at angle -fov/2 + i * resolution in the sensor frame; a
 // 360-degree sensor has round(360 / resolution) beams starting at -180 degrees (no beam twice),
 // a narrower one floor(fov / resolution) + 1 beams covering both edges. A scan is instantaneous:
@@ -49,6 +75,7 @@ struct LaserSpec {
   double range_noise_m = 0.01;    // standard deviation of the Gaussian noise of each beam
   double mount_a_m = 0.0;         // sensor position on the robot, paper eq. 11: forward
   double mount_b_m = 0.0;         //   and left of the axle centre
+  LaserArtefactSpec artefacts;    // all off by default
 };
 
 // Point features emitted straight from the objects (paper section 5.1: range/bearing noise 0.2 m
@@ -104,12 +131,47 @@ struct RobotMotionSpec {
   bool loop = false;
 };
 
-struct StaticObjectSpec {
-  int64_t id = 0;
-  double x_m = 0.0;
-  double y_m = 0.0;
-  double radius_m = 0.2;
+// What an object is (ground truth kind; the LCM message constants are mapped in
+// world_messages.cc). Statics are walls, furniture or posts; movers discs or people; a person's
+// legs are objects of their own.
+enum class ObjectKind { kWall, kFurniture, kPost, kDisc, kPerson, kLeg };
+const char* ObjectKindName(ObjectKind kind);
+
+// The shape of a static object.
+enum class StaticShape {
+  kCircle,    // centre x_m, y_m and radius_m: a post, a pillar, one leg
+  kPolygon,   // closed: vertices, side k from vertex k to vertex k + 1 (the last to the first)
+  kPolyline,  // open: sides between consecutive vertices
+  kBox,       // rectangle: centre x_m, y_m, size_x_m by size_y_m turned by heading_rad
+  kLegs,      // four circles of leg_radius_m at the corners of a box (a chair or a table)
 };
+
+// A gap in one side of a polygon or polyline (a door): from offset_m to offset_m + width_m
+// measured along side `side` from its first vertex.
+struct WallOpening {
+  int side = 0;
+  double offset_m = 0.0;
+  double width_m = 0.0;
+};
+
+struct StaticObjectSpec {
+  int64_t id = 0;  // kLegs: the four legs are ids id .. id + 3
+  double x_m = 0.0;  // kCircle, kBox, kLegs: centre
+  double y_m = 0.0;
+  double radius_m = 0.2;            // kCircle
+  ObjectKind kind = ObjectKind::kPost;  // kWall, kFurniture or kPost
+  StaticShape shape = StaticShape::kCircle;
+  std::vector<PlanarPoint> vertices;  // kPolygon, kPolyline
+  std::vector<WallOpening> openings;  // kPolygon, kPolyline
+  double size_x_m = 1.0;            // kBox, kLegs: extent along the heading
+  double size_y_m = 1.0;            //   and across it
+  double heading_rad = 0.0;         // kBox, kLegs
+  double leg_radius_m = 0.02;       // kLegs
+  // Share of beams that hit the object and get no return (glass, black surfaces), [0, 1].
+  double dropout_probability = 0.0;
+};
+// Number of object ids a static uses (4 for kLegs, else 1).
+int StaticIdCount(const StaticObjectSpec& spec);
 
 // A point of a recorded or scripted trajectory.
 struct TimedPoint {
@@ -133,6 +195,20 @@ enum class MoverKind {
 };
 // What a waypoint mover does after its last waypoint.
 enum class PathEnd { kStay, kLeave, kLoop };
+// What the laser sees of a mover: one disc of radius_m, or a person's two legs (person_gait.h).
+enum class MoverBody { kDisc, kLegs };
+// "discs"/"disc", "legs"; false for anything else.
+bool ParseMoverBody(const std::string& text, MoverBody* body);
+
+// A legged person: two legs of leg_radius_m whose centres stand hip_width_m apart across the
+// heading (issue 11: radius about 0.05-0.07 m, hip width about 0.2 m); gait in person_gait.h.
+// A leg's id is 10 * person id + 1 (left) or + 2 (right).
+struct LegSpec {
+  double leg_radius_m = 0.06;  // (0, 0.5]
+  double hip_width_m = 0.2;    // [0, 2]
+  double sway_m = 0.01;        // standing sway amplitude, [0, 0.2]
+};
+int64_t LegId(int64_t person_id, int leg);
 
 // Random walk: legs of exponentially distributed duration (mean mean_leg_s, at least 0.5 s);
 // at the start of each leg the heading turns by a uniform angle in [-max_turn, +max_turn] or,
@@ -175,6 +251,8 @@ struct MoverSpec {
   std::vector<TimedPoint> trajectory;
   // kRandomWalk.
   RandomWalkSpec random_walk;
+  // Disc or legs; nullopt: the scenario's `people`.
+  std::optional<MoverBody> body;
 };
 
 struct Scenario {
@@ -190,12 +268,19 @@ struct Scenario {
   RobotMotionSpec robot;
   std::vector<StaticObjectSpec> statics;
   std::vector<MoverSpec> movers;
+  MoverBody people = MoverBody::kDisc;  // body of movers that do not choose one
+  LegSpec legs;
 };
+
+// The body a mover has in this scenario.
+MoverBody BodyOf(const Scenario& scenario, const MoverSpec& mover);
 
 // Every problem of a scenario built in code, one line each ("movers[2].radius_m: must be
 // positive, got -1"); empty when the scenario can be simulated. Besides signs and orders it
 // bounds magnitudes so that nothing overflows: durations and times up to 1e6 s, coordinates
-// within +-kMaxCoordinateM, mover speeds up to 50 m/s, radii up to 1000 m. The YAML loader
+// within +-kMaxCoordinateM, mover speeds up to 50 m/s, radii up to 1000 m, at most 100000
+// static objects and 100000 vertices or openings per polygon (every beam is tested against every
+// circle and segment), person ids within +-1e17 (leg ids 10 * id + 1, + 2). The YAML loader
 // reports the same problems with file and line; WorldSimulator refuses a scenario with any.
 std::vector<std::string> FindScenarioProblems(const Scenario& scenario);
 

@@ -64,7 +64,8 @@ class ScenarioReader {
 
   Scenario Read() {
     root_.CheckKeysAmong({"name", "description", "duration_s", "start_utime", "output", "laser",
-                          "features", "odometry", "robot", "statics", "movers", "crowd"});
+                          "features", "odometry", "robot", "statics", "movers", "crowd",
+                          "people", "legs"});
     Scenario s;
     s.name = root_.GetString("name", "");
     root_.GetString("description", "");  // for people only
@@ -80,8 +81,19 @@ class ScenarioReader {
     ReadFeatures(root_.Child("features"), &s.features);
     ReadOdometry(root_.Child("odometry"), &s.odometry);
     ReadRobot(root_.Child("robot"), &s.robot);
+    if (root_.Has("people")) {
+      const std::string people = root_.GetString("people", "");
+      if (!ParseMoverBody(people, &s.people)) {
+        root_.FailKey("people", "expected discs or legs, got \"" + people + "\"");
+      }
+    }
+    ReadLegs(root_.Child("legs"), &s.legs);
     const std::vector<Config> statics = root_.Items("statics");
-    for (size_t i = 0; i < statics.size(); ++i) s.statics.push_back(ReadStatic(statics[i], i));
+    int64_t next_id = 1;
+    for (size_t i = 0; i < statics.size(); ++i) {
+      s.statics.push_back(ReadStatic(statics[i], next_id));
+      next_id = s.statics.back().id + StaticIdCount(s.statics.back());
+    }
     const std::vector<Config> movers = root_.Items("movers");
     for (size_t i = 0; i < movers.size(); ++i) s.movers.push_back(ReadMover(movers[i], i));
     if (root_.Has("crowd")) ReadCrowd(root_.Child("crowd"), &s.movers);
@@ -127,7 +139,19 @@ class ScenarioReader {
 
   void ReadLaser(const Config& c, LaserSpec* l) {
     c.CheckKeysAmong({"fov_deg", "resolution_deg", "min_range_m", "max_range_m", "rate_hz",
-                      "range_noise_m", "mount_a_m", "mount_b_m"});
+                      "range_noise_m", "mount_a_m", "mount_b_m", "mixed_pixel_probability",
+                      "beam_divergence_deg", "mixed_pixel_min_gap_m", "grazing_dropout_deg",
+                      "range_noise_per_m", "sample_rate_hz", "rotation_jitter",
+                      "angle_jitter_deg"});
+    LaserArtefactSpec& a = l->artefacts;
+    a.mixed_pixel_probability = Double(c, "mixed_pixel_probability", a.mixed_pixel_probability);
+    a.beam_divergence_deg = Double(c, "beam_divergence_deg", a.beam_divergence_deg);
+    a.mixed_pixel_min_gap_m = Double(c, "mixed_pixel_min_gap_m", a.mixed_pixel_min_gap_m);
+    a.grazing_dropout_deg = Double(c, "grazing_dropout_deg", a.grazing_dropout_deg);
+    a.range_noise_per_m = Double(c, "range_noise_per_m", a.range_noise_per_m);
+    a.sample_rate_hz = Double(c, "sample_rate_hz", a.sample_rate_hz);
+    a.rotation_jitter = Double(c, "rotation_jitter", a.rotation_jitter);
+    a.angle_jitter_deg = Double(c, "angle_jitter_deg", a.angle_jitter_deg);
     l->fov_deg = Double(c, "fov_deg", l->fov_deg);
     l->resolution_deg = Double(c, "resolution_deg", l->resolution_deg);
     l->min_range_m = Double(c, "min_range_m", l->min_range_m);
@@ -136,6 +160,24 @@ class ScenarioReader {
     l->range_noise_m = Double(c, "range_noise_m", l->range_noise_m);
     l->mount_a_m = Double(c, "mount_a_m", l->mount_a_m);
     l->mount_b_m = Double(c, "mount_b_m", l->mount_b_m);
+  }
+
+  void ReadLegs(const Config& c, LegSpec* legs) {
+    c.CheckKeysAmong({"radius_m", "hip_width_m", "sway_m"});
+    legs->leg_radius_m = Double(c, "radius_m", legs->leg_radius_m);
+    legs->hip_width_m = Double(c, "hip_width_m", legs->hip_width_m);
+    legs->sway_m = Double(c, "sway_m", legs->sway_m);
+  }
+
+  // `body: disc | legs` of a mover or of the crowd.
+  std::optional<MoverBody> Body(const Config& c) {
+    if (!c.Has("body")) return std::nullopt;
+    MoverBody body = MoverBody::kDisc;
+    const std::string text = c.GetString("body", "");
+    if (!ParseMoverBody(text, &body)) {
+      c.FailKey("body", "expected disc or legs, got \"" + text + "\"");
+    }
+    return body;
   }
 
   void ReadFeatures(const Config& c, FeatureSpec* f) {
@@ -192,17 +234,96 @@ class ScenarioReader {
     }
   }
 
-  StaticObjectSpec ReadStatic(const Config& c, size_t index) {
-    if (!c.IsMap()) c.Fail("expected {id, x_m, y_m, radius_m}");
+  StaticObjectSpec ReadStatic(const Config& c, int64_t default_id) {
+    if (!c.IsMap()) c.Fail("expected {id, x_m, y_m, radius_m} or {type: ..., ...}");
     locations_.Add(c.Path(), c, "");
-    c.CheckKeysAmong({"id", "x_m", "y_m", "radius_m"});
     StaticObjectSpec o;
-    o.id = Int(c, "id", static_cast<int64_t>(index) + 1);
-    if (!c.Has("x_m")) c.FailKey("x_m", "missing key");
-    if (!c.Has("y_m")) c.FailKey("y_m", "missing key");
-    o.x_m = Double(c, "x_m", 0.0);
-    o.y_m = Double(c, "y_m", 0.0);
-    o.radius_m = Double(c, "radius_m", o.radius_m);
+    const std::string type = c.GetString("type", "circle");
+    std::vector<std::string> keys = {"id", "type", "kind", "dropout_probability"};
+    if (type == "circle") {
+      o.shape = StaticShape::kCircle;
+      keys.insert(keys.end(), {"x_m", "y_m", "radius_m"});
+    } else if (type == "polygon" || type == "polyline") {
+      o.shape = type == "polygon" ? StaticShape::kPolygon : StaticShape::kPolyline;
+      o.kind = ObjectKind::kWall;
+      keys.insert(keys.end(), {"vertices", "openings"});
+    } else if (type == "box") {
+      o.shape = StaticShape::kBox;
+      o.kind = ObjectKind::kFurniture;
+      keys.insert(keys.end(), {"center", "size_m", "heading_deg"});
+    } else if (type == "chair" || type == "table") {
+      o.shape = StaticShape::kLegs;
+      o.kind = ObjectKind::kFurniture;
+      // A chair: 0.45 m square on legs of 0.015 m; a table: 1.2 x 0.8 m on legs of 0.025 m.
+      o.size_x_m = type == "chair" ? 0.45 : 1.2;
+      o.size_y_m = type == "chair" ? 0.45 : 0.8;
+      o.leg_radius_m = type == "chair" ? 0.015 : 0.025;
+      keys.insert(keys.end(), {"center", "size_m", "heading_deg", "leg_radius_m"});
+    } else {
+      c.FailKey("type", "expected circle, polygon, polyline, box, chair or table, got \"" + type +
+                            "\"");
+    }
+    c.CheckKeysAmong(keys);
+    o.id = Int(c, "id", default_id);
+    if (c.Has("kind")) {
+      locations_.Add(Join(c, "kind"), c, "kind");
+      const std::string kind = c.GetString("kind", "");
+      if (kind == "wall") {
+        o.kind = ObjectKind::kWall;
+      } else if (kind == "furniture") {
+        o.kind = ObjectKind::kFurniture;
+      } else if (kind == "post") {
+        o.kind = ObjectKind::kPost;
+      } else {
+        c.FailKey("kind", "expected wall, furniture or post, got \"" + kind + "\"");
+      }
+    }
+    o.dropout_probability = Double(c, "dropout_probability", o.dropout_probability);
+    switch (o.shape) {
+      case StaticShape::kCircle:
+        if (!c.Has("x_m")) c.FailKey("x_m", "missing key");
+        if (!c.Has("y_m")) c.FailKey("y_m", "missing key");
+        o.x_m = Double(c, "x_m", 0.0);
+        o.y_m = Double(c, "y_m", 0.0);
+        o.radius_m = Double(c, "radius_m", o.radius_m);
+        break;
+      case StaticShape::kPolygon:
+      case StaticShape::kPolyline: {
+        if (!c.Has("vertices")) c.FailKey("vertices", "missing key");
+        locations_.Add(Join(c, "vertices"), c, "vertices");
+        for (const Config& point : c.Items("vertices")) {
+          locations_.Add(point.Path(), point, "");
+          const std::vector<double> xy = Numbers(point, 2, false, "[x_m, y_m]");
+          o.vertices.push_back(PlanarPoint{xy[0], xy[1]});
+        }
+        locations_.Add(Join(c, "openings"), c, "openings");
+        for (const Config& opening : c.Items("openings")) {
+          locations_.Add(opening.Path(), opening, "");
+          const std::vector<double> v = Numbers(opening, 3, false, "[side, offset_m, width_m]");
+          if (!(v[0] >= 0.0 && v[0] <= 1e6 && v[0] == std::floor(v[0]))) {
+            opening.Fail("side must be a whole number >= 0");
+          }
+          o.openings.push_back(WallOpening{static_cast<int>(v[0]), v[1], v[2]});
+        }
+        break;
+      }
+      case StaticShape::kBox:
+      case StaticShape::kLegs: {
+        const std::vector<double> center = NumbersKey(c, "center", 2, "[x_m, y_m]");
+        o.x_m = center[0];
+        o.y_m = center[1];
+        if (o.shape == StaticShape::kBox || c.Has("size_m")) {
+          const std::vector<double> size = NumbersKey(c, "size_m", 2, "[size_x_m, size_y_m]");
+          o.size_x_m = size[0];
+          o.size_y_m = size[1];
+        }
+        o.heading_rad = Double(c, "heading_deg", 0.0) * kDegToRad;
+        if (o.shape == StaticShape::kLegs) {
+          o.leg_radius_m = Double(c, "leg_radius_m", o.leg_radius_m);
+        }
+        break;
+      }
+    }
     return o;
   }
 
@@ -214,7 +335,7 @@ class ScenarioReader {
       c.FailKey("type", "missing key (constant_velocity, waypoints, trajectory or random_walk)");
     }
     const std::string type = c.GetString("type", "");
-    std::vector<std::string> keys = {"id", "type", "radius_m", "appear_s", "disappear_s"};
+    std::vector<std::string> keys = {"id", "type", "radius_m", "appear_s", "disappear_s", "body"};
     if (type == "constant_velocity") {
       m.kind = MoverKind::kConstantVelocity;
       keys.insert(keys.end(), {"start", "velocity_mps"});
@@ -237,6 +358,7 @@ class ScenarioReader {
     m.radius_m = Double(c, "radius_m", m.radius_m);
     m.appear_s = Double(c, "appear_s", m.appear_s);
     if (c.Has("disappear_s")) m.disappear_s = Double(c, "disappear_s", 0.0);
+    m.body = Body(c);
     switch (m.kind) {
       case MoverKind::kConstantVelocity: {
         const std::vector<double> start = NumbersKey(c, "start", 2, "[x_m, y_m]");
@@ -303,7 +425,8 @@ class ScenarioReader {
 
   void ReadCrowd(const Config& c, std::vector<MoverSpec>* movers) {
     c.CheckKeysAmong({"file", "window_s", "rotation_deg", "offset_m", "max_people", "radius_m",
-                      "id_offset"});
+                      "id_offset", "body"});
+    const std::optional<MoverBody> body = Body(c);
     if (!c.Has("file")) c.FailKey("file", "missing key");
     const std::string file = c.GetString("file", "");
     const std::filesystem::path path =
@@ -341,7 +464,10 @@ class ScenarioReader {
       c.FailKey("file", e.what());
     }
     const size_t first = movers->size();
-    for (MoverSpec& m : MoversFromRecordedTracks(tracks, spec)) movers->push_back(std::move(m));
+    for (MoverSpec& m : MoversFromRecordedTracks(tracks, spec)) {
+      m.body = body;
+      movers->push_back(std::move(m));
+    }
     for (size_t i = first; i < movers->size(); ++i) {
       locations_.Add("movers[" + std::to_string(i) + "]", c, "");
     }

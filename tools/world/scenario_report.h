@@ -35,7 +35,9 @@ struct OcclusionEpisode {
 
 // A closest approach between two things at one scan time.
 struct ClosestApproach {
-  double gap_m = 1e300;  // surface gap: centre distance minus radii (negative: overlap)
+  // Surface gap: centre distance minus radii, or distance from a centre to a wall segment
+  // minus the radius (negative: overlap). A legged person's surfaces are its legs.
+  double gap_m = 1e300;
   int64_t id_a = 0;      // object ids; -1 stands for the robot
   int64_t id_b = 0;
   double time_s = 0.0;
@@ -52,10 +54,26 @@ struct ScenarioReport {
   double mean_movers_visible = 0.0;
   double robot_path_m = 0.0;
   double robot_max_speed_mps = 0.0;
-  ClosestApproach mover_mover;   // two movers
-  ClosestApproach mover_static;  // a mover and a static object
-  ClosestApproach robot_static;  // the robot (robot_radius_m) and a static object
-  ClosestApproach robot_mover;   // the robot and a mover
+  ClosestApproach mover_mover;   // the surfaces (discs, legs) of two movers
+  ClosestApproach mover_static;  // a mover's surface (disc or leg) and a static circle or segment
+  ClosestApproach robot_static;  // the robot (robot_radius_m) and a static circle or segment
+  ClosestApproach robot_mover;   // the robot and a mover's surface
+  // Laser figures (valid beams of every scan): share on static segments (walls, furniture
+  // sides), on walls alone, and on legs.
+  int64_t valid_beams = 0;
+  int64_t beams_on_segments = 0;
+  int64_t beams_on_walls = 0;
+  int64_t beams_on_legs = 0;
+  int64_t mixed_pixels = 0;  // valid beams flagged mixed_pixel (scan output)
+  int64_t dropouts = 0;      // beams that hit a surface but gave no return (scan output)
+  // Legs of people whose centre is in view: (leg, scan) pairs, how many of them had at least one
+  // beam, at least three, and how many were hidden while the other leg of the person had beams
+  // (one leg hiding the other, or something in front of one leg only).
+  int64_t legs_in_view = 0;
+  int64_t legs_with_beams = 0;
+  int64_t legs_with_3_beams = 0;
+  int64_t legs_hidden_while_other_seen = 0;
+  int64_t beams_on_legs_in_view = 0;  // sum of beams over those pairs
   std::vector<MoverReport> movers;  // in order of first appearance
   std::vector<OcclusionEpisode> occlusions;  // in order of their start
 };

@@ -4,6 +4,29 @@
 
 namespace slammtt {
 
+namespace {
+
+int8_t KindConstant(ObjectKind kind) {
+  using slammtt_msgs::object_truth_t;
+  switch (kind) {
+    case ObjectKind::kWall:
+      return object_truth_t::KIND_WALL;
+    case ObjectKind::kFurniture:
+      return object_truth_t::KIND_FURNITURE;
+    case ObjectKind::kPost:
+      return object_truth_t::KIND_POST;
+    case ObjectKind::kDisc:
+      return object_truth_t::KIND_DISC;
+    case ObjectKind::kPerson:
+      return object_truth_t::KIND_PERSON;
+    case ObjectKind::kLeg:
+      return object_truth_t::KIND_LEG;
+  }
+  return object_truth_t::KIND_POST;
+}
+
+}  // namespace
+
 slammtt_msgs::odometry_t ToOdometryMessage(const OdometryReading& reading, int64_t utime_offset) {
   slammtt_msgs::odometry_t msg{};
   msg.utime = utime_offset + reading.time_us;
@@ -41,10 +64,22 @@ slammtt_msgs::ground_truth_t ToGroundTruthMessage(const TruthSnapshot& truth,
                                       : slammtt_msgs::object_truth_t::CLASS_MOVING;
     object.beams_on_object = o.beams_on_object;
     object.visible = o.visible;
-    object.kind = o.is_static ? slammtt_msgs::object_truth_t::KIND_POST
-                              : slammtt_msgs::object_truth_t::KIND_DISC;
-    object.parent_id = -1;
+    object.kind = KindConstant(o.kind);
+    object.parent_id = o.parent_id;
     msg.objects.push_back(object);
+  }
+  msg.num_segments = static_cast<int32_t>(truth.segments.size());
+  msg.segments.reserve(truth.segments.size());
+  for (const SegmentTruth& s : truth.segments) {
+    slammtt_msgs::segment_truth_t segment{};
+    segment.id = s.id;
+    segment.kind = KindConstant(s.kind);
+    segment.x0_m = s.segment.x0_m;
+    segment.y0_m = s.segment.y0_m;
+    segment.x1_m = s.segment.x1_m;
+    segment.y1_m = s.segment.y1_m;
+    segment.beams_on_segment = s.beams_on_segment;
+    msg.segments.push_back(segment);
   }
   return msg;
 }

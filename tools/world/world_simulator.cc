@@ -15,6 +15,9 @@ constexpr uint64_t kOdometryStream = 1;
 constexpr uint64_t kLaserStream = 2;
 constexpr uint64_t kFeatureStream = 3;
 constexpr uint64_t kMoverStreams = 4;  // DeriveSeed(DeriveSeed(seed, 4), object id)
+constexpr uint64_t kArtefactStream = 5;
+constexpr uint64_t kBeamAngleStream = 6;
+constexpr uint64_t kGaitStreams = 7;   // DeriveSeed(DeriveSeed(seed, 7), person id)
 
 int64_t EventTimeUs(int64_t index, double rate_hz) {
   return std::llround(static_cast<double>(index) * 1e6 / rate_hz);
@@ -23,7 +26,10 @@ int64_t EventTimeUs(int64_t index, double rate_hz) {
 }  // namespace
 
 WorldSimulator::WorldSimulator(const Scenario& scenario, uint64_t seed, SensorOutput output)
-    : scenario_(scenario), output_(output), odometry_(scenario.odometry) {
+    : scenario_(scenario),
+      output_(output),
+      beam_sequence_(scenario.laser),
+      odometry_(scenario.odometry) {
   const std::vector<std::string> problems = FindScenarioProblems(scenario_);
   if (!problems.empty()) {
     std::string text = "invalid scenario";
@@ -33,10 +39,29 @@ WorldSimulator::WorldSimulator(const Scenario& scenario, uint64_t seed, SensorOu
   duration_us_ = std::llround(scenario_.duration_s * 1e6);
   beam_angles_rad_ = LaserBeamAngles(scenario_.laser);
   const uint64_t mover_seed = DeriveSeed(seed, kMoverStreams);
+  const uint64_t gait_seed = DeriveSeed(seed, kGaitStreams);
+  const GaitSpec gait = GaitFromLegs(scenario_.legs);
   for (const MoverSpec& mover : scenario_.movers) {
     std::mt19937_64 rng(DeriveSeed(mover_seed, static_cast<uint64_t>(mover.id)));
     mover_paths_.push_back(BuildMoverPath(mover, scenario_.duration_s, rng));
+    gaits_.emplace_back();
+    if (BodyOf(scenario_, mover) == MoverBody::kLegs) {
+      std::mt19937_64 sway(DeriveSeed(gait_seed, static_cast<uint64_t>(mover.id)));
+      gaits_.back().emplace(gait, UniformBetween(sway, 0.0, 2.0 * M_PI));
+    }
   }
+  static_geometry_ = BuildStaticGeometry(scenario_.statics);
+  for (const StaticSegment& s : static_geometry_.segments) {
+    segments_.push_back(s.segment);
+    artefact_inputs_.segment_dropout_probability.push_back(
+        scenario_.statics[static_cast<size_t>(s.spec)].dropout_probability);
+  }
+  for (const StaticCircle& c : static_geometry_.circles) {
+    artefact_inputs_.circle_dropout_probability.push_back(
+        scenario_.statics[static_cast<size_t>(c.spec)].dropout_probability);
+  }
+  artefact_rng_.seed(DeriveSeed(seed, kArtefactStream));
+  beam_angle_rng_.seed(DeriveSeed(seed, kBeamAngleStream));
   driver_ = RobotDriver(scenario_.robot);
   odometry_rng_.seed(DeriveSeed(seed, kOdometryStream));
   laser_rng_.seed(DeriveSeed(seed, kLaserStream));
@@ -117,24 +142,40 @@ WorldEvent WorldSimulator::Next() {
   return event;
 }
 
-TruthSnapshot WorldSimulator::TruthAt(int64_t time_us, std::vector<Circle>* circles) const {
+TruthSnapshot WorldSimulator::TruthAt(int64_t time_us, std::vector<Circle>* circles,
+                                      std::vector<int>* circle_object) {
   TruthSnapshot truth;
   truth.time_us = time_us;
   truth.robot = robot_;
   circles->clear();
-  for (const StaticObjectSpec& s : scenario_.statics) {
+  circle_object->clear();
+  auto add = [&](const ObjectTruth& object, bool has_surface) {
+    if (has_surface) {
+      circles->push_back(Circle{object.x_m, object.y_m, object.radius_m});
+      circle_object->push_back(static_cast<int>(truth.objects.size()));
+    }
+    truth.objects.push_back(object);
+  };
+  for (const StaticCircle& s : static_geometry_.circles) {
     ObjectTruth object;
     object.id = s.id;
     object.is_static = true;
-    object.x_m = s.x_m;
-    object.y_m = s.y_m;
-    object.radius_m = s.radius_m;
-    truth.objects.push_back(object);
-    circles->push_back(Circle{s.x_m, s.y_m, s.radius_m});
+    object.kind = s.kind;
+    object.x_m = s.circle.x_m;
+    object.y_m = s.circle.y_m;
+    object.radius_m = s.circle.radius_m;
+    add(object, true);
+  }
+  for (const StaticSegment& s : static_geometry_.segments) {
+    truth.segments.push_back(SegmentTruth{s.id, s.kind, s.segment, 0});
   }
   const double t_s = static_cast<double>(time_us) * 1e-6;
   for (size_t i = 0; i < scenario_.movers.size(); ++i) {
-    if (!mover_paths_[i].ExistsAt(t_s)) continue;
+    std::optional<PersonGait>& gait = gaits_[i];
+    if (!mover_paths_[i].ExistsAt(t_s)) {
+      if (gait) gait->Reset();
+      continue;
+    }
     const MoverState state = mover_paths_[i].StateAt(t_s);
     ObjectTruth object;
     object.id = scenario_.movers[i].id;
@@ -142,11 +183,62 @@ TruthSnapshot WorldSimulator::TruthAt(int64_t time_us, std::vector<Circle>* circ
     object.y_m = state.y_m;
     object.vx_mps = state.vx_mps;
     object.vy_mps = state.vy_mps;
-    object.radius_m = scenario_.movers[i].radius_m;
-    truth.objects.push_back(object);
-    circles->push_back(Circle{state.x_m, state.y_m, object.radius_m});
+    if (!gait) {
+      object.kind = ObjectKind::kDisc;
+      object.radius_m = scenario_.movers[i].radius_m;
+      add(object, true);
+      continue;
+    }
+    gait->Update(t_s, state);
+    const std::array<LegState, 2>& legs = gait->legs();
+    const double leg_radius = scenario_.legs.leg_radius_m;
+    object.kind = ObjectKind::kPerson;
+    object.radius_m =
+        0.5 * std::hypot(legs[0].x_m - legs[1].x_m, legs[0].y_m - legs[1].y_m) + leg_radius;
+    add(object, false);
+    for (int k = 0; k < 2; ++k) {
+      const LegState& leg = legs[static_cast<size_t>(k)];
+      ObjectTruth leg_truth;
+      leg_truth.id = LegId(object.id, k);
+      leg_truth.kind = ObjectKind::kLeg;
+      leg_truth.parent_id = object.id;
+      leg_truth.x_m = leg.x_m;
+      leg_truth.y_m = leg.y_m;
+      leg_truth.vx_mps = leg.vx_mps;
+      leg_truth.vy_mps = leg.vy_mps;
+      leg_truth.radius_m = leg_radius;
+      add(leg_truth, true);
+    }
   }
   return truth;
+}
+
+std::vector<FeatureTarget> WorldSimulator::FeatureTargets(
+    const TruthSnapshot& truth, const std::vector<int>& circle_object) const {
+  // Objects with a circle give a feature of their own, except legs: their person gives one.
+  std::vector<int> first_circle(truth.objects.size(), -1);
+  for (size_t c = 0; c < circle_object.size(); ++c) {
+    first_circle[static_cast<size_t>(circle_object[c])] = static_cast<int>(c);
+  }
+  std::vector<FeatureTarget> targets(truth.objects.size());
+  for (size_t i = 0; i < truth.objects.size(); ++i) {
+    const ObjectTruth& o = truth.objects[i];
+    FeatureTarget& target = targets[i];
+    target.x_m = o.x_m;
+    target.y_m = o.y_m;
+    target.width_m = 2.0 * o.radius_m;
+    target.beams_on_target = o.beams_on_object;
+    if (o.kind == ObjectKind::kPerson) {
+      target.first_circle = first_circle[i + 1];  // its two legs follow it
+      target.num_circles = 2;
+    } else if (o.kind == ObjectKind::kLeg) {
+      target.beams_on_target = -1;  // no feature of its own (see MakeSensorFrame)
+    } else {
+      target.first_circle = first_circle[i];
+      target.num_circles = 1;
+    }
+  }
+  return targets;
 }
 
 SensorFrame WorldSimulator::MakeSensorFrame(int64_t time_us) {
@@ -154,31 +246,76 @@ SensorFrame WorldSimulator::MakeSensorFrame(int64_t time_us) {
   frame.time_us = time_us;
   frame.sequence = next_scan_index_;
   std::vector<Circle> circles;
-  frame.truth = TruthAt(time_us, &circles);
-  const int num_objects = static_cast<int>(circles.size());
+  std::vector<int> circle_object;
+  frame.truth = TruthAt(time_us, &circles, &circle_object);
+  const int num_objects = static_cast<int>(frame.truth.objects.size());
+  const LaserSpec& laser = scenario_.laser;
 
   // The laser is always ray-cast (and its noise always drawn), whatever the output: ground truth
   // needs the beam counts, and the scans of "both" equal those of "scans".
+  const std::vector<double> angles = beam_sequence_.Next(beam_angle_rng_);
   const std::vector<BeamHit> hits =
-      CastBeams(robot_.sensor_pose, beam_angles_rad_, circles, scenario_.laser.max_range_m);
+      CastBeams(robot_.sensor_pose, angles, circles, segments_, laser.max_range_m);
+  ArtefactInputs& artefacts = artefact_inputs_;
+  if (NeedsFootprintEdges(laser)) {
+    const double half_rad = 0.5 * laser.artefacts.beam_divergence_deg * M_PI / 180.0;
+    std::vector<double> edge(angles.size());
+    for (size_t i = 0; i < angles.size(); ++i) edge[i] = angles[i] - half_rad;
+    artefacts.lower_edge_hits =
+        CastBeams(robot_.sensor_pose, edge, circles, segments_, laser.max_range_m);
+    for (size_t i = 0; i < angles.size(); ++i) edge[i] = angles[i] + half_rad;
+    artefacts.upper_edge_hits =
+        CastBeams(robot_.sensor_pose, edge, circles, segments_, laser.max_range_m);
+  }
   std::vector<SimulatedBeam> beams =
-      MeasureScan(scenario_.laser, beam_angles_rad_, hits, laser_rng_);
+      MeasureScan(laser, angles, hits, artefacts, laser_rng_, artefact_rng_);
+  for (SimulatedBeam& beam : beams) {
+    if (beam.object >= 0) beam.object = circle_object[static_cast<size_t>(beam.object)];
+  }
   const std::vector<int> counts = CountBeamsPerObject(beams, num_objects);
+  for (const SimulatedBeam& beam : beams) {
+    if (beam.valid && beam.segment >= 0) {
+      ++frame.truth.segments[static_cast<size_t>(beam.segment)].beams_on_segment;
+    }
+  }
   for (int i = 0; i < num_objects; ++i) {
-    frame.truth.objects[static_cast<size_t>(i)].beams_on_object = counts[static_cast<size_t>(i)];
-    frame.truth.objects[static_cast<size_t>(i)].visible = counts[static_cast<size_t>(i)] >= 1;
+    ObjectTruth& object = frame.truth.objects[static_cast<size_t>(i)];
+    object.beams_on_object = counts[static_cast<size_t>(i)];
+    if (object.kind == ObjectKind::kPerson) {
+      object.beams_on_object =
+          counts[static_cast<size_t>(i) + 1] + counts[static_cast<size_t>(i) + 2];
+    }
+    object.visible = object.beams_on_object >= 1;
   }
   if (output_ != SensorOutput::kFeatures) {
     frame.has_scan = true;
     frame.scan = std::move(beams);
   }
   if (output_ != SensorOutput::kScans) {
+    // Legs give no feature of their own: they are left out of the targets, and a leg is
+    // "visible" when its person's feature was emitted and the leg had a beam or a clear sight.
+    std::vector<FeatureTarget> targets = FeatureTargets(frame.truth, circle_object);
+    std::vector<int> target_object;
+    std::vector<FeatureTarget> emitted;
+    for (size_t i = 0; i < targets.size(); ++i) {
+      if (targets[i].beams_on_target < 0) continue;
+      target_object.push_back(static_cast<int>(i));
+      emitted.push_back(targets[i]);
+    }
     std::vector<bool> visible;
     frame.has_features = true;
-    frame.features = EmitPointFeatures(robot_.sensor_pose, circles, counts, scenario_.laser,
+    frame.features = EmitPointFeatures(robot_.sensor_pose, emitted, circles, segments_, laser,
                                        scenario_.features, feature_rng_, &visible);
-    for (int i = 0; i < num_objects; ++i) {
-      frame.truth.objects[static_cast<size_t>(i)].visible = visible[static_cast<size_t>(i)];
+    for (PointFeature& f : frame.features) f.object = target_object[static_cast<size_t>(f.object)];
+    for (size_t k = 0; k < emitted.size(); ++k) {
+      const size_t i = static_cast<size_t>(target_object[k]);
+      frame.truth.objects[i].visible = visible[k];
+      if (frame.truth.objects[i].kind == ObjectKind::kPerson) {
+        for (size_t leg = i + 1; leg <= i + 2; ++leg) {
+          frame.truth.objects[leg].visible =
+              visible[k] && frame.truth.objects[leg].beams_on_object >= 1;
+        }
+      }
     }
   }
   return frame;

@@ -24,24 +24,37 @@
 #include "tools/world/laser_model.h"
 #include "tools/world/mover_path.h"
 #include "tools/world/odometry_model.h"
+#include "tools/world/person_gait.h"
 #include "tools/world/point_features.h"
 #include "tools/world/ray_caster.h"
 #include "tools/world/robot_driver.h"
 #include "tools/world/scenario.h"
+#include "tools/world/static_geometry.h"
 
 namespace slammtt {
 
-// Ground truth of one object at one moment (order: statics in scenario order, then movers).
+// Ground truth of one compact object (a circle) or person at one moment (order: static circles
+// in scenario order, then movers in scenario order, a person followed by its two legs).
 struct ObjectTruth {
   int64_t id = 0;
   bool is_static = false;  // scenario class: static landmark or mover (even a standing mover)
+  ObjectKind kind = ObjectKind::kPost;  // kFurniture, kPost, kDisc, kPerson or kLeg
+  int64_t parent_id = -1;  // a leg: its person's id
   double x_m = 0.0;
   double y_m = 0.0;
   double vx_mps = 0.0;
   double vy_mps = 0.0;
-  double radius_m = 0.0;
-  int beams_on_object = 0;  // valid beams whose first hit is this object
+  double radius_m = 0.0;    // a person: half the distance between its legs' outer sides
+  int beams_on_object = 0;  // valid beams whose first hit is this object (a person: its legs)
   bool visible = false;     // a point feature was emitted (feature output), else beams >= 1
+};
+
+// Ground truth of one straight static surface (a wall, a side of a desk), in scenario order.
+struct SegmentTruth {
+  int64_t id = 0;  // the object it belongs to
+  ObjectKind kind = ObjectKind::kWall;  // kWall or kFurniture
+  Segment segment;
+  int beams_on_segment = 0;  // valid beams whose first hit is this segment
 };
 
 struct RobotTruth {
@@ -55,6 +68,7 @@ struct TruthSnapshot {
   int64_t time_us = 0;
   RobotTruth robot;
   std::vector<ObjectTruth> objects;  // every object that exists at time_us
+  std::vector<SegmentTruth> segments;  // every static segment
 };
 
 // Everything the sensor produced at one scan time.
@@ -63,10 +77,13 @@ struct SensorFrame {
   int64_t sequence = 0;  // 0, 1, 2, ...
   TruthSnapshot truth;
   bool has_scan = false;
-  // Beam i at LaserBeamAngles()[i]; a beam's object is an index into truth.objects.
+  // Beams in measuring order (even lasers: LaserBeamAngles()); a beam's object is an index into
+  // truth.objects, its segment an index into truth.segments.
   std::vector<SimulatedBeam> scan;
   bool has_features = false;
-  std::vector<PointFeature> features;  // object = index in truth.objects
+  // One per visible static circle, disc and person (not per leg; walls give none);
+  // object = index in truth.objects.
+  std::vector<PointFeature> features;
 };
 
 struct WorldEvent {
@@ -97,13 +114,20 @@ class WorldSimulator {
 
   const Scenario& scenario() const { return scenario_; }
   int64_t duration_us() const { return duration_us_; }
+  // The even beam layout (a sampled laser's scans carry their own angles).
   const std::vector<double>& beam_angles_rad() const { return beam_angles_rad_; }
+  const StaticGeometry& static_geometry() const { return static_geometry_; }
   // Ground truth of the robot at the last event's time.
   const RobotTruth& robot() const { return robot_; }
 
  private:
   void AdvanceRobotTo(int64_t time_us);
-  TruthSnapshot TruthAt(int64_t time_us, std::vector<Circle>* circles) const;
+  // The truth at time_us (moving the movers' legs there), the circles the laser can hit and,
+  // for each circle, the index of its object in the truth.
+  TruthSnapshot TruthAt(int64_t time_us, std::vector<Circle>* circles,
+                        std::vector<int>* circle_object);
+  std::vector<FeatureTarget> FeatureTargets(const TruthSnapshot& truth,
+                                            const std::vector<int>& circle_object) const;
   SensorFrame MakeSensorFrame(int64_t time_us);
 
   Scenario scenario_;
@@ -111,12 +135,19 @@ class WorldSimulator {
   int64_t duration_us_ = 0;
   std::vector<double> beam_angles_rad_;
   std::vector<MoverPath> mover_paths_;
+  std::vector<std::optional<PersonGait>> gaits_;  // per mover: its legs, or none for a disc
+  StaticGeometry static_geometry_;
+  std::vector<Segment> segments_;
+  ArtefactInputs artefact_inputs_;  // dropout probabilities (per circle: statics, then zeros)
+  BeamAngleSequence beam_sequence_;
   RobotDriver driver_;
   std::optional<VelocityCommand> command_override_;
 
   std::mt19937_64 odometry_rng_;
   std::mt19937_64 laser_rng_;
   std::mt19937_64 feature_rng_;
+  std::mt19937_64 artefact_rng_;
+  std::mt19937_64 beam_angle_rng_;
 
   // Robot state: pose at robot_time_us_, command held since the last control tick.
   int64_t robot_time_us_ = 0;
