@@ -5,12 +5,14 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
 
 #include "runtime/config.h"
 #include "runtime/lcm_io.h"
+#include "slammtt_msgs/features_t.hpp"
 #include "slammtt_msgs/ground_truth_t.hpp"
 #include "slammtt_msgs/laser_scan_t.hpp"
 #include "slammtt_msgs/map_t.hpp"
@@ -298,6 +300,79 @@ TEST(EvalPeopleTest, WallsAreReadDrawnAndNeverPartOfThePointMap) {
   const std::string map_svg = MapSvg(r);
   EXPECT_NE(map_svg.find("walls (truth)"), std::string::npos);
   EXPECT_EQ(MapSvg(Evaluate(input, EvalOptions())), map_svg);
+}
+
+// Three scans with LASER_SCAN and FEATURES: 0, 2 and 1 person features. The snapshot is scan 1
+// (the most people), with its beams and lines; it is drawn in the truth frame from the robot's
+// true pose plus the mount (robot at (1, 2) heading 90 degrees, sensor 0.5 m ahead: (1, 2.5)).
+TEST(EvalPeopleTest, TheScanWithTheMostPeopleIsSnapshotAndDrawn) {
+  testing::TempDir dir;
+  LogWriter log(dir.File("snapshot.lcm"));
+  for (int k = 0; k < 3; ++k) {
+    slammtt_msgs::laser_scan_t scan{};
+    scan.utime = At(k);
+    scan.range_max_m = 10.0f;
+    scan.angle_rad = {0.0f, 0.5f, 1.0f};
+    scan.range_m = {2.0f, 2.0f + k, 0.0f};
+    scan.intensity = {1.0f, 1.0f, 0.0f};
+    scan.valid = {1, 1, 0};
+    scan.num_beams = 3;
+    log.WriteMessage(scan.utime, "LASER_SCAN", scan);
+    slammtt_msgs::features_t features{};
+    features.utime = At(k);
+    for (int f = 0; f < 2; ++f) {
+      slammtt_msgs::feature_t point{};
+      point.range_m = 2.0;
+      point.bearing_rad = 0.1 * f;
+      point.width_m = 0.1;
+      point.leg_likeness = 0.9;
+      features.features.push_back(point);
+    }
+    features.num_features = 2;
+    slammtt_msgs::line_feature_t line{};
+    line.first_x_m = 3.0;
+    line.first_y_m = -1.0;
+    line.last_x_m = 3.0;
+    line.last_y_m = 1.0;
+    features.lines = {line};
+    features.num_lines = 1;
+    const int people = k == 1 ? 2 : k == 2 ? 1 : 0;
+    for (int q = 0; q < people; ++q) {
+      slammtt_msgs::person_feature_t person{};
+      person.range_m = 2.0;
+      person.bearing_rad = 0.05;
+      person.num_legs = 1;
+      person.leg_index[0] = q;
+      person.leg_index[1] = -1;
+      features.people.push_back(person);
+    }
+    features.num_people = people;
+    log.WriteMessage(features.utime, "FEATURES", features);
+    slammtt_msgs::ground_truth_t gt{};
+    gt.utime = At(k);
+    gt.robot_x_m = 1.0;
+    gt.robot_y_m = 2.0;
+    gt.robot_heading_rad = M_PI / 2;
+    log.WriteMessage(gt.utime, "GROUND_TRUTH", gt);
+  }
+  log.Commit();
+  EvalOptions options;
+  options.sensor_forward_m = 0.5;
+  EvalInput input;
+  const EvaluationReport r = EvaluateFile(dir.File("snapshot.lcm"), options, &input);
+  ASSERT_TRUE(input.snapshot.has_value());
+  EXPECT_EQ(input.snapshot->utime, At(1));
+  EXPECT_EQ(input.snapshot->people.size(), 2u);
+  ASSERT_EQ(input.snapshot->beams_m.size(), 2u);  // the invalid beam is left out
+  EXPECT_NEAR(input.snapshot->beams_m[1].norm(), 3.0, 1e-6);  // scan 1's second beam
+  ASSERT_TRUE(r.scan_picture.has_value());
+  ASSERT_TRUE(r.scan_picture->sensor_pose.has_value());
+  EXPECT_NEAR(r.scan_picture->sensor_pose->x_m, 1.0, 1e-12);
+  EXPECT_NEAR(r.scan_picture->sensor_pose->y_m, 2.5, 1e-12);
+  const std::string svg = ScanSvg(r);
+  EXPECT_NE(svg.find("2 people"), std::string::npos);
+  EXPECT_NE(svg.find("truth frame"), std::string::npos);
+  EXPECT_NE(ScanSvg(EvaluationReport()).find("no LASER_SCAN"), std::string::npos);
 }
 
 TEST(EvalVisibilityTest, ANegativeBeamCountRejectsTheScan) {

@@ -45,11 +45,42 @@ struct TruthSegment {
   Eigen::Vector2d to_m = Eigen::Vector2d::Zero();
 };
 
+// One leg of a person (for pictures; the scores use the person, TruthObjectSample).
+struct TruthLeg {
+  int64_t person_id = 0;
+  Eigen::Vector2d position_m = Eigen::Vector2d::Zero();
+  double radius_m = 0.0;
+};
+
 // GROUND_TRUTH at one scan time.
 struct TruthScan {
   int64_t utime = 0;
   Pose2 robot;
   std::vector<TruthObjectSample> objects;
+  std::vector<TruthLeg> legs;
+};
+
+// What perception made of one scan, in the sensor frame (x forward, y left), for the picture of
+// a scan: the valid beams of LASER_SCAN and the features of FEATURES with the same utime.
+struct ScanSnapshot {
+  struct Point {
+    Eigen::Vector2d position_m = Eigen::Vector2d::Zero();
+    double width_m = 0.0;
+    double leg_likeness = 0.0;
+  };
+  struct Line {
+    Eigen::Vector2d first_m = Eigen::Vector2d::Zero();
+    Eigen::Vector2d last_m = Eigen::Vector2d::Zero();
+  };
+  struct Person {
+    Eigen::Vector2d position_m = Eigen::Vector2d::Zero();
+    std::vector<int> legs;  // indices into points
+  };
+  int64_t utime = 0;
+  std::vector<Eigen::Vector2d> beams_m;
+  std::vector<Point> points;
+  std::vector<Line> lines;
+  std::vector<Person> people;
 };
 
 // One object of TRACKS, in the estimator's map frame.
@@ -86,6 +117,9 @@ struct EvalInput {
   // LASER_SCAN messages in the log (counted, not decoded): a log with raw scans, whose features
   // come from the segmenter, so visibility is judged by beams_on_object (evaluation.h).
   int64_t laser_scans = 0;
+  // The scan with the most person features (the earliest of those), with its beams: the picture
+  // of what perception sees. Absent without a LASER_SCAN and FEATURES pair of the same utime.
+  std::optional<ScanSnapshot> snapshot;
   // Messages per channel key ("ground_truth", "odometry", "pose", "tracks", "map") that were
   // undecodable, carried NaN/inf or an unknown class, or repeated an earlier utime.
   std::map<std::string, int64_t> rejected;

@@ -5,13 +5,16 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <stdexcept>
 #include <system_error>
 
 #include "runtime/lcm_io.h"
+#include "slammtt_msgs/features_t.hpp"
 #include "slammtt_msgs/ground_truth_t.hpp"
+#include "slammtt_msgs/laser_scan_t.hpp"
 #include "slammtt_msgs/map_t.hpp"
 #include "slammtt_msgs/odometry_t.hpp"
 #include "slammtt_msgs/pose_t.hpp"
@@ -88,6 +91,7 @@ bool ReadTruthScan(const slammtt_msgs::ground_truth_t& msg, TruthScan* scan,
     if (o.kind == Truth::KIND_LEG) {
       int& beams = leg_beams[o.parent_id];
       beams = std::max(beams, o.beams_on_object);
+      scan->legs.push_back(TruthLeg{o.parent_id, Eigen::Vector2d(o.x_m, o.y_m), o.radius_m});
       continue;
     }
     scan->objects.push_back(TruthObjectSample{
@@ -112,6 +116,50 @@ bool ReadTruthScan(const slammtt_msgs::ground_truth_t& msg, TruthScan* scan,
   return ok;
 }
 
+Eigen::Vector2d Polar(double range_m, double bearing_rad) {
+  return range_m * Eigen::Vector2d(std::cos(bearing_rad), std::sin(bearing_rad));
+}
+
+// The valid, finite beams of a scan as points in the sensor frame.
+std::vector<Eigen::Vector2d> BeamPoints(const slammtt_msgs::laser_scan_t& scan) {
+  std::vector<Eigen::Vector2d> points;
+  for (size_t k = 0; k < scan.angle_rad.size(); ++k) {
+    const double range = scan.range_m[k];
+    if (scan.valid[k] == 0 || !std::isfinite(range) || !std::isfinite(scan.angle_rad[k]) ||
+        range <= 0.0 || range > kMaxMagnitude) {
+      continue;
+    }
+    points.push_back(Polar(range, scan.angle_rad[k]));
+  }
+  return points;
+}
+
+// FEATURES as a snapshot; nullopt when a number is not finite or a leg index is out of range.
+std::optional<ScanSnapshot> SnapshotFromFeatures(const slammtt_msgs::features_t& msg) {
+  ScanSnapshot snapshot;
+  snapshot.utime = msg.utime;
+  for (const auto& f : msg.features) {
+    if (!Finite({f.range_m, f.bearing_rad, f.width_m, f.leg_likeness})) return std::nullopt;
+    snapshot.points.push_back({Polar(f.range_m, f.bearing_rad), f.width_m, f.leg_likeness});
+  }
+  for (const auto& l : msg.lines) {
+    if (!Finite({l.first_x_m, l.first_y_m, l.last_x_m, l.last_y_m})) return std::nullopt;
+    snapshot.lines.push_back({Eigen::Vector2d(l.first_x_m, l.first_y_m),
+                              Eigen::Vector2d(l.last_x_m, l.last_y_m)});
+  }
+  for (const auto& p : msg.people) {
+    if (!Finite({p.range_m, p.bearing_rad})) return std::nullopt;
+    ScanSnapshot::Person person;
+    person.position_m = Polar(p.range_m, p.bearing_rad);
+    for (int k = 0; k < 2 && k < p.num_legs; ++k) {
+      if (p.leg_index[k] < 0 || p.leg_index[k] >= msg.num_features) return std::nullopt;
+      person.legs.push_back(p.leg_index[k]);
+    }
+    snapshot.people.push_back(std::move(person));
+  }
+  return snapshot;
+}
+
 }  // namespace
 
 EvalInput ReadEvalInput(const std::string& path, const Channels& channels, LogReadResult* read) {
@@ -123,6 +171,9 @@ EvalInput ReadEvalInput(const std::string& path, const Channels& channels, LogRe
   const std::string tracks_channel = channels.Get("tracks");
   const std::string map_channel = channels.Get("map");
   const std::string laser_scan_channel = channels.Get("laser_scan");
+  const std::string features_channel = channels.Get("features");
+  int64_t last_scan_utime = -1;  // the last decodable LASER_SCAN, kept for the snapshot
+  std::vector<Eigen::Vector2d> last_scan_beams;
   for (const char* key : {"ground_truth", "odometry", "pose", "tracks", "map"}) {
     input.rejected[key] = 0;
     input.accepted[key] = 0;
@@ -145,6 +196,20 @@ EvalInput ReadEvalInput(const std::string& path, const Channels& channels, LogRe
       input.truth.push_back(std::move(scan));
     } else if (e.channel == laser_scan_channel) {
       ++input.laser_scans;
+      slammtt_msgs::laser_scan_t msg{};
+      if (Decode(e.data, e.size, &msg)) {
+        last_scan_utime = msg.utime;
+        last_scan_beams = BeamPoints(msg);
+      }
+    } else if (e.channel == features_channel) {
+      slammtt_msgs::features_t msg{};
+      if (!Decode(e.data, e.size, &msg) || msg.utime != last_scan_utime) return;
+      const size_t best = input.snapshot ? input.snapshot->people.size() : 0;
+      if (input.snapshot && msg.people.size() <= best) return;
+      if (std::optional<ScanSnapshot> snapshot = SnapshotFromFeatures(msg)) {
+        snapshot->beams_m = last_scan_beams;
+        input.snapshot = std::move(snapshot);
+      }
     } else if (e.channel == odometry_channel) {
       slammtt_msgs::odometry_t msg{};
       if (!Decode(e.data, e.size, &msg) || !ValidUtime(msg.utime) ||
@@ -256,6 +321,13 @@ EvalOptions ReadStackEvalOptions(const Config& stack) {
   const Config eval = stack.Child("eval");
   const bool eval_sets_min_beams = eval.Has("min_beams");
   EvalOptions options = ReadEvalOptions(eval);
+  const Config estimator = stack.Child("estimator");
+  options.sensor_forward_m = estimator.GetDouble("sensor_forward_m", options.sensor_forward_m);
+  options.sensor_left_m = estimator.GetDouble("sensor_left_m", options.sensor_left_m);
+  if (!std::isfinite(options.sensor_forward_m) || !std::isfinite(options.sensor_left_m) ||
+      std::abs(options.sensor_forward_m) > 100.0 || std::abs(options.sensor_left_m) > 100.0) {
+    estimator.FailKey("sensor_forward_m", "the mount must be within 100 m of the axle");
+  }
   const Config segmenter = stack.Child("segmenter");
   if (!eval_sets_min_beams && segmenter.Has("min_points")) {
     const int64_t min_points = segmenter.GetInt("min_points", options.min_beams);

@@ -101,6 +101,18 @@ EvaluationReport Evaluate(const EvalInput& input, const EvalOptions& options) {
                              "count or repeated utime)");
     }
   }
+  if (input.snapshot) {
+    ScanPicture picture;
+    picture.scan = *input.snapshot;
+    for (const TruthScan& scan : input.truth) {
+      if (scan.utime != picture.scan.utime) continue;
+      picture.sensor_pose =
+          Compose(scan.robot, Pose2{options.sensor_forward_m, options.sensor_left_m, 0.0});
+      picture.objects = scan.objects;
+      picture.legs = scan.legs;
+    }
+    report.scan_picture = std::move(picture);
+  }
   if (input.truth.empty()) {
     report.notes.push_back("no GROUND_TRUTH in the log: nothing can be scored");
     return report;

@@ -53,6 +53,11 @@ struct EvalOptions {
   // A MOVING object slower than this (true speed, m/s) stands still at that scan. 0 turns the
   // rule off.
   double min_moving_speed_mps = 0.2;
+  // Where the laser sits on the robot (paper eq. 11: a forward, b left of the axle centre), to
+  // draw a scan in the truth frame from the robot's true pose. Pictures only; slammtt-eval takes
+  // estimator.sensor_forward_m / sensor_left_m of the stack configuration.
+  double sensor_forward_m = 0.0;
+  double sensor_left_m = 0.0;
 };
 
 // Upper bounds of the options, well beyond any use (a laser scan has a few thousand beams).
@@ -134,6 +139,16 @@ struct AnchoredLandmark {
   enum class Kind { kStatic, kMover, kUnexplained } kind = Kind::kUnexplained;
 };
 
+// One scan as perception saw it (EvalInput::snapshot), with the truth of that moment.
+struct ScanPicture {
+  ScanSnapshot scan;
+  // The sensor's true pose (truth frame) when GROUND_TRUTH has the scan's utime; without it the
+  // picture is drawn in the sensor frame.
+  std::optional<Pose2> sensor_pose;
+  std::vector<TruthObjectSample> objects;  // truth at that moment (people, posts, discs)
+  std::vector<TruthLeg> legs;
+};
+
 struct EvaluationReport {
   EvalOptions options;
   std::string source;
@@ -161,6 +176,7 @@ struct EvaluationReport {
   std::vector<TruthSegment> static_segments;              // walls and furniture sides
   std::vector<AnchoredLandmark> landmarks;                // final map
   std::vector<TrackPath> track_paths;
+  std::optional<ScanPicture> scan_picture;
 };
 
 // Scores `input`. Throws std::invalid_argument for options out of range (thresholds not

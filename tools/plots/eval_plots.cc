@@ -254,11 +254,104 @@ std::string ErrorsSvg(const EvaluationReport& report) {
   return doc.ToString();
 }
 
+std::string ScanSvg(const EvaluationReport& report) {
+  const int legend_rows = 5;
+  const int height = kMapHeightPx + 16 * legend_rows;
+  SvgDocument doc(kMapWidthPx, height);
+  PlotPanel panel(&doc, 0, 0, kMapWidthPx, kMapHeightPx - 16);
+  if (!report.scan_picture) {
+    panel.SetRange(-1, 1, -1, 1, true);
+    panel.DrawAxes("One scan: beams, lines, points and people", "x [m]", "y [m]");
+    panel.Message("no LASER_SCAN with FEATURES of the same utime in the log");
+    return doc.ToString();
+  }
+  const ScanPicture& p = *report.scan_picture;
+  const Pose2 sensor = p.sensor_pose.value_or(Pose2{});
+  auto world = [&](const Eigen::Vector2d& in_sensor) { return TransformPoint(sensor, in_sensor); };
+  std::vector<Eigen::Vector2d> beams;
+  for (const Eigen::Vector2d& b : p.scan.beams_m) beams.push_back(world(b));
+  std::vector<Eigen::Vector2d> extent = beams;
+  extent.push_back(world(Eigen::Vector2d::Zero()));
+  panel.FitRange({extent}, true);
+  const std::string frame = p.sensor_pose ? "truth frame" : "sensor frame";
+  panel.DrawAxes("The scan with the most people: beams, lines, points, people (" + frame + ")",
+                 "x [m]", "y [m]");
+  std::vector<LegendEntry> legend;
+  if (p.sensor_pose) DrawStaticSegments(report, &panel, &legend);
+  const LineStyle beam_style{"#777777", 1.0};
+  panel.Dots(beams, 1.2, beam_style);
+  const LineStyle line_style{"#1f77b4", 3.0, "", 0.8};
+  for (const ScanSnapshot::Line& l : p.scan.lines) {
+    panel.Polyline({world(l.first_m), world(l.last_m)}, line_style);
+  }
+  const LineStyle leg_style{"#ff7f0e", 1.4};
+  const LineStyle other_style{"#2ca02c", 1.4};
+  for (const ScanSnapshot::Point& q : p.scan.points) {
+    const double r = std::max(0.03, 0.5 * q.width_m);
+    const LineStyle& style = q.leg_likeness >= 0.5 ? leg_style : other_style;
+    panel.CovarianceEllipse(world(q.position_m), Eigen::Matrix2d::Identity() * r * r, 1.0, style);
+    panel.Dots({world(q.position_m)}, 2.5, style);
+  }
+  const LineStyle person_style{"#d62728", 1.8};
+  for (const ScanSnapshot::Person& person : p.scan.people) {
+    const Eigen::Vector2d centre = world(person.position_m);
+    for (int leg : person.legs) {
+      panel.Polyline({centre, world(p.scan.points[static_cast<size_t>(leg)].position_m)},
+                     LineStyle{"#d62728", 1.0, "2 2"});
+    }
+    panel.Dots({centre}, 4.0, person_style);
+  }
+  const LineStyle truth_leg{"#111111", 1.0};
+  std::vector<Eigen::Vector2d> truth_people;
+  for (const TruthObjectSample& o : p.objects) {
+    if (o.kind == TruthKind::kPerson) truth_people.push_back(o.position_m);
+  }
+  for (const TruthLeg& leg : p.legs) {
+    panel.CovarianceEllipse(leg.position_m, Eigen::Matrix2d::Identity() * leg.radius_m *
+                                                leg.radius_m, 1.0, truth_leg);
+  }
+  panel.Crosses(truth_people, 5, truth_leg);
+  panel.Dots({world(Eigen::Vector2d::Zero())}, 5, LineStyle{"#9467bd"});
+  legend.insert(legend.begin(),
+                {{"beams (valid returns)", beam_style, LegendMark::kDot},
+                 {"line features (observed extent)", line_style},
+                 {"point feature, leg-like (leg_likeness >= 0.5; circle: its width)", leg_style,
+                  LegendMark::kDot},
+                 {"point feature, other", other_style, LegendMark::kDot},
+                 {"person feature (dashed: its legs)", person_style, LegendMark::kDot},
+                 {"true person (cross) and legs (circles)", truth_leg, LegendMark::kCross},
+                 {"sensor", LineStyle{"#9467bd"}, LegendMark::kDot}});
+  // The legend goes below the panel, in columns, so that it never covers the scan.
+  const int columns = 2;
+  for (size_t k = 0; k < legend.size(); ++k) {
+    const double x = 60.0 + 380.0 * static_cast<double>(k % columns);
+    const double y = kMapHeightPx - 10 + 16.0 * static_cast<double>(k / columns);
+    const LegendEntry& e = legend[k];
+    if (e.mark == LegendMark::kLine) {
+      doc.Add("<line x1=\"" + FormatNumber(x, 1) + "\" y1=\"" + FormatNumber(y, 1) + "\" x2=\"" +
+              FormatNumber(x + 22, 1) + "\" y2=\"" + FormatNumber(y, 1) + "\" stroke=\"" +
+              e.style.colour + "\" stroke-width=\"" + FormatNumber(e.style.width_px, 1) + "\"/>");
+    } else {
+      doc.Add("<circle cx=\"" + FormatNumber(x + 11, 1) + "\" cy=\"" + FormatNumber(y, 1) +
+              "\" r=\"3.5\" fill=\"" + e.style.colour + "\"/>");
+    }
+    doc.Text(x + 28, y + 4, e.label, 11);
+  }
+  const std::string caption = Subtitle(report) + ": scan at utime " +
+                              std::to_string(p.scan.utime) + ", " +
+                              std::to_string(p.scan.lines.size()) + " lines, " +
+                              std::to_string(p.scan.points.size()) + " points, " +
+                              std::to_string(p.scan.people.size()) + " people";
+  doc.Text(kMapWidthPx / 2.0, height - 6, caption, 10, "middle", "fill=\"#777777\"");
+  return doc.ToString();
+}
+
 std::vector<std::pair<std::string, std::string>> EvaluationPlots(const EvaluationReport& report) {
   return {{"trajectory.svg", TrajectorySvg(report)},
           {"map.svg", MapSvg(report)},
           {"tracks.svg", TracksSvg(report)},
-          {"errors.svg", ErrorsSvg(report)}};
+          {"errors.svg", ErrorsSvg(report)},
+          {"scan.svg", ScanSvg(report)}};
 }
 
 }  // namespace slammtt

@@ -7,6 +7,9 @@
 //                   movers (paper Figs. 6-8)
 //   errors.svg      position error of estimate and odometry over time, and OSPA/GOSPA per scan
 //                   (paper Fig. 9)
+//   scan.svg        one scan as perception saw it (the one with the most person features): its
+//                   beams, line features, point features (leg-like or not), person features
+//                   and their legs, over the true walls, people and legs of that moment
 // A part the log lacks is drawn as an empty panel saying so.
 #pragma once
 
@@ -18,7 +21,7 @@
 
 namespace slammtt {
 
-// The four pictures as (file name, SVG document), in the order of the list above (slammtt-eval
+// The five pictures as (file name, SVG document), in the order of the list above (slammtt-eval
 // writes them with WriteTextFiles(), eval_log.h).
 std::vector<std::pair<std::string, std::string>> EvaluationPlots(const EvaluationReport& report);
 
@@ -27,5 +30,6 @@ std::string TrajectorySvg(const EvaluationReport& report);
 std::string MapSvg(const EvaluationReport& report);
 std::string TracksSvg(const EvaluationReport& report);
 std::string ErrorsSvg(const EvaluationReport& report);
+std::string ScanSvg(const EvaluationReport& report);
 
 }  // namespace slammtt
