@@ -4,7 +4,7 @@
 // process to measure each alone). Used by scripts/compare-victoria-park.py.
 //
 //   slammtt-smooth-dataset FILE [--mode batch|incremental] [--reading bearing-range|relative]
-//                               [--max-keyframes N] [--method lm|gn] [--solution OUT]
+//                               [--max-keyframes N] [--method lm|gn] [--solution OUT] [--trace]
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -46,6 +46,7 @@ int main(int argc, char** argv) {
   std::string method = "lm";
   std::string solution_path;
   int64_t max_keyframes = -1;
+  bool trace = false;
   for (int k = 1; k < argc; ++k) {
     const std::string arg = argv[k];
     const auto value = [&]() -> std::string { return k + 1 < argc ? argv[++k] : ""; };
@@ -55,6 +56,8 @@ int main(int argc, char** argv) {
       reading_name = value();
     } else if (arg == "--method") {
       method = value();
+    } else if (arg == "--trace") {
+      trace = true;  // stderr: every re-factorising or slow (> 50 ms) update
     } else if (arg == "--solution") {
       solution_path = value();
     } else if (arg == "--max-keyframes") {
@@ -115,6 +118,11 @@ int main(int argc, char** argv) {
       }
       report = smoother.Update();
       step_seconds.push_back(std::chrono::duration<double>(Clock::now() - step_start).count());
+      if (trace && (report.refactorized || step_seconds.back() > 0.05)) {
+        std::fprintf(stderr, "k %zu refactor %d relin %d nnz %.0f t %.4f\n", k,
+                     report.refactorized, report.relinearized_variables,
+                     smoother.factor_nonzeros(), step_seconds.back());
+      }
       if (!report.ok) break;
     }
     solve_seconds = std::chrono::duration<double>(Clock::now() - start).count();

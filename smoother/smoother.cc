@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <utility>
 
@@ -342,6 +343,20 @@ double Smoother::ChiSquare() const {
   return total;
 }
 
+double Smoother::LinearizedChiSquare() const {
+  double total = 0.0;
+  for (const Factor& f : factors_) {
+    if (!f.alive) continue;
+    // Rows past f.rows and columns past a variable's dim are zero (Linearize).
+    Eigen::Vector3d linear = f.residual;
+    for (int k = 0; k < f.num_variables; ++k) {
+      linear += f.jacobian[k] * variables_[f.variables[k]].delta;
+    }
+    total += linear.squaredNorm();
+  }
+  return total;
+}
+
 void Smoother::Linearize(Factor* f) const {
   const Variable& a = variables_[f->variables[0]];
   const Eigen::Vector3d value_b =
@@ -601,10 +616,17 @@ SolveReport Smoother::Optimize() {
         if (v.alive) v.delta.head(v.dim) = step.segment(v.offset, v.dim);
       }
       const double candidate = ChiSquare();
-      if (!levenberg || candidate < chi_square) {
+      const double predicted_decrease = chi_square - LinearizedChiSquare();
+      const double decrease = chi_square - candidate;
+      // GTSAM's test: the model's fidelity (actual / predicted decrease) above the minimum, or
+      // a predicted decrease at rounding level taken as success.
+      const bool successful =
+          predicted_decrease > std::numeric_limits<double>::epsilon() * chi_square
+              ? decrease > options_.min_model_fidelity * predicted_decrease
+              : decrease >= 0.0;
+      if (!levenberg || successful) {
         accepted = true;
         RelinearizeAll();
-        const double decrease = chi_square - candidate;
         chi_square = candidate;
         lambda /= options_.lambda_factor;
         if (decrease <= options_.relative_tolerance * chi_square ||
@@ -662,7 +684,20 @@ SolveReport Smoother::FullRefactorization(SolveReport report) {
   return report;
 }
 
-bool Smoother::SolveIncrementalStep() {
+std::vector<int> Smoother::VariablesToRelinearize() const {
+  std::vector<int> moved;
+  for (int v = 0; v < static_cast<int>(variables_.size()); ++v) {
+    const Variable& variable = variables_[v];
+    if (!variable.alive || !variable.in_system) continue;
+    if (variable.delta.head(variable.dim).lpNorm<Eigen::Infinity>() >
+        options_.relinearize_threshold) {
+      moved.push_back(v);
+    }
+  }
+  return moved;
+}
+
+bool Smoother::SolveIncrementalStep(bool relinearize) {
   std::vector<SparseCholesky::SparseColumn> updates;
   std::vector<SparseCholesky::SparseColumn> downdates;
   const auto subtract_gradient = [this](const Factor& f, double sign) {
@@ -673,15 +708,7 @@ bool Smoother::SolveIncrementalStep() {
     }
   };
   // Variables whose pending step is large: their factors come out and go back relinearised.
-  std::vector<int> moved;
-  for (int v = 0; v < static_cast<int>(variables_.size()); ++v) {
-    const Variable& variable = variables_[v];
-    if (!variable.alive || !variable.in_system) continue;
-    if (variable.delta.head(variable.dim).lpNorm<Eigen::Infinity>() >
-        options_.relinearize_threshold) {
-      moved.push_back(v);
-    }
-  }
+  const std::vector<int> moved = relinearize ? VariablesToRelinearize() : std::vector<int>();
   std::vector<int> relinearized_factors;
   for (int v : moved) {
     for (int f : variables_[v].factors) {
@@ -747,17 +774,17 @@ SolveReport Smoother::Update() {
   const bool schedule = options_.full_relinearization_interval > 0 &&
                         updates_since_refactorization_ + 1 >=
                             options_.full_relinearization_interval;
+  ++updates_;
+  const bool relinearize =
+      options_.relinearize_skip <= 1 || updates_ % options_.relinearize_skip == 0;
   bool incremental = incremental_ready_ && !needs_refactorization_ && room && !schedule;
+  if (incremental && relinearize) {
+    const int moved = static_cast<int>(VariablesToRelinearize().size());
+    if (moved > options_.max_incremental_relinearizations) incremental = false;
+    report.relinearized_variables = moved;
+  }
   if (incremental) {
-    int moved_before = 0;
-    for (const Variable& v : variables_) {
-      if (v.alive && v.in_system &&
-          v.delta.head(v.dim).lpNorm<Eigen::Infinity>() > options_.relinearize_threshold) {
-        ++moved_before;
-      }
-    }
-    report.relinearized_variables = moved_before;
-    if (!SolveIncrementalStep()) incremental = false;  // numerical trouble: start afresh
+    if (!SolveIncrementalStep(relinearize)) incremental = false;  // numerical trouble: afresh
     ++updates_since_refactorization_;
   }
   if (!incremental) {

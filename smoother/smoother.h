@@ -65,12 +65,22 @@ struct SmootherOptions {
   double relative_tolerance = 1e-10;
   // ... or by less than this much (chi^2 units).
   double absolute_tolerance = 0.0;
-  double initial_lambda = 1e-5;  // GTSAM's lambdaInitial
-  double lambda_factor = 10.0;   // lambda times this after a rejected step, divided after success
-  double max_lambda = 1e10;      // LM gives up (not converged) above this
+  // Levenberg-Marquardt as GTSAM's LevenbergMarquardtOptimizer runs it with its default
+  // LevenbergMarquardtParams (gtsam/nonlinear/LevenbergMarquardtOptimizer.cpp): a step is
+  // accepted when the actual decrease of chi^2 is more than min_model_fidelity times the
+  // decrease the linearised model predicts; lambda is then divided by lambda_factor, else
+  // multiplied by it; LM stops when lambda would exceed max_lambda.
+  double initial_lambda = 1e-5;      // lambdaInitial
+  double lambda_factor = 10.0;       // lambdaFactor
+  double max_lambda = 1e5;           // lambdaUpperBound
+  double min_model_fidelity = 1e-3;  // minModelFidelity
 
   // Incremental (Update).
   double relinearize_threshold = 0.1;  // |step| of any component (m or rad); ISAM2's default
+  int relinearize_skip = 10;  // relinearisation is considered every this many updates (ISAM2)
+  // More variables to relinearise than this at once: relinearise, re-order and re-factorise
+  // everything instead (one factorisation costs less than that many rank updates).
+  int max_incremental_relinearizations = 16;
   int full_relinearization_interval = 200;  // updates between full relinearisations (0: never)
   double reorder_fill_ratio = 2.0;  // refactor when the factor's nonzeros grow this much
   int min_free_slots = 64;          // variables' room reserved at the end of the ordering
@@ -162,7 +172,9 @@ class Smoother {
   void AppendFactorColumns(const Factor& factor,
                            std::vector<SparseCholesky::SparseColumn>* columns) const;
   SolveReport FullRefactorization(SolveReport report);
-  bool SolveIncrementalStep();
+  bool SolveIncrementalStep(bool relinearize);
+  std::vector<int> VariablesToRelinearize() const;
+  double LinearizedChiSquare() const;
   bool EnsureMarginalFactor();
   std::optional<Eigen::MatrixXd> MarginalBlocks(const std::vector<int>& variables);
 
@@ -177,6 +189,7 @@ class Smoother {
   bool incremental_ready_ = false;
   bool needs_refactorization_ = false;
   int updates_since_refactorization_ = 0;
+  int updates_ = 0;
   double nonzeros_after_ordering_ = 0.0;
   Eigen::VectorXd gradient_;
   int next_free_offset_ = 0;
