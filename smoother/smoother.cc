@@ -311,6 +311,32 @@ std::optional<std::string> Smoother::AddPointPrior(LandmarkId landmark,
   return AddFactor(std::move(factor));
 }
 
+std::optional<std::string> Smoother::SetPoseEstimate(PoseId id, const Eigen::Vector3d& pose) {
+  const auto index = Find(pose_index_, id);
+  if (!index) return "pose " + std::to_string(id) + " is unknown";
+  if (!pose.allFinite()) return "pose " + std::to_string(id) + ": estimate is not finite";
+  Variable& variable = variables_[*index];
+  variable.linearization = pose;
+  variable.linearization(2) = WrapAngle(pose(2));
+  variable.delta.setZero();
+  needs_refactorization_ = true;
+  marginal_factor_valid_ = false;
+  return std::nullopt;
+}
+
+std::optional<std::string> Smoother::SetLandmarkEstimate(LandmarkId id,
+                                                         const Eigen::Vector2d& position) {
+  const auto index = Find(landmark_index_, id);
+  if (!index) return "landmark " + std::to_string(id) + " is unknown";
+  if (!position.allFinite()) return "landmark " + std::to_string(id) + ": not finite";
+  Variable& variable = variables_[*index];
+  variable.linearization << position(0), position(1), 0.0;
+  variable.delta.setZero();
+  needs_refactorization_ = true;
+  marginal_factor_valid_ = false;
+  return std::nullopt;
+}
+
 // ---- evaluation ----
 
 Eigen::Vector3d Smoother::Estimate(const Variable& variable) const {

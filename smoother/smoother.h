@@ -127,6 +127,11 @@ class Smoother {
   std::optional<std::string> AddPointPrior(LandmarkId landmark, const Eigen::Vector2d& prior,
                                            const Eigen::Matrix2d& information);
 
+  // Replace a variable's estimate (a solution from elsewhere, a correction): the next Update
+  // re-factorises. Error: unknown id, non-finite value.
+  std::optional<std::string> SetPoseEstimate(PoseId id, const Eigen::Vector3d& pose);
+  std::optional<std::string> SetLandmarkEstimate(LandmarkId id, const Eigen::Vector2d& position);
+
   // Batch: iterate to convergence from the current estimate (see the header comment).
   SolveReport Optimize();
   // Incremental: one step after a keyframe's variables and factors were added.
