@@ -68,7 +68,7 @@ def write_solution(values, path):
             symbol = gtsam.Symbol(key)
             if chr(symbol.chr()) == "l":
                 p = values.atPoint2(key)
-                f.write(f"POINT {symbol.index()} {p[0]!r} {p[1]!r}\n")
+                f.write(f"POINT {symbol.index()} {float(p[0])!r} {float(p[1])!r}\n")
             else:
                 pose = values.atPose2(key)
                 f.write(f"POSE {key} {pose.x()!r} {pose.y()!r} {pose.theta()!r}\n")

@@ -138,6 +138,11 @@ int main(int argc, char** argv) {
           return 1;
         }
       }
+      if (!initial.eof()) {
+        std::cerr << "slammtt-smooth-dataset: " << initial_path << ": unreadable line after "
+                  << tag << " " << id << "\n";
+        return 1;
+      }
     }
     const Clock::time_point solve_start = Clock::now();
     report = smoother.Optimize();

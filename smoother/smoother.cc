@@ -613,6 +613,7 @@ SolveReport Smoother::Optimize() {
     }
     AssembleNormalEquations(&values, &gradient);
     bool accepted = false;
+    bool diverged = false;
     while (!accepted) {
       damped = values;
       for (int c = 0; c < layout.n; ++c) {
@@ -655,6 +656,10 @@ SolveReport Smoother::Optimize() {
         RelinearizeAll();
         chi_square = candidate;
         lambda /= options_.lambda_factor;
+        if (decrease < 0.0) {  // Gauss-Newton made it worse: stop, not converged
+          diverged = true;
+          break;
+        }
         if (decrease <= options_.relative_tolerance * chi_square ||
             decrease <= options_.absolute_tolerance) {
           report.converged = true;
@@ -665,6 +670,7 @@ SolveReport Smoother::Optimize() {
         if (lambda > options_.max_lambda) break;
       }
     }
+    if (diverged) break;
     if (!accepted) {
       // No step lowers chi^2 even with the largest damping: a minimum to working precision.
       report.converged = true;

@@ -92,7 +92,9 @@ struct SolveReport {
   double chi_square = 0.0;          // sum of squared whitened residuals at the estimate
   double initial_chi_square = 0.0;  // the same before the solve
   int iterations = 0;               // batch: accepted + rejected LM steps; incremental: 1
-  bool converged = false;           // batch: a tolerance was met
+  // Batch: a tolerance was met, or no step with lambda up to max_lambda lowers chi^2 (where
+  // GTSAM's LM stops too); false when max_iterations ran out or Gauss-Newton made chi^2 worse.
+  bool converged = false;
   int relinearized_variables = 0;   // incremental: variables whose linearisation point moved
   bool refactorized = false;        // incremental: this update re-ordered and re-factorised
 };
