@@ -141,6 +141,7 @@ std::optional<std::string> Smoother::AddVariable(bool is_pose, int64_t id,
   variable.linearization = value;
   if (is_pose) variable.linearization(2) = WrapAngle(value(2));
   index.emplace(id, static_cast<int>(variables_.size()));
+  pending_variables_.push_back(static_cast<int>(variables_.size()));
   variables_.push_back(std::move(variable));
   marginal_factor_valid_ = false;
   return std::nullopt;
@@ -171,6 +172,7 @@ std::optional<std::string> Smoother::AddFactor(Factor factor) {
   for (int k = 0; k < factor.num_variables; ++k) {
     variables_[factor.variables[k]].factors.push_back(static_cast<int>(factors_.size()));
   }
+  pending_factors_.push_back(static_cast<int>(factors_.size()));
   factors_.push_back(std::move(factor));
   marginal_factor_valid_ = false;
   return std::nullopt;
@@ -452,6 +454,8 @@ void Smoother::BuildLayout(int free_scalars) {
     v.in_system = true;
     offset += v.dim;
   }
+  pending_variables_.clear();
+  pending_factors_.clear();
   layout.free_begin = offset;
   layout.n = offset + free_scalars;
   next_free_offset_ = offset;
@@ -656,7 +660,11 @@ SolveReport Smoother::Optimize() {
         RelinearizeAll();
         chi_square = candidate;
         lambda /= options_.lambda_factor;
-        if (decrease < 0.0) {  // Gauss-Newton made it worse: stop, not converged
+        if (decrease < 0.0) {
+          // Gauss-Newton made it worse: stop; converged if only by rounding (chi^2 at the
+          // level of 1e-12 of where it started, as with exact measurements).
+          report.converged = -decrease <= options_.relative_tolerance * chi_square +
+                                              1e-12 * report.initial_chi_square;
           diverged = true;
           break;
         }
@@ -766,7 +774,8 @@ bool Smoother::SolveIncrementalStep(bool relinearize) {
     subtract_gradient(factors_[f], 1.0);
   }
   // New variables take the next free slots: their identity diagonal goes out.
-  for (Variable& variable : variables_) {
+  for (int v : pending_variables_) {
+    Variable& variable = variables_[v];
     if (!variable.alive || variable.in_system) continue;
     variable.offset = next_free_offset_;
     next_free_offset_ += variable.dim;
@@ -776,7 +785,8 @@ bool Smoother::SolveIncrementalStep(bool relinearize) {
     }
   }
   // New factors.
-  for (Factor& f : factors_) {
+  for (int index : pending_factors_) {
+    Factor& f = factors_[index];
     if (!f.alive || f.in_system) continue;
     f.in_system = true;
     Linearize(&f);
@@ -784,6 +794,8 @@ bool Smoother::SolveIncrementalStep(bool relinearize) {
     subtract_gradient(f, 1.0);
   }
   // Updates first: the matrix stays positive definite through the downdates that follow.
+  pending_variables_.clear();
+  pending_factors_.clear();
   if (!cholesky_->Modify(true, updates)) return false;
   if (!cholesky_->Modify(false, downdates)) return false;
   return true;
@@ -796,11 +808,10 @@ SolveReport Smoother::Update() {
     return report;
   }
   report.iterations = 1;
-  report.initial_chi_square = ChiSquare();
   marginal_factor_valid_ = false;
   int pending_scalars = 0;
-  for (const Variable& v : variables_) {
-    if (v.alive && !v.in_system) pending_scalars += v.dim;
+  for (int v : pending_variables_) {
+    if (variables_[v].alive && !variables_[v].in_system) pending_scalars += variables_[v].dim;
   }
   const bool room = next_free_offset_ + pending_scalars <= layout_->n;
   const bool schedule = options_.full_relinearization_interval > 0 &&
@@ -833,7 +844,9 @@ SolveReport Smoother::Update() {
   for (Variable& v : variables_) {
     if (v.alive && v.in_system) v.delta.head(v.dim) = step.segment(v.offset, v.dim);
   }
-  if (cholesky_->factor_nonzeros() > options_.reorder_fill_ratio * nonzeros_after_ordering_) {
+  // The fill (a pass over the factor's columns) is looked at with the relinearisation.
+  if (relinearize &&
+      cholesky_->factor_nonzeros() > options_.reorder_fill_ratio * nonzeros_after_ordering_) {
     needs_refactorization_ = true;
   }
   marginal_factor_valid_ = true;

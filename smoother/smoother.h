@@ -90,7 +90,7 @@ struct SolveReport {
   bool ok = false;
   std::string error;                // one line when !ok
   double chi_square = 0.0;          // sum of squared whitened residuals at the estimate
-  double initial_chi_square = 0.0;  // the same before the solve
+  double initial_chi_square = 0.0;  // batch: the same before the solve (incremental: 0)
   int iterations = 0;               // batch: accepted + rejected LM steps; incremental: 1
   // Batch: a tolerance was met, or no step with lambda up to max_lambda lowers chi^2 (where
   // GTSAM's LM stops too); false when max_iterations ran out or Gauss-Newton made chi^2 worse.
@@ -197,6 +197,9 @@ class Smoother {
   bool needs_refactorization_ = false;
   int updates_since_refactorization_ = 0;
   int updates_ = 0;
+  // Added since the last update, not yet in the kept factor (indices).
+  std::vector<int> pending_variables_;
+  std::vector<int> pending_factors_;
   double nonzeros_after_ordering_ = 0.0;
   Eigen::VectorXd gradient_;
   int next_free_offset_ = 0;
