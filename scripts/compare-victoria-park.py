@@ -202,7 +202,8 @@ def main():
     parser.add_argument("--shared", default=os.path.join(ROOT, "..", "shared"))
     parser.add_argument("--venv", default=None)
     parser.add_argument("--json", default=None, help="write every figure here too")
-    parser.add_argument("--gtsam", choices=["batch", "incremental", "polish"], help=argparse.SUPPRESS)
+    parser.add_argument("--gtsam", choices=["batch", "incremental", "polish"],
+                        help=argparse.SUPPRESS)
     parser.add_argument("--gtsam-solution", help=argparse.SUPPRESS)
     parser.add_argument("--file", help=argparse.SUPPRESS)
     args = parser.parse_args()

@@ -54,7 +54,7 @@ Eigen::Vector2d PointPriorResidual(const Eigen::Vector2d& point, const Eigen::Ve
 // one: a non-finite entry, asymmetry beyond 1e-9 relative, or not positive definite (a pivot
 // not above 1e-12 times the largest diagonal entry).
 template <int kDim>
-std::optional<std::string> SquareRootInformation(const Eigen::Matrix<double, kDim, kDim>& information,
-                                                 Eigen::Matrix<double, kDim, kDim>* root);
+std::optional<std::string> SquareRootInformation(
+    const Eigen::Matrix<double, kDim, kDim>& information, Eigen::Matrix<double, kDim, kDim>* root);
 
 }  // namespace slammtt

@@ -82,7 +82,8 @@ struct LoopProblem {
 
   // Initial estimates off the truth by up to 0.3 m / 0.1 rad.
   Eigen::Vector3d InitialPose(int k) const {
-    return poses[k] + Eigen::Vector3d(0.3 * std::sin(k), 0.3 * std::cos(2 * k), 0.1 * std::sin(3 * k));
+    return poses[k] +
+           Eigen::Vector3d(0.3 * std::sin(k), 0.3 * std::cos(2 * k), 0.1 * std::sin(3 * k));
   }
   Eigen::Vector2d InitialLandmark(int l) const {
     return landmarks[l] + Eigen::Vector2d(0.3 * std::cos(l), -0.3 * std::sin(l));
@@ -106,7 +107,8 @@ struct LoopProblem {
         ASSERT_FALSE(smoother->AddLandmark(o.landmark, InitialLandmark(o.landmark)));
       }
       if (o.range_bearing) {
-        ASSERT_FALSE(smoother->AddRangeBearing(k, o.landmark, o.value, range_bearing_information, mount));
+        ASSERT_FALSE(smoother->AddRangeBearing(k, o.landmark, o.value, range_bearing_information,
+                                               mount));
       } else {
         ASSERT_FALSE(smoother->AddRelativePosition(k, o.landmark, o.value, position_information));
       }
@@ -138,7 +140,8 @@ struct LoopProblem {
         push(RangeBearingResidual(pose(o.pose), point(o.landmark), o.value, mount),
              range_bearing_information);
       } else {
-        push(RelativePositionResidual(pose(o.pose), point(o.landmark), o.value), position_information);
+        push(RelativePositionResidual(pose(o.pose), point(o.landmark), o.value),
+             position_information);
       }
     }
     return Eigen::Map<Eigen::VectorXd>(out.data(), out.size());
