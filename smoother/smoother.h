@@ -25,9 +25,11 @@
 //   normal equations is kept between calls and modified by rank-k updates and downdates
 //   (new factors, relinearised factors, new variables in slots reserved at the end of the
 //   ordering), so a keyframe that touches only recent variables costs little. Every
-//   full_relinearization_interval updates, when the factor's fill has grown by
-//   reorder_fill_ratio, when the slots run out or after a landmark is removed, everything is
-//   relinearised, re-ordered and re-factorised (simplicial LDL^T, which updates need).
+//   full_relinearization_interval updates, when more than max_incremental_relinearizations
+//   variables must be relinearised at once, when the factor's fill has grown by
+//   reorder_fill_ratio, when the slots run out, after a landmark is removed or an estimate
+//   set, everything is relinearised, re-ordered and re-factorised (simplicial LDL^T, which
+//   updates need).
 // The chi-square at the returned estimate is in every SolveReport.
 //
 // Bad input is refused with a one-line reason and changes nothing: non-finite numbers, an
