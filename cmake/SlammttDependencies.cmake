@@ -11,6 +11,20 @@ find_package(yaml-cpp REQUIRED)
 find_package(nlohmann_json 3 REQUIRED)
 pkg_check_modules(SERIALPORT REQUIRED IMPORTED_TARGET libserialport)
 
+# CHOLMOD (SuiteSparse) for the smoother. SuiteSparse 7 ships a CMake package with the target
+# SuiteSparse::CHOLMOD; SuiteSparse 5 (Debian 12's libsuitesparse-dev) ships neither a CMake
+# package nor a pkg-config file for it: the header and the library are found by name (the shared
+# library brings its own AMD, COLAMD, METIS, BLAS and LAPACK dependencies).
+find_package(CHOLMOD CONFIG QUIET)
+if(NOT TARGET SuiteSparse::CHOLMOD)
+  find_path(CHOLMOD_INCLUDE_DIR cholmod.h PATH_SUFFIXES suitesparse REQUIRED)
+  find_library(CHOLMOD_LIBRARY cholmod REQUIRED)
+  add_library(SuiteSparse::CHOLMOD UNKNOWN IMPORTED)
+  set_target_properties(SuiteSparse::CHOLMOD PROPERTIES
+    IMPORTED_LOCATION "${CHOLMOD_LIBRARY}"
+    INTERFACE_INCLUDE_DIRECTORIES "${CHOLMOD_INCLUDE_DIR}")
+endif()
+
 if(SLAMMTT_BUILD_TESTS)
   find_package(GTest REQUIRED)
 endif()

@@ -1,0 +1,212 @@
+// Sparse nonlinear least squares over SE(2) keyframe poses and static point landmarks: the
+// project's smoother (docs/smoother.md). Pure: Eigen and CHOLMOD, no LCM, no files, no clocks.
+//
+// The problem: minimise chi^2 = sum over factors of r^T Lambda r (r a factor's residual,
+// Lambda its information matrix; factors.h gives each residual) over the poses
+// (x, y, theta; m, m, rad; map frame) and landmarks (x, y; m). Factors:
+// - odometry between two poses (relative pose, 3x3 information),
+// - range-bearing of a landmark from a pose through a laser at a mount offset (paper eqs.
+//   10-11, 2x2 information in (range, bearing)),
+// - relative position of a landmark in a pose's frame (2x2 information),
+// - priors on a pose (3x3) or a landmark (2x2).
+// Every connected part of the factor graph needs a prior: without one its position and heading
+// are free (every other factor is unchanged by moving the whole part), and Optimize / Update
+// say so instead of solving.
+//
+// Two ways to solve, on the same variables and factors:
+// - Optimize (batch): Gauss-Newton or Levenberg-Marquardt from the current estimate to
+//   convergence, every factor relinearised at every iteration, the normal equations
+//   J^T J dx = -J^T r (whitened) factorised by CHOLMOD supernodal Cholesky with its own
+//   fill-reducing ordering, the symbolic analysis reused while the pattern stays the same.
+// - Update (incremental, one call per keyframe, after adding that keyframe's variables and
+//   factors): one Gauss-Newton step, as ISAM2 takes (Kaess et al., IJRR 31(2), 2012). Each
+//   variable keeps a linearisation point; only variables whose pending step exceeds
+//   relinearize_threshold move it, and only their factors are relinearised. The factor of the
+//   normal equations is kept between calls and modified by rank-k updates and downdates
+//   (new factors, relinearised factors, new variables in slots reserved at the end of the
+//   ordering), so a keyframe that touches only recent variables costs little. Every
+//   full_relinearization_interval updates, when more than max_incremental_relinearizations
+//   variables must be relinearised at once, when the factor's fill has grown by
+//   reorder_fill_ratio, when the slots run out, after a landmark is removed or an estimate
+//   set, everything is relinearised, re-ordered and re-factorised (simplicial LDL^T, which
+//   updates need).
+// The chi-square at the returned estimate is in every SolveReport.
+//
+// Bad input is refused with a one-line reason and changes nothing: non-finite numbers, an
+// information matrix that is not symmetric positive definite, a factor naming an unknown
+// variable, an id used twice, an unconstrained problem, a solve that cannot factorise.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "estimator/range_bearing_model.h"
+#include "smoother/sparse_cholesky.h"
+
+namespace slammtt {
+
+using PoseId = int64_t;
+using LandmarkId = int64_t;
+
+struct SmootherOptions {
+  enum class Method { kGaussNewton, kLevenbergMarquardt };
+  enum class Damping {
+    kIdentity,  // LM adds lambda I (GTSAM's LevenbergMarquardtParams default)
+    kDiagonal,  // LM adds lambda diag(J^T J) (Marquardt's scaling)
+  };
+  // Batch (Optimize).
+  Method method = Method::kLevenbergMarquardt;
+  Damping damping = Damping::kIdentity;
+  int max_iterations = 500;
+  // Converged when an accepted step lowers chi^2 by less than this fraction of it...
+  double relative_tolerance = 1e-10;
+  // ... or by less than this much (chi^2 units).
+  double absolute_tolerance = 0.0;
+  // Levenberg-Marquardt as GTSAM's LevenbergMarquardtOptimizer runs it with its default
+  // LevenbergMarquardtParams (gtsam/nonlinear/LevenbergMarquardtOptimizer.cpp): a step is
+  // accepted when the actual decrease of chi^2 is more than min_model_fidelity times the
+  // decrease the linearised model predicts; lambda is then divided by lambda_factor, else
+  // multiplied by it; LM stops when lambda would exceed max_lambda.
+  double initial_lambda = 1e-5;      // lambdaInitial
+  double lambda_factor = 10.0;       // lambdaFactor
+  double max_lambda = 1e5;           // lambdaUpperBound
+  double min_model_fidelity = 1e-3;  // minModelFidelity
+
+  // Incremental (Update).
+  double relinearize_threshold = 0.1;  // |step| of any component (m or rad); ISAM2's default
+  int relinearize_skip = 10;  // relinearisation is considered every this many updates (ISAM2)
+  // More variables to relinearise than this at once: relinearise, re-order and re-factorise
+  // everything instead (one factorisation costs less than that many rank updates).
+  int max_incremental_relinearizations = 16;
+  int full_relinearization_interval = 200;  // updates between full relinearisations (0: never)
+  double reorder_fill_ratio = 2.0;  // refactor when the factor's nonzeros grow this much
+  int min_free_slots = 64;          // variables' room reserved at the end of the ordering
+};
+
+struct SolveReport {
+  bool ok = false;
+  std::string error;                // one line when !ok
+  double chi_square = 0.0;          // sum of squared whitened residuals at the estimate
+  double initial_chi_square = 0.0;  // batch: the same before the solve (incremental: 0)
+  int iterations = 0;               // batch: accepted + rejected LM steps; incremental: 1
+  // Batch: a tolerance was met, or no step with lambda up to max_lambda lowers chi^2 (where
+  // GTSAM's LM stops too); false when max_iterations ran out or Gauss-Newton made chi^2 worse.
+  bool converged = false;
+  int relinearized_variables = 0;   // incremental: variables whose linearisation point moved
+  bool refactorized = false;        // incremental: this update re-ordered and re-factorised
+};
+
+class Smoother {
+ public:
+  explicit Smoother(const SmootherOptions& options = {});
+  ~Smoother();
+  Smoother(const Smoother&) = delete;
+  Smoother& operator=(const Smoother&) = delete;
+
+  // Variables, with their initial estimates. Error: id in use, non-finite value.
+  std::optional<std::string> AddPose(PoseId id, const Eigen::Vector3d& initial_pose);
+  std::optional<std::string> AddLandmark(LandmarkId id, const Eigen::Vector2d& initial_position);
+  // The landmark and every factor on it leave the problem (it turned out to move). Error:
+  // unknown id.
+  std::optional<std::string> RemoveLandmark(LandmarkId id);
+
+  // Factors (see factors.h for each residual). Error: unknown variable, non-finite value,
+  // information not symmetric positive definite, a pose related to itself.
+  std::optional<std::string> AddOdometry(PoseId from, PoseId to, const Eigen::Vector3d& relative,
+                                         const Eigen::Matrix3d& information);
+  std::optional<std::string> AddRangeBearing(PoseId pose, LandmarkId landmark,
+                                             const Eigen::Vector2d& range_bearing,
+                                             const Eigen::Matrix2d& information,
+                                             const SensorMount& mount = {});
+  std::optional<std::string> AddRelativePosition(PoseId pose, LandmarkId landmark,
+                                                 const Eigen::Vector2d& position_in_pose,
+                                                 const Eigen::Matrix2d& information);
+  std::optional<std::string> AddPosePrior(PoseId pose, const Eigen::Vector3d& prior,
+                                          const Eigen::Matrix3d& information);
+  std::optional<std::string> AddPointPrior(LandmarkId landmark, const Eigen::Vector2d& prior,
+                                           const Eigen::Matrix2d& information);
+
+  // Replace a variable's estimate (a solution from elsewhere, a correction): the next Update
+  // re-factorises. Error: unknown id, non-finite value.
+  std::optional<std::string> SetPoseEstimate(PoseId id, const Eigen::Vector3d& pose);
+  std::optional<std::string> SetLandmarkEstimate(LandmarkId id, const Eigen::Vector2d& position);
+
+  // Batch: iterate to convergence from the current estimate (see the header comment).
+  SolveReport Optimize();
+  // Incremental: one step after a keyframe's variables and factors were added.
+  SolveReport Update();
+
+  // Current estimates; nullopt for an unknown id.
+  std::optional<Eigen::Vector3d> PoseEstimate(PoseId id) const;
+  std::optional<Eigen::Vector2d> LandmarkEstimate(LandmarkId id) const;
+  std::vector<PoseId> PoseIds() const;          // in the order added
+  std::vector<LandmarkId> LandmarkIds() const;  // in the order added, removed ones left out
+
+  // Marginal covariances at the current estimate, in (x, y, theta) / (x, y) of the map frame,
+  // from the factor of the normal equations (solves with unit vectors, sparse_cholesky.h).
+  // nullopt for an unknown id or when the system cannot be factorised.
+  std::optional<Eigen::Matrix3d> PoseCovariance(PoseId id);
+  std::optional<Eigen::Matrix2d> LandmarkCovariance(LandmarkId id);
+  // Several landmarks at once (columns solved together); nullopt entries for unknown ids.
+  std::vector<std::optional<Eigen::Matrix2d>> LandmarkCovariances(
+      const std::vector<LandmarkId>& ids);
+
+  // Sum of squared whitened residuals of every factor at the current estimate.
+  double ChiSquare() const;
+  int num_poses() const;
+  int num_landmarks() const;
+  int num_factors() const;
+  // Nonzeros of the factor kept for Update (0 before the first one): a fill measure.
+  double factor_nonzeros() const;
+
+ private:
+  struct Variable;
+  struct Factor;
+  struct Layout;
+
+  std::optional<std::string> AddVariable(bool is_pose, int64_t id, const Eigen::Vector3d& value);
+  std::optional<std::string> AddFactor(Factor factor);
+  std::optional<std::string> CheckAnchored() const;
+  Eigen::Vector3d Estimate(const Variable& variable) const;
+  double FactorChiSquare(const Factor& factor, bool at_linearization_point) const;
+  void Linearize(Factor* factor) const;
+  void RelinearizeAll();
+  void BuildLayout(int free_slots);
+  void AssembleNormalEquations(std::vector<double>* values, Eigen::VectorXd* gradient) const;
+  void AppendFactorColumns(const Factor& factor,
+                           std::vector<SparseCholesky::SparseColumn>* columns) const;
+  SolveReport FullRefactorization(SolveReport report);
+  bool SolveIncrementalStep(bool relinearize);
+  std::vector<int> VariablesToRelinearize() const;
+  double LinearizedChiSquare() const;
+  bool EnsureMarginalFactor();
+  std::optional<Eigen::MatrixXd> MarginalBlocks(const std::vector<int>& variables);
+
+  SmootherOptions options_;
+  std::vector<Variable> variables_;
+  std::vector<Factor> factors_;
+  std::unordered_map<PoseId, int> pose_index_;
+  std::unordered_map<LandmarkId, int> landmark_index_;
+  std::unique_ptr<Layout> layout_;
+  std::unique_ptr<SparseCholesky> cholesky_;
+  // Incremental state: the factor holds J^T J at the linearisation points, gradient_ its J^T r.
+  bool incremental_ready_ = false;
+  bool needs_refactorization_ = false;
+  int updates_since_refactorization_ = 0;
+  int updates_ = 0;
+  // Added since the last update, not yet in the kept factor (indices).
+  std::vector<int> pending_variables_;
+  std::vector<int> pending_factors_;
+  double nonzeros_after_ordering_ = 0.0;
+  Eigen::VectorXd gradient_;
+  int next_free_offset_ = 0;
+  // The factor in cholesky_ is of the undamped normal equations at the current linearisation.
+  bool marginal_factor_valid_ = false;
+};
+
+}  // namespace slammtt

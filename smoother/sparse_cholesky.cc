@@ -1,0 +1,163 @@
+#include "smoother/sparse_cholesky.h"
+
+#include <cholmod.h>
+
+#include <algorithm>
+#include <cstring>
+
+namespace slammtt {
+
+struct SparseCholesky::State {
+  cholmod_common common;
+  cholmod_sparse* matrix = nullptr;
+  cholmod_factor* factor = nullptr;
+
+  State() {
+    cholmod_start(&common);
+    common.print = 0;  // a pure library prints nothing
+    common.error_handler = nullptr;
+  }
+  ~State() {
+    Release();
+    cholmod_finish(&common);
+  }
+  void Release() {
+    if (factor != nullptr) cholmod_free_factor(&factor, &common);
+    if (matrix != nullptr) cholmod_free_sparse(&matrix, &common);
+  }
+};
+
+SparseCholesky::SparseCholesky() : state_(std::make_unique<State>()) {}
+SparseCholesky::~SparseCholesky() = default;
+
+bool SparseCholesky::Analyze(int n, const std::vector<int>& column_starts,
+                             const std::vector<int>& rows, Form form, int trailing_natural) {
+  State& s = *state_;
+  s.Release();
+  factorized_ = false;
+  n_ = n;
+  const size_t nonzeros = rows.size();
+  s.matrix = cholmod_allocate_sparse(n, n, nonzeros, /*sorted=*/1, /*packed=*/1, /*stype=*/1,
+                                     CHOLMOD_REAL, &s.common);
+  if (s.matrix == nullptr) return false;
+  std::memcpy(s.matrix->p, column_starts.data(), sizeof(int) * (n + 1));
+  std::memcpy(s.matrix->i, rows.data(), sizeof(int) * nonzeros);
+  std::fill_n(static_cast<double*>(s.matrix->x), nonzeros, 0.0);
+
+  s.common.supernodal = form == Form::kSupernodal ? CHOLMOD_SUPERNODAL : CHOLMOD_SIMPLICIAL;
+  s.common.final_ll = form == Form::kSupernodal ? 1 : 0;
+  s.common.nmethods = 0;  // CHOLMOD's choice: AMD, METIS if AMD fills badly
+  s.common.postorder = 1;
+  if (trailing_natural == 0) {
+    s.factor = cholmod_analyze(s.matrix, &s.common);
+  } else {
+    // Order the leading part as CHOLMOD chooses, then keep the trailing indices last: they are
+    // isolated diagonal entries now, so where they go changes no fill of the rest.
+    cholmod_factor* first = cholmod_analyze(s.matrix, &s.common);
+    if (first == nullptr) return false;
+    const int leading = n - trailing_natural;
+    std::vector<int> permutation;
+    permutation.reserve(n);
+    const int* chosen = static_cast<const int*>(first->Perm);
+    for (int k = 0; k < n; ++k) {
+      if (chosen[k] < leading) permutation.push_back(chosen[k]);
+    }
+    for (int k = leading; k < n; ++k) permutation.push_back(k);
+    cholmod_free_factor(&first, &s.common);
+    s.common.nmethods = 1;
+    s.common.method[0].ordering = CHOLMOD_GIVEN;
+    s.common.postorder = 0;  // a postorder could move the trailing slots forward
+    s.factor = cholmod_analyze_p(s.matrix, permutation.data(), nullptr, 0, &s.common);
+    s.common.nmethods = 0;
+    s.common.postorder = 1;
+  }
+  if (s.factor == nullptr) return false;
+  position_.assign(n, 0);
+  const int* perm = static_cast<const int*>(s.factor->Perm);
+  for (int k = 0; k < n; ++k) position_[perm[k]] = k;
+  return true;
+}
+
+bool SparseCholesky::Factorize(const std::vector<double>& values) {
+  State& s = *state_;
+  factorized_ = false;
+  if (s.matrix == nullptr || s.factor == nullptr) return false;
+  std::memcpy(s.matrix->x, values.data(), sizeof(double) * values.size());
+  s.common.quick_return_if_not_posdef = 1;
+  if (!cholmod_factorize(s.matrix, s.factor, &s.common)) return false;
+  if (s.common.status != CHOLMOD_OK) return false;  // CHOLMOD_NOT_POSDEF among others
+  factorized_ = true;
+  return true;
+}
+
+bool SparseCholesky::Modify(bool update, const std::vector<SparseColumn>& columns) {
+  State& s = *state_;
+  if (!factorized_ || columns.empty()) return factorized_;
+  size_t nonzeros = 0;
+  for (const SparseColumn& column : columns) nonzeros += column.rows.size();
+  cholmod_sparse* c = cholmod_allocate_sparse(n_, columns.size(), nonzeros, /*sorted=*/1,
+                                              /*packed=*/1, /*stype=*/0, CHOLMOD_REAL,
+                                              &s.common);
+  if (c == nullptr) {
+    factorized_ = false;
+    return false;
+  }
+  int* p = static_cast<int*>(c->p);
+  int* i = static_cast<int*>(c->i);
+  double* x = static_cast<double*>(c->x);
+  std::vector<std::pair<int, double>> entries;
+  size_t at = 0;
+  for (size_t k = 0; k < columns.size(); ++k) {
+    p[k] = static_cast<int>(at);
+    // cholmod_updown takes C in the factor's ordering, rows sorted.
+    entries.clear();
+    for (size_t e = 0; e < columns[k].rows.size(); ++e) {
+      entries.emplace_back(position_[columns[k].rows[e]], columns[k].values[e]);
+    }
+    std::sort(entries.begin(), entries.end());
+    for (const auto& [row, value] : entries) {
+      i[at] = row;
+      x[at] = value;
+      ++at;
+    }
+  }
+  p[columns.size()] = static_cast<int>(at);
+  const bool ok = cholmod_updown(update ? 1 : 0, c, s.factor, &s.common) &&
+                  s.common.status == CHOLMOD_OK;
+  cholmod_free_sparse(&c, &s.common);
+  if (!ok) factorized_ = false;
+  return ok;
+}
+
+Eigen::MatrixXd SparseCholesky::SolveColumns(const Eigen::MatrixXd& b) const {
+  State& s = *state_;
+  if (!factorized_ || b.rows() != n_) return Eigen::MatrixXd();
+  cholmod_dense* rhs = cholmod_allocate_dense(n_, b.cols(), n_, CHOLMOD_REAL, &s.common);
+  if (rhs == nullptr) return Eigen::MatrixXd();
+  std::memcpy(rhs->x, b.data(), sizeof(double) * b.size());
+  cholmod_dense* solution = cholmod_solve(CHOLMOD_A, s.factor, rhs, &s.common);
+  cholmod_free_dense(&rhs, &s.common);
+  if (solution == nullptr) return Eigen::MatrixXd();
+  Eigen::MatrixXd x =
+      Eigen::Map<const Eigen::MatrixXd>(static_cast<const double*>(solution->x), n_, b.cols());
+  cholmod_free_dense(&solution, &s.common);
+  return x;
+}
+
+Eigen::VectorXd SparseCholesky::Solve(const Eigen::VectorXd& b) const {
+  const Eigen::MatrixXd x = SolveColumns(b);
+  if (x.size() == 0) return Eigen::VectorXd();
+  return x.col(0);
+}
+
+double SparseCholesky::factor_nonzeros() const {
+  if (!factorized_ || state_->factor == nullptr) return 0.0;
+  const cholmod_factor* l = state_->factor;
+  if (l->is_super) return static_cast<double>(l->xsize);
+  const int* counts = static_cast<const int*>(l->nz);
+  double total = 0.0;
+  for (size_t k = 0; k < l->n; ++k) total += counts[k];
+  return total;
+}
+
+}  // namespace slammtt
