@@ -4,7 +4,11 @@
 #     features as in the paper) into a log, as fast as it can, byte-identical on every run;
 #  2. slammtt-replay runs the estimator on that log deterministically; slammtt-timing and
 #     slammtt-eval show where the time went and how good the result is, with pictures;
-#  3. the live stack runs over LCM on the real robot's setting (rplidar-a2: 360-degree scans ->
+#  3. the office scenario (rooms, walls, furniture, people on two legs, an RPLIDAR A2 with its
+#     artefacts) through the whole pipeline: world scans -> segmenter (line, point and person
+#     features) -> estimator, replayed deterministically, scored and drawn, with a picture of
+#     one scan as perception sees it (out/office-seed1-pictures/scan.svg);
+#  4. the live stack runs over LCM on the real robot's setting (rplidar-a2: 360-degree scans ->
 #     slammtt-segmenter -> slammtt-estimator), recorded by lcm-logger, evaluated and drawn.
 #     It runs in a private network namespace (tests/support/netns-run), so it works on a
 #     machine without a network and never disturbs a robot stack on the same host.
@@ -26,5 +30,13 @@ echo "== 2. deterministic replay, timing and evaluation"
 "$bin/slammtt-eval" out/s1-crossing-seed7-replay.lcm --json out/s1-crossing-seed7-report.json \
   --plots out/s1-crossing-seed7-pictures
 
-echo "== 3. live stack over LCM: rplidar-a2, seed 7"
+echo "== 3. office, seed 1: scans -> segmenter -> estimator (replay), evaluation and pictures"
+"$bin/slammtt-world" --scenario office --seed 1 --log out/office-seed1.lcm
+"$bin/slammtt-replay" out/office-seed1.lcm -o out/office-seed1-replay.lcm \
+  --config estimator/config/office.yaml
+"$bin/slammtt-timing" out/office-seed1-replay.lcm.timing.lcm
+"$bin/slammtt-eval" out/office-seed1-replay.lcm --config estimator/config/office.yaml \
+  --json out/office-seed1-report.json --plots out/office-seed1-pictures
+
+echo "== 4. live stack over LCM: rplidar-a2, seed 7"
 tests/support/netns-run scripts/run-pipeline.sh rplidar-a2 7 out/rplidar-a2-live 5

@@ -299,7 +299,7 @@ std::string ScanSvg(const EvaluationReport& report) {
       panel.Polyline({centre, world(p.scan.points[static_cast<size_t>(leg)].position_m)},
                      LineStyle{"#d62728", 1.0, "2 2"});
     }
-    panel.Dots({centre}, 4.0, person_style);
+    panel.Dots({centre}, 7.0, person_style, false);  // a ring: the legs stay visible inside
   }
   const LineStyle truth_leg{"#111111", 1.0};
   std::vector<Eigen::Vector2d> truth_people;
@@ -318,7 +318,7 @@ std::string ScanSvg(const EvaluationReport& report) {
                  {"point feature, leg-like (leg_likeness >= 0.5; circle: its width)", leg_style,
                   LegendMark::kDot},
                  {"point feature, other", other_style, LegendMark::kDot},
-                 {"person feature (dashed: its legs)", person_style, LegendMark::kDot},
+                 {"person feature (ring; dashed: its legs)", person_style, LegendMark::kDot},
                  {"true person (cross) and legs (circles)", truth_leg, LegendMark::kCross},
                  {"sensor", LineStyle{"#9467bd"}, LegendMark::kDot}});
   // The legend goes below the panel, in columns, so that it never covers the scan.
