@@ -56,51 +56,6 @@ bool ShouldPrune(const ObjectRecord& record, bool has_velocity, int64_t utime, b
          record.unseen_in_view_s > options.static_prune_unseen_in_view_s;
 }
 
-bool IsLostMover(const StateObject& object, bool unmeasured, int64_t utime,
-                 const TrackManagementOptions& options) {
-  const ObjectRecord& record = object.record;
-  return unmeasured && object.has_velocity() && record.confirmed &&
-         record.object_class == ObjectClass::kMoving &&
-         !ReportedConfirmed(record, true, utime, options);
-}
-
-std::vector<Reacquisition> ChooseReacquisitions(const std::vector<LostTrack>& lost,
-                                                const std::vector<BirthPoint>& births,
-                                                double reacquire_speed_mps) {
-  struct Pair {
-    double ratio;  // distance over reach: how much of the reachable disc the pair uses
-    Reacquisition pair;
-  };
-  std::vector<Pair> pairs;
-  if (reacquire_speed_mps <= 0.0) return {};
-  for (const BirthPoint& b : births) {
-    for (const LostTrack& t : lost) {
-      const double reach = reacquire_speed_mps * t.unseen_s;
-      const double distance = (b.point_m - t.last_seen_m).norm();
-      if (reach > 0.0 && distance <= reach) {
-        pairs.push_back({distance / reach, {b.measurement, t.object}});
-      }
-    }
-  }
-  std::stable_sort(pairs.begin(), pairs.end(),
-                   [](const Pair& a, const Pair& b) { return a.ratio < b.ratio; });
-  std::vector<Reacquisition> chosen;
-  std::vector<int> used_measurements;
-  std::vector<int> used_objects;
-  for (const Pair& p : pairs) {
-    if (std::find(used_measurements.begin(), used_measurements.end(), p.pair.measurement) !=
-            used_measurements.end() ||
-        std::find(used_objects.begin(), used_objects.end(), p.pair.object) !=
-            used_objects.end()) {
-      continue;
-    }
-    used_measurements.push_back(p.pair.measurement);
-    used_objects.push_back(p.pair.object);
-    chosen.push_back(p.pair);
-  }
-  return chosen;
-}
-
 bool ReportedConfirmed(const ObjectRecord& record, bool has_velocity, int64_t utime,
                        const TrackManagementOptions& options) {
   if (!record.confirmed) return false;
