@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <sstream>
+#include <stdexcept>
 
+#include "common/angle.h"
 #include "common/utime.h"
 #include "estimator/association.h"
 #include "estimator/classification.h"
@@ -23,11 +25,19 @@
 namespace slammtt {
 namespace {
 
-// The state before the first message (and after a restart): the robot at initial_pose, known
-// exactly (it defines the map frame), the heading drift at its prior.
+// The state before the first message (and after a restart): the robot at initial_pose (its
+// heading wrapped), known exactly (it defines the map frame), the heading drift at its prior.
 SlamState InitialState(const EstimatorOptions& options) {
   const double drift_sigma = options.heading_drift_sigma_rad_per_m;
-  return SlamState(options.initial_pose, Eigen::Matrix3d::Zero(), drift_sigma * drift_sigma);
+  Eigen::Vector3d pose = options.initial_pose;
+  pose(2) = WrapAngle(pose(2));
+  return SlamState(pose, Eigen::Matrix3d::Zero(), drift_sigma * drift_sigma);
+}
+
+const EstimatorOptions& Checked(const EstimatorOptions& options) {
+  const std::string problem = CheckEstimatorOptions(options);
+  if (!problem.empty()) throw std::invalid_argument("estimator options: " + problem);
+  return options;
 }
 
 }  // namespace
@@ -51,7 +61,7 @@ const char* SubstageName(Substage substage) {
 }
 
 Estimator::Estimator(const EstimatorOptions& options)
-    : options_(options), state_(InitialState(options)) {}
+    : options_(Checked(options)), state_(InitialState(options)) {}
 
 bool Estimator::RestartOnJumpBack(const char* what, int64_t utime,
                                   const std::optional<int64_t>& newest_utime) {

@@ -118,6 +118,7 @@ struct EstimatorCounters {
 
 class Estimator {
  public:
+  // Throws std::invalid_argument with CheckEstimatorOptions()'s message for unusable options.
   explicit Estimator(const EstimatorOptions& options);
 
   // Buffers one odometry reading. Returns false when it is dropped (non-finite, or not newer

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <string>
 
+#include "common/options_schema.h"
 #include "estimator/ml_ransac.h"
 #include "estimator/motion_classifier.h"
 #include "estimator/range_bearing_model.h"
@@ -99,7 +100,10 @@ struct EstimatorOptions {
   double gap_robot_heading_sigma_radps = 0.2;
   double gap_mover_velocity_sigma_mps = 1.0;     // added to every mover's velocity std
   double extrapolation_speed_sigma_mps = 0.3;    // noise of motion without odometry, per
-  double extrapolation_turn_sigma_radps = 0.3;   // second of extrapolation
+  // second of extrapolation. The turn's is 0.3 rad/s as the configuration reader has always
+  // applied it, through degrees and back: one unit in the last place below 0.3, kept so that
+  // the outputs of every shipped run stay the same (scripts/check-outputs-identical.py).
+  double extrapolation_turn_sigma_radps = 0.3 * 180.0 / M_PI * M_PI / 180.0;
   int max_objects = 500;
 
   // Association (Algorithm 2). Gates are NIS thresholds (chi-square, 2 dof).
@@ -124,8 +128,22 @@ struct EstimatorOptions {
   MotionClassifierOptions classifier;
 };
 
-// Empty when the options are usable, else one line naming the first bad option.
+// The options schema of the estimator (common/options_schema.h): every option once, with its
+// range, unit and doc, in the order of EstimatorOptions. The configuration reader
+// (ReadEstimatorOptions, estimator_stage.h), the validation (CheckEstimatorOptions) and the
+// table of docs/estimator.md (EstimatorOptionsTable) come from it. Keys: the field's path,
+// groups joined by '_' (sensor_forward_m, ransac_max_hypotheses, tracks_confirm_hits,
+// classifier_moving_chi2), angles in degrees (field_of_view_deg).
+void VisitEstimatorOptions(OptionVisitor* visitor, EstimatorOptions* options);
+
+// Empty when the options are usable, else one line naming the first bad option by its key:
+// each value within its range (the schema), then the conditions between options (max_range_m
+// > min_range_m, max_prediction_s >= max_time_gap_s, gate_d2_chi2 > gate_d1_chi2 with level 3).
 std::string CheckEstimatorOptions(const EstimatorOptions& options);
+
+// The Markdown table of every option: key, default, valid values, one line.
+std::string EstimatorOptionsTable();
+
 const char* AssociationModeName(AssociationMode mode);
 
 }  // namespace slammtt

@@ -265,4 +265,14 @@ RansacOutcome RunOnePointRansac(const SlamState& state,
   return outcome;
 }
 
+void VisitRansacOptions(OptionVisitor* v, RansacOptions* r) {
+  using R = OptionRange;
+  v->Double("success_probability", &r->success_probability, R::Open(0, 1),
+            "p of eq. 16 (paper: 0.99)");
+  v->Int("max_hypotheses", &r->max_hypotheses, R::Between(1, 1000000),
+         "cap N of the hypotheses per scan (paper: 1000)");
+  v->Double("inlier_chi2", &r->inlier_chi2, R::Above(0),
+            "consensus threshold on the conditioned NIS (5.99: 95 %)");
+}
+
 }  // namespace slammtt

@@ -93,4 +93,30 @@ bool ExpectedVisible(const Eigen::Vector2d& predicted, double sigma_m,
   return true;
 }
 
+void VisitTrackManagementOptions(OptionVisitor* v, TrackManagementOptions* t) {
+  using R = OptionRange;
+  v->Int("confirm_hits", &t->confirm_hits, R::Between(1, 1000),
+         "hits that confirm a tentative object (T_th)");
+  v->Double("prune_unseen_s", &t->prune_unseen_s, R::AtLeast(0),
+            "an object with velocity unseen this long goes (paper 5.1: 3.5 s)");
+  v->Double("tentative_prune_unseen_s", &t->tentative_prune_unseen_s, R::AtLeast(0),
+            "a tentative object unseen this long goes");
+  v->Double("static_prune_unseen_in_view_s", &t->static_prune_unseen_in_view_s, R::AtLeast(0),
+            "a landmark missed this long where it should be seen goes (0: never)");
+  v->Double("prune_unseen_visible_s", &t->prune_unseen_visible_s, R::AtLeast(0),
+            "an object with velocity missed this long where it should be seen goes");
+  v->Double("shadow_radius_m", &t->shadow_radius_m, R::AtLeast(0),
+            "half-width of what a point feature hides, at its range");
+  v->Double("coast_confirmed_s", &t->coast_confirmed_s, R::AtLeast(0),
+            "reported unconfirmed after this long missed where it should be seen (0: off)");
+  v->Double("coast_unseen_s", &t->coast_unseen_s, R::AtLeast(0),
+            "reported unconfirmed after this long unseen (0: off)");
+  v->Double("prune_out_of_view_s", &t->prune_out_of_view_s, R::AtLeast(0),
+            "a MOVING object out of view goes after this long");
+  v->Double("max_coast_sigma_m", &t->max_coast_sigma_m, R::Above(0),
+            "a MOVING object out of view goes when its position sigma exceeds this");
+  v->Double("reacquire_speed_mps", &t->reacquire_speed_mps, R::AtLeast(0),
+            "walking speed bound of re-acquisition of lost movers (0: off)");
+}
+
 }  // namespace slammtt

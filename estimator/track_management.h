@@ -26,6 +26,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "common/options_schema.h"
+
 #include "estimator/range_bearing_model.h"
 #include "estimator/slam_state.h"
 
@@ -54,6 +56,10 @@ struct TrackManagementOptions {
   // assumed to have walked while unseen. 0 disables re-acquisition.
   double reacquire_speed_mps = 2.0;
 };
+
+// The schema of these options (common/options_schema.h; keys in EstimatorOptions' group
+// `tracks`).
+void VisitTrackManagementOptions(OptionVisitor* visitor, TrackManagementOptions* options);
 
 // Whether an object is reported as confirmed at utime (see coast_confirmed_s).
 bool ReportedConfirmed(const ObjectRecord& record, bool has_velocity, int64_t utime,

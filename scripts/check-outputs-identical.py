@@ -24,8 +24,9 @@ written: it holds wall-clock durations.
 
 The base commit is exported (git archive) into a temporary tree of its own under WORK, built
 there (its own build directory, only slammtt-world, slammtt-replay and slammtt-eval) and run;
-its outputs are kept in WORK/base-HASH/ and reused by later runs (the source tree and build of
-the base are deleted once its outputs are recorded). This checkout's programs are built in
+its outputs are kept in WORK/base-HASH/ and reused by later runs, which run the base only for
+scenarios and seeds it has not recorded yet (the source tree and build of the base are deleted
+once its outputs are recorded). This checkout's programs are built in
 --build-dir (default build/, configured if needed). Exit status 0 when every file is identical,
 1 when any differs or is missing (each is listed), 2 on a usage or build error.
 
@@ -145,48 +146,69 @@ def export_commit(commit, destination):
 
 
 def base_outputs(commit, work, scenarios, seeds, jobs):
+    """The base's outputs directory; runs the base only for the scenarios and seeds it has not
+    recorded yet (the record is the file outputs-complete: one "scenario seed" per line)."""
     base = os.path.join(work, "base-" + commit)
     outputs = os.path.join(base, "outputs")
-    wanted = f"{','.join(scenarios)} {seeds[0]}-{seeds[-1]}\n"
-    done = os.path.join(base, DONE)
-    if os.path.exists(done):
-        with open(done) as f:
-            if f.read() == wanted:
-                print(f"base {commit[:12]}: outputs recorded earlier, in {outputs}")
-                return outputs
-    print(f"base {commit[:12]}: exporting, building and running (once; kept in {base})")
-    if os.path.exists(base):
-        shutil.rmtree(base)
+    done_path = os.path.join(base, DONE)
+    done = set()
+    if os.path.exists(done_path):
+        with open(done_path) as f:
+            done = {tuple(line.split()) for line in f if line.strip()}
+    missing = [(s, n) for s in scenarios for n in seeds if (s, str(n)) not in done]
+    if not missing:
+        print(f"base {commit[:12]}: outputs recorded earlier, in {outputs}")
+        return outputs
+    print(f"base {commit[:12]}: exporting, building and running {len(missing)} scenario-seeds "
+          f"(kept in {base})")
     tree = os.path.join(base, "src")
+    build_dir = os.path.join(base, "build")
+    for leftover in (tree, build_dir):
+        if os.path.exists(leftover):
+            shutil.rmtree(leftover)
     export_commit(commit, tree)
-    bin_dir = build(tree, os.path.join(base, "build"),
+    bin_dir = build(tree, build_dir,
                     ["-DSLAMMTT_BUILD_TESTS=OFF", "-DSLAMMTT_BUILD_BENCHMARKS=OFF"])
-    missing = [s for s in scenarios if s not in scenarios_of(tree)]
-    if missing:
-        fail(f"base {commit[:12]} has no scenario {', '.join(missing)}")
-    run_all(tree, bin_dir, outputs, scenarios, seeds, jobs)
+    unknown = sorted({s for s, _ in missing if s not in scenarios_of(tree)})
+    if unknown:
+        fail(f"base {commit[:12]} has no scenario {', '.join(unknown)}")
+    os.makedirs(outputs, exist_ok=True)
+    with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:
+        futures = [pool.submit(run_one, tree, bin_dir, outputs, s, n) for s, n in missing]
+        for future in futures:
+            future.result()
     shutil.rmtree(tree)
-    shutil.rmtree(os.path.join(base, "build"))
-    with open(done, "w") as f:
-        f.write(wanted)
+    shutil.rmtree(build_dir)
+    with open(done_path, "a") as f:
+        for s, n in missing:
+            f.write(f"{s} {n}\n")
     return outputs
 
 
-def compare(base_dir, head_dir):
-    base_files = sorted(os.listdir(base_dir))
-    head_files = sorted(os.listdir(head_dir))
+def expected_files(scenarios, seeds):
+    names = []
+    for s in scenarios:
+        for n in seeds:
+            names.append(f"{s}-seed{n}.world.lcm")
+            for mode in modes_of(s):
+                names += [f"{s}-seed{n}.{mode}.out.lcm", f"{s}-seed{n}.{mode}.json"]
+    return sorted(names)
+
+
+def compare(base_dir, head_dir, names):
     problems = []
-    for name in sorted(set(base_files) | set(head_files)):
-        if name not in head_files:
+    for name in names:
+        base_file = os.path.join(base_dir, name)
+        head_file = os.path.join(head_dir, name)
+        if not os.path.exists(base_file):
+            problems.append(f"{name}: missing in the base's outputs")
+        elif not os.path.exists(head_file):
             problems.append(f"{name}: missing in this checkout's outputs")
-        elif name not in base_files:
-            problems.append(f"{name}: not in the base's outputs")
-        elif not filecmp.cmp(os.path.join(base_dir, name), os.path.join(head_dir, name),
-                             shallow=False):
-            a = os.path.getsize(os.path.join(base_dir, name))
-            b = os.path.getsize(os.path.join(head_dir, name))
+        elif not filecmp.cmp(base_file, head_file, shallow=False):
+            a = os.path.getsize(base_file)
+            b = os.path.getsize(head_file)
             problems.append(f"{name}: differs ({a} bytes in the base, {b} here)")
-    return len(base_files), problems
+    return len(names), problems
 
 
 def main():
@@ -219,7 +241,7 @@ def main():
     except (RuntimeError, subprocess.CalledProcessError) as error:
         print(f"check-outputs-identical: {error}", file=sys.stderr)
         sys.exit(2)
-    count, problems = compare(base_dir, head_dir)
+    count, problems = compare(base_dir, head_dir, expected_files(scenarios, seeds))
     for problem in problems:
         print("  " + problem)
     scope = f"{len(scenarios)} scenarios x seeds {seeds[0]}-{seeds[-1]}"
