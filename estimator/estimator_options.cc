@@ -14,18 +14,12 @@ const char* AssociationModeName(AssociationMode mode) {
   return "?";
 }
 
-void VisitEstimatorOptions(OptionVisitor* v, EstimatorOptions* o) {
+namespace {
+
+// The sensor and the features taken from it.
+void VisitSensorOptions(OptionVisitor* v, EstimatorOptions* o) {
   using R = OptionRange;
   const OptionUnit deg = OptionUnit::kDegrees;
-  int mode = static_cast<int>(o->mode);
-  v->Choice("mode", &mode, {"ml_ransac", "static_nn", "ransac_all_pairs"},
-            "ML-RANSAC, or baseline (a) plain EKF-SLAM of a static world, or (b) RANSAC over "
-            "every pair");
-  o->mode = static_cast<AssociationMode>(mode);
-  v->DoubleList("initial_pose", {&o->initial_pose(0), &o->initial_pose(1), &o->initial_pose(2)},
-                {OptionUnit::kAsIs, OptionUnit::kAsIs, deg}, "[x_m, y_m, heading_deg]",
-                "the robot's pose at the first message: the map frame");
-  // Sensor.
   v->BeginGroup("sensor");
   v->Double("forward_m", &o->sensor.forward_m, R::Any(), "laser ahead of the axle centre (a)");
   v->Double("left_m", &o->sensor.left_m, R::Any(), "laser left of the axle centre (b)");
@@ -49,7 +43,11 @@ void VisitEstimatorOptions(OptionVisitor* v, EstimatorOptions* o) {
             "range up to which a person-sized object gives a feature (0: max_range_m)");
   v->Double("edge_of_view_sigma_m", &o->edge_of_view_sigma_m, R::AtLeast(0),
             "added sigma of a feature cut by the edge of the view (0: off)");
-  // Motion models.
+}
+
+// The motion models: odometry noise, heading drift, movers.
+void VisitMotionOptions(OptionVisitor* v, EstimatorOptions* o) {
+  using R = OptionRange;
   v->BeginGroup("odometry_noise");
   VisitOdometryNoiseOptions(v, &o->odometry_noise);
   v->EndGroup();
@@ -65,7 +63,12 @@ void VisitEstimatorOptions(OptionVisitor* v, EstimatorOptions* o) {
             "prior sigma of a new object's velocity");
   v->Double("manoeuvre_velocity_sigma_mps", &o->manoeuvre_velocity_sigma_mps, R::AtLeast(0),
             "velocity jump of a MOVING object that lost its measurement (0: off)");
-  // Robustness.
+}
+
+// Time gaps, jumps back, extrapolation, the object cap.
+void VisitRobustnessOptions(OptionVisitor* v, EstimatorOptions* o) {
+  using R = OptionRange;
+  const OptionUnit deg = OptionUnit::kDegrees;
   v->Double("max_time_gap_s", &o->max_time_gap_s, R::Above(0),
             "a longer time between scans inflates the uncertainty");
   v->Double("max_prediction_s", &o->max_prediction_s, R::Above(0),
@@ -84,7 +87,11 @@ void VisitEstimatorOptions(OptionVisitor* v, EstimatorOptions* o) {
             "turn noise of motion extrapolated past the last odometry, per second", deg);
   v->Int("max_objects", &o->max_objects, R::Between(0, 100000),
          "the most objects held; new ones beyond are refused and counted");
-  // Association (Algorithm 2).
+}
+
+// Algorithm 2: gates, RANSAC, updates, track management, classification.
+void VisitAssociationOptions(OptionVisitor* v, EstimatorOptions* o) {
+  using R = OptionRange;
   v->Double("gate_d1_chi2", &o->gate_d1_chi2, R::Above(0),
             "gate d1 of J, levels 1 and 2 (NIS, 2 dof; 9.21: 99 %)");
   v->Bool("level3", &o->level3, "the third level with gate d2");
@@ -105,6 +112,24 @@ void VisitEstimatorOptions(OptionVisitor* v, EstimatorOptions* o) {
   v->BeginGroup("classifier");
   VisitMotionClassifierOptions(v, &o->classifier);
   v->EndGroup();
+}
+
+}  // namespace
+
+void VisitEstimatorOptions(OptionVisitor* v, EstimatorOptions* o) {
+  const OptionUnit deg = OptionUnit::kDegrees;
+  int mode = static_cast<int>(o->mode);
+  v->Choice("mode", &mode, {"ml_ransac", "static_nn", "ransac_all_pairs"},
+            "ML-RANSAC, or baseline (a) plain EKF-SLAM of a static world, or (b) RANSAC over "
+            "every pair");
+  o->mode = static_cast<AssociationMode>(mode);
+  v->DoubleList("initial_pose", {&o->initial_pose(0), &o->initial_pose(1), &o->initial_pose(2)},
+                {OptionUnit::kAsIs, OptionUnit::kAsIs, deg}, "[x_m, y_m, heading_deg]",
+                "the robot's pose at the first message: the map frame");
+  VisitSensorOptions(v, o);
+  VisitMotionOptions(v, o);
+  VisitRobustnessOptions(v, o);
+  VisitAssociationOptions(v, o);
 }
 
 std::string CheckEstimatorOptions(const EstimatorOptions& options) {
