@@ -10,20 +10,86 @@ function(slammtt_warnings target)
   endif()
 endfunction()
 
-# slammtt_library(<name> SOURCES ... [PUBLIC_LIBS ...] [PRIVATE_LIBS ...])
-# A static library whose headers are included as "<folder>/<file>.h" from the source root.
+# Include paths. Headers are included as "<folder>/<file>.h" from the source root, but a library
+# does not see the whole tree: it gets an include root of its own, build/include/<library>, that
+# holds only its own folder (a symbolic link to it), PUBLIC, so it sees another folder only
+# through a library it links. A library that links neither slammtt_runtime nor slammtt_msgs
+# cannot include runtime/ or a message header: the include does not resolve. Programs and tests
+# see the whole tree.
+#
+# slammtt_include_root(<target> <folder> <PUBLIC|INTERFACE>): <folder> (relative to the source
+# root) as <target>'s include root.
+function(slammtt_include_root target folder scope)
+  set(root ${CMAKE_BINARY_DIR}/include/${target})
+  get_filename_component(parent ${root}/${folder} DIRECTORY)
+  file(MAKE_DIRECTORY ${parent})
+  if(NOT EXISTS ${root}/${folder})
+    file(CREATE_LINK ${PROJECT_SOURCE_DIR}/${folder} ${root}/${folder} SYMBOLIC)
+  endif()
+  target_include_directories(${target} ${scope} ${root})
+endfunction()
+
+# slammtt_library(<name> [PURE] SOURCES ... [PUBLIC_LIBS ...] [PRIVATE_LIBS ...])
+# A static library of the current folder (include root: that folder, above). PURE: an algorithm
+# library (docs/DEVELOPING.md, "Layers"): configuring fails when it links slammtt_runtime or
+# slammtt_msgs, and ctest checks that it cannot include runtime/ or a message header
+# (slammtt_purity_tests, tests purity.<name>.*).
 function(slammtt_library name)
-  cmake_parse_arguments(ARG "" "" "SOURCES;PUBLIC_LIBS;PRIVATE_LIBS" ${ARGN})
+  cmake_parse_arguments(ARG "PURE" "" "SOURCES;PUBLIC_LIBS;PRIVATE_LIBS" ${ARGN})
   add_library(${name} STATIC ${ARG_SOURCES})
-  target_include_directories(${name} PUBLIC ${PROJECT_SOURCE_DIR})
+  file(RELATIVE_PATH folder ${PROJECT_SOURCE_DIR} ${CMAKE_CURRENT_SOURCE_DIR})
+  slammtt_include_root(${name} ${folder} PUBLIC)
   target_link_libraries(${name} PUBLIC ${ARG_PUBLIC_LIBS} PRIVATE ${ARG_PRIVATE_LIBS})
   slammtt_warnings(${name})
+  if(ARG_PURE)
+    foreach(lib ${ARG_PUBLIC_LIBS} ${ARG_PRIVATE_LIBS})
+      if(lib STREQUAL "slammtt_runtime" OR lib STREQUAL "slammtt_msgs")
+        message(FATAL_ERROR "${name} is a pure library and links ${lib}")
+      endif()
+      get_property(impure GLOBAL PROPERTY SLAMMTT_IMPURE_LIBRARIES)
+      if(lib IN_LIST impure)
+        message(FATAL_ERROR "${name} is a pure library and links ${lib}, which is not")
+      endif()
+    endforeach()
+    set_property(GLOBAL APPEND PROPERTY SLAMMTT_PURE_LIBRARIES ${name})
+  else()
+    set_property(GLOBAL APPEND PROPERTY SLAMMTT_IMPURE_LIBRARIES ${name})
+  endif()
+endfunction()
+
+# slammtt_purity_tests(): for every PURE library, two probes (object libraries outside `all`
+# that link it and include runtime/config.h or slammtt_msgs/pose_t.hpp) and two tests that build
+# them and pass when the compiler cannot find that header. Called once, after every folder.
+function(slammtt_purity_tests)
+  get_property(pure GLOBAL PROPERTY SLAMMTT_PURE_LIBRARIES)
+  foreach(lib ${pure})
+    foreach(probe runtime message)
+      set(target purity_probe_${lib}_${probe})
+      add_library(${target} OBJECT EXCLUDE_FROM_ALL
+        ${PROJECT_SOURCE_DIR}/cmake/purity_probe_${probe}.cc)
+      target_link_libraries(${target} PRIVATE ${lib})
+      add_test(NAME purity.${lib}.cannot_include_${probe}
+        COMMAND ${CMAKE_COMMAND} --build ${CMAKE_BINARY_DIR} --target ${target})
+      if(probe STREQUAL "runtime")
+        set(header "runtime/config.h")
+      else()
+        set(header "slammtt_msgs/pose_t.hpp")
+      endif()
+      # Probes build one after the other: two builds of one tree at once would share its files.
+      set_tests_properties(purity.${lib}.cannot_include_${probe} PROPERTIES
+        PASS_REGULAR_EXPRESSION "${header}: No such file or directory"
+        RESOURCE_LOCK slammtt_build_tree
+        LABELS unit
+        TIMEOUT 300)
+    endforeach()
+  endforeach()
 endfunction()
 
 # slammtt_executable(<name> SOURCES ... [LIBS ...]): a program in build/bin.
 function(slammtt_executable name)
   cmake_parse_arguments(ARG "" "" "SOURCES;LIBS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
+  target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR})
   target_link_libraries(${name} PRIVATE ${ARG_LIBS})
   slammtt_warnings(${name})
   install(TARGETS ${name} RUNTIME DESTINATION bin)
@@ -46,6 +112,7 @@ function(slammtt_test name)
   endif()
   add_executable(${name} ${ARG_SOURCES})
   set_target_properties(${name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/tests)
+  target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR})
   target_link_libraries(${name} PRIVATE ${ARG_LIBS} GTest::gtest GTest::gtest_main)
   target_compile_definitions(${name} PRIVATE
     SLAMMTT_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
@@ -70,6 +137,7 @@ function(slammtt_benchmark name)
   endif()
   cmake_parse_arguments(ARG "" "" "SOURCES;LIBS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
+  target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR})
   target_link_libraries(${name} PRIVATE ${ARG_LIBS} benchmark::benchmark)
   slammtt_warnings(${name})
 endfunction()

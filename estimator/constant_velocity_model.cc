@@ -25,9 +25,19 @@ Eigen::Matrix4d ConstantVelocityProcessNoise(double dt_s, double sigma_q_mps2) {
 
 Eigen::Vector4d PredictConstantVelocity(const Eigen::Vector4d& state, double dt_s,
                                         Eigen::Matrix4d* jacobian) {
-  const Eigen::Matrix4d transition = ConstantVelocityTransition(dt_s);
-  if (jacobian != nullptr) *jacobian = transition;
-  return transition * state;
+  if (jacobian != nullptr) *jacobian = ConstantVelocityTransition(dt_s);
+  Eigen::Vector4d next = state;
+  next.head<2>() += dt_s * state.tail<2>();
+  return next;
+}
+
+void PredictConstantVelocityInPlace(double dt_s, int p, int v, Eigen::Ref<Eigen::VectorXd> mean,
+                                    Eigen::Ref<Eigen::MatrixXd> covariance) {
+  mean.segment<2>(p) += dt_s * mean.segment<2>(v);
+  covariance.row(p) += dt_s * covariance.row(v);
+  covariance.row(p + 1) += dt_s * covariance.row(v + 1);
+  covariance.col(p) += dt_s * covariance.col(v);
+  covariance.col(p + 1) += dt_s * covariance.col(v + 1);
 }
 
 }  // namespace slammtt

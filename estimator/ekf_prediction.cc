@@ -43,12 +43,8 @@ void PredictMovers(double dt_s, double sigma_q_moving_mps2, double sigma_q_undec
         o.record.object_class == ObjectClass::kMoving ? q_moving : q_undecided;
     const int p = o.position_index;
     const int v = o.velocity_index;
-    mean.segment<2>(p) += dt_s * mean.segment<2>(v);
-    // T P T^T with T = [I dt I; 0 I] on this object's rows and columns (eq. 7).
-    cov.row(p) += dt_s * cov.row(v);
-    cov.row(p + 1) += dt_s * cov.row(v + 1);
-    cov.col(p) += dt_s * cov.col(v);
-    cov.col(p + 1) += dt_s * cov.col(v + 1);
+    // Eqs. 6-7 on this object's rows and columns (constant_velocity_model.h).
+    PredictConstantVelocityInPlace(dt_s, p, v, mean, cov);
     // Eq. 8 on the (p, v) blocks.
     cov.block<2, 2>(p, p) += q.topLeftCorner<2, 2>();
     cov.block<2, 2>(p, v) += q.topRightCorner<2, 2>();

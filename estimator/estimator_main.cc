@@ -3,6 +3,7 @@
 // (estimator/estimator_stage.h), which slammtt-replay runs too.
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 
 #include "estimator/estimator_stage.h"
 #include "runtime/command_line.h"
@@ -20,7 +21,14 @@ int main(int argc, char** argv) {
         "and stage_timing; options in the `estimator:` section of --config "
         "(docs/estimator.md).");
     slammtt::AddStandardOptions(&command_line);
+    command_line.AddFlag("options-table",
+                         "print the table of every key of the estimator: section (Markdown, "
+                         "docs/estimator.md) and exit");
     if (!command_line.Parse(c, v)) return 0;
+    if (command_line.Flag("options-table")) {
+      std::cout << slammtt::EstimatorStageOptionsTable();
+      return 0;
+    }
     const slammtt::ProcessSettings settings = slammtt::LoadProcessSettings(command_line);
     slammtt::EstimatorStage stage(settings);
     const std::unique_ptr<lcm::LCM> lcm = slammtt::OpenLcm(settings.lcm_url);

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <utility>
 
-#include "estimator/angle.h"
+#include "runtime/config_options.h"
 #include "runtime/log.h"
 #include "slammtt_msgs/estimator_status_t.hpp"
 #include "slammtt_msgs/features_t.hpp"
@@ -16,24 +16,6 @@
 
 namespace slammtt {
 namespace {
-
-double Double(const Config& s, const std::string& key, double fallback) {
-  return s.GetDouble(key, fallback);
-}
-
-// Reads a key and checks it with the library's own validation afterwards (one place for the
-// rules: CheckEstimatorOptions); here only conversions.
-double Degrees(const Config& s, const std::string& key, double fallback_rad) {
-  return DegreesToRadians(s.GetDouble(key, RadiansToDegrees(fallback_rad)));
-}
-
-int IntKey(const Config& s, const std::string& key, int fallback, int min, int max) {
-  const int64_t value = s.GetInt(key, fallback);
-  if (value < min || value > max) {
-    s.FailKey(key, "must be between " + std::to_string(min) + " and " + std::to_string(max));
-  }
-  return static_cast<int>(value);
-}
 
 class TimerObserver : public StepObserver {
  public:
@@ -109,112 +91,72 @@ ScanInput ScanInputFromFeatures(const slammtt_msgs::features_t& message, bool pe
   return scan;
 }
 
+const std::vector<RenamedKey>& RenamedEstimatorKeys() {
+  static const std::vector<RenamedKey> renamed = {
+      {"range_sigma_m", "default_range_sigma_m"},
+      {"bearing_sigma_deg", "default_bearing_sigma_deg"},
+      {"odometry_distance_var_per_m", "odometry_noise_distance_var_per_m"},
+      {"odometry_rotation_var_per_rad", "odometry_noise_rotation_var_per_rad"},
+      {"odometry_rotation_var_per_m", "odometry_noise_rotation_var_per_m"},
+      {"odometry_distance_var_per_s", "odometry_noise_distance_var_per_s"},
+      {"odometry_rotation_var_per_s", "odometry_noise_rotation_var_per_s"},
+      {"odometry_heading_drift_sigma_rad_per_m", "heading_drift_sigma_rad_per_m"},
+      {"odometry_heading_drift_walk_var_per_m", "heading_drift_walk_var_per_m"},
+      {"moving_acceleration_sigma_mps2", "mover_acceleration_sigma_mps2"},
+      {"gap_velocity_sigma_mps", "gap_mover_velocity_sigma_mps"},
+      {"gate_d1", "gate_d1_chi2"},
+      {"gate_d2", "gate_d2_chi2"},
+      {"gate_dn", "new_object_gate_dn_chi2"},
+      {"ransac_probability", "ransac_success_probability"},
+      {"max_hypotheses", "ransac_max_hypotheses"},
+      {"confirm_hits", "tracks_confirm_hits"},
+      {"prune_unseen_s", "tracks_prune_unseen_s"},
+      {"tentative_prune_unseen_s", "tracks_tentative_prune_unseen_s"},
+      {"static_prune_unseen_in_view_s", "tracks_static_prune_unseen_in_view_s"},
+      {"prune_unseen_visible_s", "tracks_prune_unseen_visible_s"},
+      {"shadow_radius_m", "tracks_shadow_radius_m"},
+      {"coast_confirmed_s", "tracks_coast_confirmed_s"},
+      {"coast_unseen_s", "tracks_coast_unseen_s"},
+      {"prune_out_of_view_s", "tracks_prune_out_of_view_s"},
+      {"max_coast_sigma_m", "tracks_max_coast_sigma_m"},
+      {"reacquire_speed_mps", "tracks_reacquire_speed_mps"},
+      {"moving_chi2", "classifier_moving_chi2"},
+      {"moving_min_speed_mps", "classifier_moving_min_speed_mps"},
+      {"moving_confirm_scans", "classifier_moving_confirm_scans"},
+      {"still_max_speed_mps", "classifier_still_max_speed_mps"},
+      {"still_velocity_chi2", "classifier_still_velocity_chi2"},
+      {"still_restart_variance_ratio", "classifier_still_restart_variance_ratio"},
+      {"still_hold_s", "classifier_still_hold_s"},
+      {"started_moving_chi2", "classifier_started_moving_chi2"},
+  };
+  return renamed;
+}
+
+void VisitEstimatorStageOptions(OptionVisitor* v, EstimatorStageOptions* o) {
+  int64_t seed = static_cast<int64_t>(o->seed);
+  v->Int("seed", &seed, OptionRange::AtLeast(0), "seeds the RANSAC generator");
+  o->seed = static_cast<uint64_t>(seed);
+  v->Bool("person_features", &o->person_features,
+          "a person feature is one measurement in place of its legs");
+  VisitEstimatorOptions(v, &o->estimator);
+}
+
 EstimatorStageOptions ReadEstimatorOptions(const Config& s) {
+  RejectRenamedKeys(s, RenamedEstimatorKeys(), "docs/estimator.md, \"Migration\"");
   EstimatorStageOptions stage;
-  EstimatorOptions& o = stage.estimator;
-  const std::string mode = s.GetString("mode", AssociationModeName(o.mode));
-  if (mode == "ml_ransac") {
-    o.mode = AssociationMode::kMlRansac;
-  } else if (mode == "static_nn") {
-    o.mode = AssociationMode::kStaticNearestNeighbour;
-  } else if (mode == "ransac_all_pairs") {
-    o.mode = AssociationMode::kRansacAllPairs;
-  } else {
-    s.FailKey("mode", "expected ml_ransac, static_nn or ransac_all_pairs, got '" + mode + "'");
-  }
-  stage.person_features = s.GetBool("person_features", stage.person_features);
-  const int64_t seed = s.GetInt("seed", 1);
-  if (seed < 0) s.FailKey("seed", "must not be negative");
-  stage.seed = static_cast<uint64_t>(seed);
-  if (s.Has("initial_pose")) {
-    const std::vector<double> pose = s.GetDoubles("initial_pose", {});
-    if (pose.size() != 3) s.FailKey("initial_pose", "expected [x_m, y_m, heading_deg]");
-    o.initial_pose = Eigen::Vector3d(pose[0], pose[1], WrapAngle(DegreesToRadians(pose[2])));
-  }
-  o.sensor.forward_m = Double(s, "sensor_forward_m", o.sensor.forward_m);
-  o.sensor.left_m = Double(s, "sensor_left_m", o.sensor.left_m);
-  o.default_range_sigma_m = Double(s, "range_sigma_m", o.default_range_sigma_m);
-  o.default_bearing_sigma_rad = Degrees(s, "bearing_sigma_deg", o.default_bearing_sigma_rad);
-  o.use_feature_covariance = s.GetBool("use_feature_covariance", o.use_feature_covariance);
-  o.min_range_sigma_m = Double(s, "min_range_sigma_m", o.min_range_sigma_m);
-  o.min_bearing_sigma_rad = Degrees(s, "min_bearing_sigma_deg", o.min_bearing_sigma_rad);
-  o.min_range_m = Double(s, "min_range_m", o.min_range_m);
-  o.max_range_m = Double(s, "max_range_m", o.max_range_m);
-  o.field_of_view_rad = Degrees(s, "field_of_view_deg", o.field_of_view_rad);
-  o.detection_range_m = Double(s, "detection_range_m", o.detection_range_m);
-  o.edge_of_view_sigma_m = Double(s, "edge_of_view_sigma_m", o.edge_of_view_sigma_m);
-  OdometryNoiseOptions& n = o.odometry_noise;
-  n.distance_var_per_m = Double(s, "odometry_distance_var_per_m", n.distance_var_per_m);
-  n.rotation_var_per_rad = Double(s, "odometry_rotation_var_per_rad", n.rotation_var_per_rad);
-  n.rotation_var_per_m = Double(s, "odometry_rotation_var_per_m", n.rotation_var_per_m);
-  n.distance_var_per_s = Double(s, "odometry_distance_var_per_s", n.distance_var_per_s);
-  n.rotation_var_per_s = Double(s, "odometry_rotation_var_per_s", n.rotation_var_per_s);
-  o.heading_drift_sigma_rad_per_m = Double(s, "odometry_heading_drift_sigma_rad_per_m",
-                                           o.heading_drift_sigma_rad_per_m);
-  o.heading_drift_walk_var_per_m = Double(s, "odometry_heading_drift_walk_var_per_m",
-                                          o.heading_drift_walk_var_per_m);
-  o.mover_acceleration_sigma_mps2 =
-      Double(s, "moving_acceleration_sigma_mps2", o.mover_acceleration_sigma_mps2);
-  o.undecided_acceleration_sigma_mps2 =
-      Double(s, "undecided_acceleration_sigma_mps2", o.undecided_acceleration_sigma_mps2);
-  o.new_object_velocity_sigma_mps =
-      Double(s, "new_object_velocity_sigma_mps", o.new_object_velocity_sigma_mps);
-  o.manoeuvre_velocity_sigma_mps =
-      Double(s, "manoeuvre_velocity_sigma_mps", o.manoeuvre_velocity_sigma_mps);
-  o.max_time_gap_s = Double(s, "max_time_gap_s", o.max_time_gap_s);
-  o.max_prediction_s = Double(s, "max_prediction_s", o.max_prediction_s);
-  o.time_jump_back_restart_s =
-      Double(s, "time_jump_back_restart_s", o.time_jump_back_restart_s);
-  o.gap_robot_position_sigma_mps =
-      Double(s, "gap_robot_position_sigma_mps", o.gap_robot_position_sigma_mps);
-  o.gap_robot_heading_sigma_radps =
-      Degrees(s, "gap_robot_heading_sigma_degps", o.gap_robot_heading_sigma_radps);
-  o.gap_mover_velocity_sigma_mps =
-      Double(s, "gap_velocity_sigma_mps", o.gap_mover_velocity_sigma_mps);
-  o.extrapolation_speed_sigma_mps =
-      Double(s, "extrapolation_speed_sigma_mps", o.extrapolation_speed_sigma_mps);
-  o.extrapolation_turn_sigma_radps =
-      Degrees(s, "extrapolation_turn_sigma_degps", o.extrapolation_turn_sigma_radps);
-  o.max_objects = IntKey(s, "max_objects", o.max_objects, 0, 100000);
-  o.gate_d1_chi2 = Double(s, "gate_d1", o.gate_d1_chi2);
-  o.level3 = s.GetBool("level3", o.level3);
-  o.gate_d2_chi2 = Double(s, "gate_d2", o.gate_d2_chi2);
-  o.new_object_gate_dn_chi2 = Double(s, "gate_dn", o.new_object_gate_dn_chi2);
-  o.ransac.success_probability = Double(s, "ransac_probability", o.ransac.success_probability);
-  o.ransac.max_hypotheses = IntKey(s, "max_hypotheses", o.ransac.max_hypotheses, 1, 1000000);
-  o.ransac.inlier_chi2 = Double(s, "ransac_inlier_chi2", o.ransac.inlier_chi2);
-  o.update_group_size = IntKey(s, "update_group_size", o.update_group_size, 1, 4096);
-  o.max_static_updates_per_scan = IntKey(s, "max_static_updates_per_scan",
-                                         o.max_static_updates_per_scan, 0, 100000);
-  o.tracks.confirm_hits = IntKey(s, "confirm_hits", o.tracks.confirm_hits, 1, 1000);
-  o.tracks.prune_unseen_s = Double(s, "prune_unseen_s", o.tracks.prune_unseen_s);
-  o.tracks.tentative_prune_unseen_s =
-      Double(s, "tentative_prune_unseen_s", o.tracks.tentative_prune_unseen_s);
-  o.tracks.static_prune_unseen_in_view_s =
-      Double(s, "static_prune_unseen_in_view_s", o.tracks.static_prune_unseen_in_view_s);
-  o.tracks.prune_unseen_visible_s =
-      Double(s, "prune_unseen_visible_s", o.tracks.prune_unseen_visible_s);
-  o.tracks.shadow_radius_m = Double(s, "shadow_radius_m", o.tracks.shadow_radius_m);
-  o.tracks.coast_confirmed_s = Double(s, "coast_confirmed_s", o.tracks.coast_confirmed_s);
-  o.tracks.coast_unseen_s = Double(s, "coast_unseen_s", o.tracks.coast_unseen_s);
-  o.tracks.prune_out_of_view_s = Double(s, "prune_out_of_view_s", o.tracks.prune_out_of_view_s);
-  o.tracks.max_coast_sigma_m = Double(s, "max_coast_sigma_m", o.tracks.max_coast_sigma_m);
-  o.tracks.reacquire_speed_mps =
-      Double(s, "reacquire_speed_mps", o.tracks.reacquire_speed_mps);
-  MotionClassifierOptions& c = o.classifier;
-  c.moving_chi2 = Double(s, "moving_chi2", c.moving_chi2);
-  c.moving_min_speed_mps = Double(s, "moving_min_speed_mps", c.moving_min_speed_mps);
-  c.moving_confirm_scans = IntKey(s, "moving_confirm_scans", c.moving_confirm_scans, 1, 1000);
-  c.still_max_speed_mps = Double(s, "still_max_speed_mps", c.still_max_speed_mps);
-  c.still_velocity_chi2 = Double(s, "still_velocity_chi2", c.still_velocity_chi2);
-  c.still_restart_variance_ratio =
-      Double(s, "still_restart_variance_ratio", c.still_restart_variance_ratio);
-  c.still_hold_s = Double(s, "still_hold_s", c.still_hold_s);
-  c.started_moving_chi2 = Double(s, "started_moving_chi2", c.started_moving_chi2);
+  ConfigOptionReader reader(s);
+  VisitEstimatorStageOptions(&reader, &stage);
   s.CheckUnused();
-  const std::string problem = CheckEstimatorOptions(o);
+  const std::string problem = CheckEstimatorOptions(stage.estimator);
   if (!problem.empty()) s.Fail(problem);
   return stage;
+}
+
+std::string EstimatorStageOptionsTable() {
+  EstimatorStageOptions defaults;
+  OptionsMarkdownTable table;
+  VisitEstimatorStageOptions(&table, &defaults);
+  return table.Table();
 }
 
 EstimatorStage::EstimatorStage(const EstimatorStageOptions& options, const Channels& channels)

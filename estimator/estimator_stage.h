@@ -29,6 +29,7 @@
 
 #include "estimator/estimator.h"
 #include "runtime/config.h"
+#include "runtime/config_options.h"
 #include "runtime/process.h"
 #include "runtime/stage.h"
 #include "slammtt_msgs/features_t.hpp"
@@ -51,10 +52,23 @@ struct EstimatorStageOptions {
 // is ignored (the index, not the person). Pure: exposed for tests.
 ScanInput ScanInputFromFeatures(const slammtt_msgs::features_t& message, bool person_features);
 
-// Reads the `estimator:` section of the stack configuration (keys and defaults in
-// docs/estimator.md); absent keys keep the defaults of EstimatorOptions. Throws ConfigError
-// naming file, line and key for a wrong type, a bad value or an unknown key (CheckUnused()).
+// The schema of the `estimator:` section (common/options_schema.h): the stage's own options
+// (seed, person_features), then the estimator's (VisitEstimatorOptions, estimator_options.h).
+void VisitEstimatorStageOptions(OptionVisitor* visitor, EstimatorStageOptions* options);
+
+// Keys of earlier versions of the `estimator:` section and their new names (the migration
+// note of docs/estimator.md lists the same).
+const std::vector<RenamedKey>& RenamedEstimatorKeys();
+
+// Reads the `estimator:` section of the stack configuration through the schema; absent keys
+// keep the defaults of EstimatorStageOptions. Throws ConfigError naming file, line and key for a
+// renamed key (with its new name), a wrong type, a value out of its range, an unknown key
+// (CheckUnused()) or options that do not fit together (CheckEstimatorOptions).
 EstimatorStageOptions ReadEstimatorOptions(const Config& section);
+
+// The Markdown table of every key of the `estimator:` section (docs/estimator.md, "Options";
+// printed by slammtt-estimator --options-table).
+std::string EstimatorStageOptionsTable();
 
 struct EstimatorStageCounters {
   int64_t scans_published = 0;

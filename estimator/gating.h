@@ -33,11 +33,13 @@ struct ObjectPrediction {
 std::vector<ObjectPrediction> PredictObservations(const SlamState& state,
                                                   const SensorMount& mount);
 
-// A measurement-object pair with its NIS.
+// A measurement-object pair with its NIS and, where a step chooses between competing pairs,
+// its cost (PairCost below; 0 until a step computes it).
 struct Candidate {
   int measurement = -1;
   int object = -1;
   double nis = 0.0;
+  double cost = 0.0;
 };
 
 // What choosing a pair costs: its negative log-likelihood up to a constant, NIS + ln det S with

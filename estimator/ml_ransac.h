@@ -30,6 +30,8 @@
 #include <random>
 #include <vector>
 
+#include "common/options_schema.h"
+
 #include "estimator/gating.h"
 #include "estimator/point_measurement.h"
 #include "estimator/slam_state.h"
@@ -41,6 +43,10 @@ struct RansacOptions {
   int max_hypotheses = 1000;          // N (paper: "for example 1000")
   double inlier_chi2 = 5.99;          // consensus threshold on the conditioned NIS (95 %, 2 dof)
 };
+
+// The schema of these options (common/options_schema.h; keys in EstimatorOptions' group
+// `ransac`).
+void VisitRansacOptions(OptionVisitor* visitor, RansacOptions* options);
 
 struct RansacOutcome {
   std::vector<Candidate> consensus;  // pairs of the best hypothesis, its own pair first

@@ -111,4 +111,23 @@ void ClearLandmarkEvidence(ObjectRecord* record) {
   record->next_offset = 0;
 }
 
+void VisitMotionClassifierOptions(OptionVisitor* v, MotionClassifierOptions* c) {
+  using R = OptionRange;
+  v->Double("moving_chi2", &c->moving_chi2, R::AtLeast(0),
+            "velocity significance of moving evidence (13.82: 99.9 %, 2 dof)");
+  v->Double("moving_min_speed_mps", &c->moving_min_speed_mps, R::AtLeast(0),
+            "least speed of moving evidence");
+  v->Double("still_velocity_chi2", &c->still_velocity_chi2, R::AtLeast(0),
+            "velocity confidence region of still evidence (0: off)");
+  v->Double("still_restart_variance_ratio", &c->still_restart_variance_ratio, R::AtLeast(0),
+            "the still window reopens below this share of its largest variance (0: off)");
+  v->Int("moving_confirm_scans", &c->moving_confirm_scans, R::Between(1, 1000),
+         "consecutive scans of moving evidence that make an object MOVING");
+  v->Double("still_max_speed_mps", &c->still_max_speed_mps, R::AtLeast(0),
+            "largest mean speed over the still window of still evidence");
+  v->Double("still_hold_s", &c->still_hold_s, R::AtLeast(0), "shortest still window");
+  v->Double("started_moving_chi2", &c->started_moving_chi2, R::Above(0),
+            "significance of a landmark's mean offset that gives it velocity states");
+}
+
 }  // namespace slammtt

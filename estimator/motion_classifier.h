@@ -34,6 +34,8 @@
 
 #include <Eigen/Core>
 
+#include "common/options_schema.h"
+
 #include "estimator/slam_state.h"
 
 namespace slammtt {
@@ -52,6 +54,10 @@ struct MotionClassifierOptions {
   double still_hold_s = 1.5;
   double started_moving_chi2 = 23.0;      // 1e-5 false alarms per scan and landmark (2 dof)
 };
+
+// The schema of these options (common/options_schema.h; keys in EstimatorOptions' group
+// `classifier`).
+void VisitMotionClassifierOptions(OptionVisitor* visitor, MotionClassifierOptions* options);
 
 enum class ClassChange {
   kNone,

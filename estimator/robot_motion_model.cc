@@ -78,4 +78,18 @@ Eigen::Matrix2d OdometryIncrementCovariance(const OdometryIncrement& increment, 
   return covariance;
 }
 
+void VisitOdometryNoiseOptions(OptionVisitor* v, OdometryNoiseOptions* n) {
+  using R = OptionRange;
+  v->Double("distance_var_per_m", &n->distance_var_per_m, R::AtLeast(0),
+            "odometry distance variance [m^2] per metre travelled");
+  v->Double("rotation_var_per_rad", &n->rotation_var_per_rad, R::AtLeast(0),
+            "odometry rotation variance [rad^2] per radian turned");
+  v->Double("rotation_var_per_m", &n->rotation_var_per_m, R::AtLeast(0),
+            "odometry rotation variance [rad^2] per metre travelled");
+  v->Double("distance_var_per_s", &n->distance_var_per_s, R::AtLeast(0),
+            "odometry distance variance [m^2] per second (a standing robot stays well-posed)");
+  v->Double("rotation_var_per_s", &n->rotation_var_per_s, R::AtLeast(0),
+            "odometry rotation variance [rad^2] per second");
+}
+
 }  // namespace slammtt

@@ -10,6 +10,8 @@
 
 #include <Eigen/Core>
 
+#include "common/options_schema.h"
+
 namespace slammtt {
 
 // One step of eq. 1: the distance travelled by the axle centre (signed, negative when
@@ -63,6 +65,10 @@ struct OdometryNoiseOptions {
   double distance_var_per_s = 1e-6;            // floor that keeps a standing robot well-posed
   double rotation_var_per_s = 1e-6;
 };
+
+// The schema of these options (common/options_schema.h; keys in EstimatorOptions' group
+// `odometry_noise`).
+void VisitOdometryNoiseOptions(OptionVisitor* visitor, OdometryNoiseOptions* options);
 
 // Covariance (2x2, diagonal) over (distance_m, rotation_rad) of an increment spanning dt_s.
 Eigen::Matrix2d OdometryIncrementCovariance(const OdometryIncrement& increment, double dt_s,

@@ -82,9 +82,16 @@ class SlamState {
   int num_objects() const { return static_cast<int>(objects_.size()); }
 
   // Views of the active part of the mean and covariance (valid until the dimension changes).
-  Eigen::VectorBlock<Eigen::VectorXd> mean() { return mean_.head(dim_); }
+  // Taking a mutable view counts as a change (revision()).
+  Eigen::VectorBlock<Eigen::VectorXd> mean() {
+    ++revision_;
+    return mean_.head(dim_);
+  }
   Eigen::VectorBlock<const Eigen::VectorXd> mean() const { return mean_.head(dim_); }
-  Eigen::Block<Eigen::MatrixXd> covariance() { return cov_.topLeftCorner(dim_, dim_); }
+  Eigen::Block<Eigen::MatrixXd> covariance() {
+    ++revision_;
+    return cov_.topLeftCorner(dim_, dim_);
+  }
   Eigen::Block<const Eigen::MatrixXd> covariance() const {
     return cov_.topLeftCorner(dim_, dim_);
   }
@@ -95,7 +102,16 @@ class SlamState {
   double heading_drift_rad_per_m() const { return mean_(kHeadingDriftIndex); }
   double heading_drift_variance() const { return cov_(kHeadingDriftIndex, kHeadingDriftIndex); }
 
+  // A number that changes whenever the mean, the covariance or the layout of the state may have
+  // changed: every mutating call and every mutable view of the mean or the covariance counts
+  // (a view written after a later read of revision() is not seen: read it after the writes).
+  // Records (object(k).record) are book-keeping and do not count. What is computed from the
+  // state alone (the predicted observations, observation_predictions.h) can be reused while
+  // the revision stays the same. A copy of the state carries the revision of its original.
+  uint64_t revision() const { return revision_; }
+
   const std::vector<StateObject>& objects() const { return objects_; }
+  // For the record only: the slot indices belong to the state.
   StateObject& object(int k) { return objects_[static_cast<size_t>(k)]; }
   const StateObject& object(int k) const { return objects_[static_cast<size_t>(k)]; }
 
@@ -134,7 +150,10 @@ class SlamState {
   // Copies the lower triangle onto the upper one.
   void MirrorLowerTriangle();
   // Copies row i onto column i (after a transform computed the row: keeps P exactly symmetric).
-  void MirrorRowToColumn(int i) { cov_.col(i).head(dim_) = cov_.row(i).head(dim_).transpose(); }
+  void MirrorRowToColumn(int i) {
+    ++revision_;
+    cov_.col(i).head(dim_) = cov_.row(i).head(dim_).transpose();
+  }
 
  private:
   void Reserve(int dim);
@@ -145,6 +164,7 @@ class SlamState {
   Eigen::MatrixXd cov_;  // capacity x capacity; the top-left dim_ x dim_ block is the state's
   int dim_ = 0;
   std::vector<StateObject> objects_;
+  uint64_t revision_ = 0;
 };
 
 }  // namespace slammtt

@@ -56,51 +56,6 @@ bool ShouldPrune(const ObjectRecord& record, bool has_velocity, int64_t utime, b
          record.unseen_in_view_s > options.static_prune_unseen_in_view_s;
 }
 
-bool IsLostMover(const StateObject& object, bool unmeasured, int64_t utime,
-                 const TrackManagementOptions& options) {
-  const ObjectRecord& record = object.record;
-  return unmeasured && object.has_velocity() && record.confirmed &&
-         record.object_class == ObjectClass::kMoving &&
-         !ReportedConfirmed(record, true, utime, options);
-}
-
-std::vector<Reacquisition> ChooseReacquisitions(const std::vector<LostTrack>& lost,
-                                                const std::vector<BirthPoint>& births,
-                                                double reacquire_speed_mps) {
-  struct Pair {
-    double ratio;  // distance over reach: how much of the reachable disc the pair uses
-    Reacquisition pair;
-  };
-  std::vector<Pair> pairs;
-  if (reacquire_speed_mps <= 0.0) return {};
-  for (const BirthPoint& b : births) {
-    for (const LostTrack& t : lost) {
-      const double reach = reacquire_speed_mps * t.unseen_s;
-      const double distance = (b.point_m - t.last_seen_m).norm();
-      if (reach > 0.0 && distance <= reach) {
-        pairs.push_back({distance / reach, {b.measurement, t.object}});
-      }
-    }
-  }
-  std::stable_sort(pairs.begin(), pairs.end(),
-                   [](const Pair& a, const Pair& b) { return a.ratio < b.ratio; });
-  std::vector<Reacquisition> chosen;
-  std::vector<int> used_measurements;
-  std::vector<int> used_objects;
-  for (const Pair& p : pairs) {
-    if (std::find(used_measurements.begin(), used_measurements.end(), p.pair.measurement) !=
-            used_measurements.end() ||
-        std::find(used_objects.begin(), used_objects.end(), p.pair.object) !=
-            used_objects.end()) {
-      continue;
-    }
-    used_measurements.push_back(p.pair.measurement);
-    used_objects.push_back(p.pair.object);
-    chosen.push_back(p.pair);
-  }
-  return chosen;
-}
-
 bool ReportedConfirmed(const ObjectRecord& record, bool has_velocity, int64_t utime,
                        const TrackManagementOptions& options) {
   if (!record.confirmed) return false;
@@ -136,6 +91,32 @@ bool ExpectedVisible(const Eigen::Vector2d& predicted, double sigma_m,
     if (std::abs(WrapAngle(predicted(1) - f(1))) < angle) return false;
   }
   return true;
+}
+
+void VisitTrackManagementOptions(OptionVisitor* v, TrackManagementOptions* t) {
+  using R = OptionRange;
+  v->Int("confirm_hits", &t->confirm_hits, R::Between(1, 1000),
+         "hits that confirm a tentative object (T_th)");
+  v->Double("prune_unseen_s", &t->prune_unseen_s, R::AtLeast(0),
+            "an object with velocity unseen this long goes (paper 5.1: 3.5 s)");
+  v->Double("tentative_prune_unseen_s", &t->tentative_prune_unseen_s, R::AtLeast(0),
+            "a tentative object unseen this long goes");
+  v->Double("static_prune_unseen_in_view_s", &t->static_prune_unseen_in_view_s, R::AtLeast(0),
+            "a landmark missed this long where it should be seen goes (0: never)");
+  v->Double("prune_unseen_visible_s", &t->prune_unseen_visible_s, R::AtLeast(0),
+            "an object with velocity missed this long where it should be seen goes");
+  v->Double("shadow_radius_m", &t->shadow_radius_m, R::AtLeast(0),
+            "half-width of what a point feature hides, at its range");
+  v->Double("coast_confirmed_s", &t->coast_confirmed_s, R::AtLeast(0),
+            "reported unconfirmed after this long missed where it should be seen (0: off)");
+  v->Double("coast_unseen_s", &t->coast_unseen_s, R::AtLeast(0),
+            "reported unconfirmed after this long unseen (0: off)");
+  v->Double("prune_out_of_view_s", &t->prune_out_of_view_s, R::AtLeast(0),
+            "a MOVING object out of view goes after this long");
+  v->Double("max_coast_sigma_m", &t->max_coast_sigma_m, R::Above(0),
+            "a MOVING object out of view goes when its position sigma exceeds this");
+  v->Double("reacquire_speed_mps", &t->reacquire_speed_mps, R::AtLeast(0),
+            "walking speed bound of re-acquisition of lost movers (0: off)");
 }
 
 }  // namespace slammtt

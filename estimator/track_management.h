@@ -26,6 +26,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "common/options_schema.h"
+
 #include "estimator/range_bearing_model.h"
 #include "estimator/slam_state.h"
 
@@ -50,47 +52,14 @@ struct TrackManagementOptions {
   double coast_unseen_s = 0.75;
   double prune_out_of_view_s = 30.0;
   double max_coast_sigma_m = 2.5;
-  // Re-acquisition of lost movers (ChooseReacquisitions): the largest speed at which a person
-  // is assumed to have walked while unseen. 0 disables re-acquisition.
+  // Re-acquisition of lost movers (reacquisition.h): the largest speed at which a person is
+  // assumed to have walked while unseen. 0 disables re-acquisition.
   double reacquire_speed_mps = 2.0;
 };
 
-// Re-acquisition of a lost mover. A confirmed MOVING track that is no longer reported
-// (ReportedConfirmed: its person has not been seen for a while, typically out of the field of
-// view) keeps coasting along its last velocity, but a person nobody watched may have turned any
-// number of times: when they come back into view, their measurement lies outside every gate
-// and starts a new object, which must then be confirmed and found moving again (about 0.5 s of
-// misses) under a new identity. Instead:
-//  1. a measurement that starts a new object is tagged as the possible continuation of a lost
-//     track when the person can have walked there since the track was last seen:
-//     |point - last_seen_m| <= reacquire_speed_mps * unseen_s (ChooseReacquisitions; pairs
-//     one-to-one in increasing distance over reach);
-//  2. at the new object's second measurement (the next scan that associates it through the
-//     ordinary gates: a lone outlier, e.g. a landmark's measurement out of its gate, never gets
-//     one), if that track is still lost, the new object takes over its identity, first sighting
-//     and MOVING label and is confirmed; the lost track is removed. The new object keeps its
-//     own state: its velocity comes from its own two measurements, not from the old walk.
-// Otherwise the new object lives on as any new object.
-struct LostTrack {
-  int object = -1;
-  Eigen::Vector2d last_seen_m = Eigen::Vector2d::Zero();
-  double unseen_s = 0.0;
-};
-struct BirthPoint {
-  int measurement = -1;
-  Eigen::Vector2d point_m = Eigen::Vector2d::Zero();  // map frame
-};
-struct Reacquisition {
-  int measurement = -1;
-  int object = -1;
-};
-// Whether object `object` is a lost mover (step 1 above) at utime: confirmed MOVING with
-// velocity states, not measured this scan (`unmeasured`), no longer reported.
-bool IsLostMover(const StateObject& object, bool unmeasured, int64_t utime,
-                 const TrackManagementOptions& options);
-std::vector<Reacquisition> ChooseReacquisitions(const std::vector<LostTrack>& lost,
-                                                const std::vector<BirthPoint>& births,
-                                                double reacquire_speed_mps);
+// The schema of these options (common/options_schema.h; keys in EstimatorOptions' group
+// `tracks`).
+void VisitTrackManagementOptions(OptionVisitor* visitor, TrackManagementOptions* options);
 
 // Whether an object is reported as confirmed at utime (see coast_confirmed_s).
 bool ReportedConfirmed(const ObjectRecord& record, bool has_velocity, int64_t utime,

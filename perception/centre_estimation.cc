@@ -105,6 +105,47 @@ CentreEstimate RadiusCorrectedCentre(const ClusterView& cluster, double max_radi
   return estimate;
 }
 
+FitCircle::FitCircle(double distance, double bearing, double radius)
+    : distance_m(distance),
+      bearing_rad(bearing),
+      radius_m(radius),
+      cos_bearing(std::cos(bearing)),
+      sin_bearing(std::sin(bearing)),
+      centre_x_m(distance * cos_bearing),
+      centre_y_m(distance * sin_bearing) {
+  const double root = std::sqrt(distance * distance - radius * radius);
+  half_angle_rad = std::asin(radius / distance);
+  d_half_angle_d_distance = -radius / (distance * root);
+  d_half_angle_d_radius = 1.0 / root;
+}
+
+bool CirclePointResidual(const FitCircle& circle, double x_m, double y_m, double* residual_m,
+                         Eigen::Vector3d* jacobian) {
+  const double dx = circle.centre_x_m - x_m;
+  const double dy = circle.centre_y_m - y_m;
+  const double d = std::sqrt(dx * dx + dy * dy);
+  if (!(d > 0.0)) return false;
+  const double inv_d = 1.0 / d;
+  const double ux = dx * inv_d;
+  const double uy = dy * inv_d;
+  *jacobian = Eigen::Vector3d(ux * circle.cos_bearing + uy * circle.sin_bearing,
+                              circle.distance_m * (-ux * circle.sin_bearing +
+                                                   uy * circle.cos_bearing),
+                              -1.0);
+  *residual_m = d - circle.radius_m;
+  return true;
+}
+
+double CircleTangentBearing(const FitCircle& circle, int side, Eigen::Vector3d* jacobian) {
+  if (side < 0) {
+    *jacobian = Eigen::Vector3d(-circle.d_half_angle_d_distance, 1.0,
+                                -circle.d_half_angle_d_radius);
+    return circle.bearing_rad - circle.half_angle_rad;
+  }
+  *jacobian = Eigen::Vector3d(circle.d_half_angle_d_distance, 1.0, circle.d_half_angle_d_radius);
+  return circle.bearing_rad + circle.half_angle_rad;
+}
+
 CentreEstimate CircleFitCentre(const ClusterView& cluster, double max_radius_m, double sigma_r_m) {
   CentreEstimate fallback = RadiusCorrectedCentre(cluster, max_radius_m);
   fallback.fell_back = true;
@@ -130,10 +171,7 @@ CentreEstimate CircleFitCentre(const ClusterView& cluster, double max_radius_m, 
   // biased (the extent is cut by the occluder) and the fit iterates to convergence.
   const int max_steps = tangents == 2 ? 1 : 3;
   for (int iteration = 0; iteration < max_steps; ++iteration) {
-    const double cos_b = std::cos(bearing);
-    const double sin_b = std::sin(bearing);
-    const double cx = distance * cos_b;
-    const double cy = distance * sin_b;
+    const FitCircle circle(distance, bearing, radius);
     Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();  // J^T J over (D, theta, R)
     Eigen::Vector3d gradient = Eigen::Vector3d::Zero();  // J^T e
     auto add = [&](const Eigen::Vector3d& jacobian, double residual) {
@@ -141,29 +179,22 @@ CentreEstimate CircleFitCentre(const ClusterView& cluster, double max_radius_m, 
       gradient.noalias() += jacobian * residual;
     };
     for (size_t i = 0; i < n; ++i) {
-      const double dx = cx - cluster.x_m[i];
-      const double dy = cy - cluster.y_m[i];
-      const double d = std::sqrt(dx * dx + dy * dy);
-      if (!(d > 0.0)) return fallback;  // centre on a point: no gradient
-      const double inv_d = 1.0 / d;
-      const double ux = dx * inv_d;
-      const double uy = dy * inv_d;
-      add(Eigen::Vector3d(ux * cos_b + uy * sin_b, distance * (-ux * sin_b + uy * cos_b), -1.0) *
-              inv_sigma_r,
-          (d - radius) * inv_sigma_r);
+      double residual = 0.0;
+      Eigen::Vector3d jacobian;
+      if (!CirclePointResidual(circle, cluster.x_m[i], cluster.y_m[i], &residual, &jacobian)) {
+        return fallback;  // centre on a point: no gradient
+      }
+      add(jacobian * inv_sigma_r, residual * inv_sigma_r);
     }
-    // Half angle g = asin(R / D) subtended by the circle, and its derivatives.
-    const double root = std::sqrt(distance * distance - radius * radius);
-    const double g = std::asin(radius / distance);
-    const double dg_dd = -radius / (distance * root);
-    const double dg_dr = 1.0 / root;
     if (use_first) {
-      add(Eigen::Vector3d(-dg_dd, 1.0, -dg_dr) * inv_sigma_t,
-          (bearing - g - first_tangent) * inv_sigma_t);
+      Eigen::Vector3d jacobian;
+      const double tangent = CircleTangentBearing(circle, -1, &jacobian);
+      add(jacobian * inv_sigma_t, (tangent - first_tangent) * inv_sigma_t);
     }
     if (use_last) {
-      add(Eigen::Vector3d(dg_dd, 1.0, dg_dr) * inv_sigma_t,
-          (bearing + g - last_tangent) * inv_sigma_t);
+      Eigen::Vector3d jacobian;
+      const double tangent = CircleTangentBearing(circle, 1, &jacobian);
+      add(jacobian * inv_sigma_t, (tangent - last_tangent) * inv_sigma_t);
     }
     // Symmetric 3x3 solve by cofactors; refused when the system is near singular relative to
     // its diagonal (det <= product of the diagonal for a positive semi-definite matrix).

@@ -8,6 +8,7 @@
 // them on noisy arcs with known centres; docs/perception.md gives the figures.
 #pragma once
 
+#include <Eigen/Core>
 #include <cstddef>
 
 namespace slammtt {
@@ -70,5 +71,34 @@ CentreEstimate RadiusCorrectedCentre(const ClusterView& cluster, double max_radi
 // normal equations are singular or the result is not finite.
 inline constexpr size_t kMinCircleFitPoints = 5;
 CentreEstimate CircleFitCentre(const ClusterView& cluster, double max_radius_m, double sigma_r_m);
+
+// The circle of CircleFitCentre(): centre at range distance_m and bearing bearing_rad from the
+// sensor, radius radius_m, with what its residuals share (cos and sin of the bearing, the centre
+// in x and y, the half angle asin(R / D) it subtends and its derivatives; those are NaN when
+// R >= D).
+struct FitCircle {
+  FitCircle(double distance_m, double bearing_rad, double radius_m);
+  double distance_m;
+  double bearing_rad;
+  double radius_m;
+  double cos_bearing;
+  double sin_bearing;
+  double centre_x_m;
+  double centre_y_m;
+  double half_angle_rad;       // g = asin(R / D)
+  double d_half_angle_d_distance;  // dg / dD = -R / (D sqrt(D^2 - R^2))
+  double d_half_angle_d_radius;    // dg / dR = 1 / sqrt(D^2 - R^2)
+};
+
+// The fit's residual of a point (x_m, y_m): its distance to the circle, |p - c| - R, and its
+// Jacobian with respect to (D, theta, R). False (and nothing written) when the point is at the
+// centre, where the distance has no gradient.
+bool CirclePointResidual(const FitCircle& circle, double x_m, double y_m, double* residual_m,
+                         Eigen::Vector3d* jacobian);
+
+// The bearing of the circle's tangent ray on one side, theta - g (side -1: the first edge, at
+// the smaller bearing) or theta + g (side +1: the last edge), and its Jacobian with respect to
+// (D, theta, R). The fit's tangent residual is this minus the edge's expected tangent bearing.
+double CircleTangentBearing(const FitCircle& circle, int side, Eigen::Vector3d* jacobian);
 
 }  // namespace slammtt

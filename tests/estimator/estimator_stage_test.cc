@@ -1,8 +1,13 @@
 // The stage adapter: configuration, messages in and out, timing, bad messages, determinism.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
 #include <tuple>
+#include <vector>
 
 #include "estimator/estimator_stage.h"
 #include "slammtt_msgs/estimator_status_t.hpp"
@@ -77,11 +82,15 @@ TEST(EstimatorOptionsTest, DefaultsAndKeys) {
       "  seed: 42\n"
       "  sensor_forward_m: 0.1\n"
       "  field_of_view_deg: 180\n"
-      "  bearing_sigma_deg: 1\n"
+      "  default_bearing_sigma_deg: 1\n"
       "  initial_pose: [1, 2, 90]\n"
       "  level3: false\n"
-      "  max_hypotheses: 50\n"
-      "  max_static_updates_per_scan: 7\n",
+      "  ransac_max_hypotheses: 50\n"
+      "  max_static_updates_per_scan: 7\n"
+      "  tracks_confirm_hits: 4\n"
+      "  classifier_moving_chi2: 10\n"
+      "  odometry_noise_rotation_var_per_m: 0.002\n"
+      "  extrapolation_turn_sigma_degps: 90\n",
       "test.yaml");
   const EstimatorStageOptions o = ReadEstimatorOptions(config.Child("estimator"));
   EXPECT_EQ(o.seed, 42u);
@@ -93,6 +102,10 @@ TEST(EstimatorOptionsTest, DefaultsAndKeys) {
   EXPECT_FALSE(o.estimator.level3);
   EXPECT_EQ(o.estimator.ransac.max_hypotheses, 50);
   EXPECT_EQ(o.estimator.max_static_updates_per_scan, 7);
+  EXPECT_EQ(o.estimator.tracks.confirm_hits, 4);
+  EXPECT_EQ(o.estimator.classifier.moving_chi2, 10.0);
+  EXPECT_EQ(o.estimator.odometry_noise.rotation_var_per_m, 0.002);
+  EXPECT_EQ(o.estimator.extrapolation_turn_sigma_radps, 90.0 * M_PI / 180.0);
 }
 
 TEST(EstimatorOptionsTest, MistakesNameTheKey) {
@@ -106,13 +119,95 @@ TEST(EstimatorOptionsTest, MistakesNameTheKey) {
   };
   EXPECT_NE(error("estimator:\n  gate_d11: 3\n").find("gate_d11"), std::string::npos);
   EXPECT_NE(error("estimator:\n  mode: magic\n").find("mode"), std::string::npos);
-  EXPECT_NE(error("estimator:\n  max_hypotheses: 0\n").find("max_hypotheses"), std::string::npos);
-  EXPECT_NE(error("estimator:\n  gate_d1: 20\n  gate_d2: 10\n").find("gate_d2"), std::string::npos);
+  EXPECT_NE(
+      error("estimator:\n  ransac_max_hypotheses: 0\n")
+          .find("stack.yaml:2: estimator.ransac_max_hypotheses: must be in [1, 1e+06], got 0"),
+      std::string::npos);
+  EXPECT_NE(error("estimator:\n  gate_d1_chi2: 20\n  gate_d2_chi2: 10\n").find("gate_d2_chi2"),
+            std::string::npos);
   EXPECT_NE(error("estimator:\n  initial_pose: [1, 2]\n").find("initial_pose"), std::string::npos);
-  EXPECT_NE(error("estimator:\n  range_sigma_m: -1\n"), "");
+  EXPECT_NE(error("estimator:\n  default_range_sigma_m: -1\n").find("must be > 0, got -1"),
+            std::string::npos);
+  EXPECT_NE(error("estimator:\n  field_of_view_deg: 400\n").find("must be in (0, 360]"),
+            std::string::npos);
   EXPECT_NE(error("estimator:\n  max_static_updates_per_scan: -1\n")
                 .find("max_static_updates_per_scan"),
             std::string::npos);
+  EXPECT_NE(error("estimator:\n  tracks_confirm_hits: two\n").find("tracks_confirm_hits"),
+            std::string::npos);
+}
+
+// Every key of an earlier version is an error that names its new key, and the new key is read.
+TEST(EstimatorOptionsTest, RenamedKeysNameTheirNewKey) {
+  ASSERT_GE(RenamedEstimatorKeys().size(), 30u);
+  for (const RenamedKey& r : RenamedEstimatorKeys()) {
+    std::string what;
+    try {
+      const std::string yaml = "estimator:\n  " + r.old_key + ": 1\n";
+      ReadEstimatorOptions(Config::FromString(yaml, "old.yaml").Child("estimator"));
+    } catch (const ConfigError& e) {
+      what = e.what();
+    }
+    EXPECT_NE(what.find("estimator." + r.old_key + ": renamed to " + r.new_key), std::string::npos)
+        << what;
+  }
+}
+
+// The schema names every key once, the reader reads every one of them (a file that sets every
+// key to its default is accepted and gives the defaults), and docs/estimator.md carries the
+// generated table and the migration note.
+TEST(EstimatorOptionsTest, EveryKeyOfTheSchemaIsReadAndDocumented) {
+  const std::string table = EstimatorStageOptionsTable();
+  std::string yaml = "estimator:\n";
+  std::vector<std::string> keys;
+  std::istringstream rows(table);
+  std::string row;
+  while (std::getline(rows, row)) {
+    if (row.rfind("| `", 0) != 0) continue;
+    const size_t end = row.find('`', 3);
+    const std::string key = row.substr(3, end - 3);
+    const size_t value_end = row.find(" |", end + 4);
+    std::string value = row.substr(end + 4, value_end - end - 4);
+    keys.push_back(key);
+    yaml += "  " + key + ": " + value + "\n";
+  }
+  ASSERT_GE(keys.size(), 60u);
+  std::vector<std::string> sorted = keys;
+  std::sort(sorted.begin(), sorted.end());
+  EXPECT_EQ(std::adjacent_find(sorted.begin(), sorted.end()), sorted.end()) << "a key twice";
+  const EstimatorStageOptions o =
+      ReadEstimatorOptions(Config::FromString(yaml, "every.yaml").Child("estimator"));
+  EXPECT_EQ(o.estimator.tracks.confirm_hits, EstimatorOptions().tracks.confirm_hits);
+  EXPECT_EQ(o.estimator.gate_d1_chi2, EstimatorOptions().gate_d1_chi2);
+  std::ifstream file(std::string(SLAMMTT_SOURCE_DIR) + "/docs/estimator.md");
+  ASSERT_TRUE(file.good()) << "docs/estimator.md is part of the checkout";
+  std::ostringstream text;
+  text << file.rdbuf();
+  const std::string docs = text.str();
+  EXPECT_NE(docs.find(table), std::string::npos)
+      << "docs/estimator.md: replace the options table by `slammtt-estimator --options-table`";
+  for (const RenamedKey& r : RenamedEstimatorKeys()) {
+    EXPECT_NE(docs.find("| `" + r.old_key + "` | `" + r.new_key + "` |"), std::string::npos)
+        << "docs/estimator.md, Migration: " << r.old_key;
+  }
+}
+
+TEST(EstimatorOptionsTest, TheEstimatorRefusesUnusableOptions) {
+  EstimatorOptions options;
+  EXPECT_NO_THROW(Estimator{options});
+  options.tracks.confirm_hits = 0;
+  EXPECT_THROW(Estimator{options}, std::invalid_argument);
+  options = EstimatorOptions();
+  options.gate_d2_chi2 = options.gate_d1_chi2;
+  try {
+    Estimator estimator(options);
+    ADD_FAILURE() << "accepted gate_d2_chi2 = gate_d1_chi2";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("gate_d2_chi2"), std::string::npos) << e.what();
+  }
+  options = EstimatorOptions();
+  options.field_of_view_rad = std::nan("");
+  EXPECT_THROW(Estimator{options}, std::invalid_argument);
 }
 
 // Two legs of a person at (2, +-0.1) in the sensor frame, a post at 4 m ahead, and a person

@@ -8,7 +8,7 @@
 #include "estimator/constant_velocity_model.h"
 #include "estimator/range_bearing_model.h"
 #include "estimator/robot_motion_model.h"
-#include "tests/estimator/numerical_derivative.h"
+#include "tests/support/numerical_derivative.h"
 
 namespace slammtt {
 namespace {
@@ -133,6 +133,47 @@ TEST(ConstantVelocityModelTest, TransitionAndNoiseFollowEquationsSevenAndEight) 
   EXPECT_TRUE(q.isApprox(q.transpose()));
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix4d> eigen(q);
   EXPECT_GE(eigen.eigenvalues().minCoeff(), -1e-15);
+}
+
+TEST(ConstantVelocityModelTest, InPlaceOnAnObjectsSlotsIsTPTransposeT) {
+  // A 9-state vector: robot (4), the object's position at 4-5, another state at 6, the object's
+  // velocity at 7-8 (the slots need not be adjacent).
+  const int p = 4;
+  const int v = 7;
+  const double dt = 0.3;
+  Eigen::VectorXd x(9);
+  x << 1.0, 2.0, 0.3, 0.001, 5.0, -2.0, 7.0, 0.8, -1.1;
+  Eigen::MatrixXd a(9, 9);
+  for (int r = 0; r < 9; ++r) {
+    for (int c = 0; c < 9; ++c) a(r, c) = std::sin(1.0 + 3.0 * r + 7.0 * c);
+  }
+  const Eigen::MatrixXd cov = a * a.transpose() + Eigen::MatrixXd::Identity(9, 9);
+  Eigen::MatrixXd t = Eigen::MatrixXd::Identity(9, 9);
+  const Eigen::Matrix4d t_object = ConstantVelocityTransition(dt);
+  const int slots[4] = {p, p + 1, v, v + 1};
+  for (int r = 0; r < 4; ++r) {
+    for (int c = 0; c < 4; ++c) t(slots[r], slots[c]) = t_object(r, c);
+  }
+  Eigen::VectorXd mean = x;
+  Eigen::MatrixXd in_place = cov;
+  PredictConstantVelocityInPlace(dt, p, v, mean, in_place);
+  EXPECT_LT((mean - t * x).cwiseAbs().maxCoeff(), 1e-15);
+  EXPECT_LT((in_place - t * cov * t.transpose()).cwiseAbs().maxCoeff(), 1e-12);
+  // The object's own 4-state prediction is the same model.
+  const Eigen::Vector4d own(x(p), x(p + 1), x(v), x(v + 1));
+  const Eigen::Vector4d next = PredictConstantVelocity(own, dt);
+  EXPECT_EQ(next(0), mean(p));
+  EXPECT_EQ(next(1), mean(p + 1));
+  EXPECT_EQ(next(2), mean(v));
+  EXPECT_EQ(next(3), mean(v + 1));
+  // Only the object's position rows and columns change.
+  for (int r = 0; r < 9; ++r) {
+    for (int c = 0; c < 9; ++c) {
+      if (r != p && r != p + 1 && c != p && c != p + 1) {
+        EXPECT_EQ(in_place(r, c), cov(r, c));
+      }
+    }
+  }
 }
 
 TEST(RangeBearingModelTest, PredictsEquationsTenAndEleven) {

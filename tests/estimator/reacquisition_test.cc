@@ -1,5 +1,6 @@
-// Re-acquisition of lost movers (track_management.h: ChooseReacquisitions, IsLostMover; the two
-// steps in Estimator::ProcessScan): a person who walked out of a 180-degree view and comes back
+// Re-acquisition of lost movers (estimator/reacquisition.h: ChooseReacquisitions, IsLostMover,
+// the two steps TagPossibleContinuations and TakeOverLostIdentities, and both through
+// Estimator::ProcessScan): a person who walked out of a 180-degree view and comes back
 // somewhere they can have walked to keeps their identity from the second measurement on; a
 // measurement beyond walking reach, or one that an unmeasured static landmark has most likely
 // produced, does not carry an identity.
@@ -7,12 +8,15 @@
 
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <random>
 #include <vector>
 
 #include "estimator/estimator.h"
+#include "estimator/reacquisition.h"
 #include "estimator/track_management.h"
+#include "tests/estimator/step_scene.h"
 
 namespace slammtt {
 namespace {
@@ -48,6 +52,105 @@ TEST(ChooseReacquisitionsTest, OneToOneInIncreasingShareOfTheReach) {
   EXPECT_EQ(chosen[0].object, 7);
   EXPECT_EQ(chosen[1].measurement, 1);  // track 7 is taken: track 9 at 0.5 of its reach
   EXPECT_EQ(chosen[1].object, 9);
+}
+
+// A lost mover (id 7: confirmed MOVING, last seen at (1, 1) 2 s ago, so reachable within 4 m;
+// its estimate coasted to (6, 6)), a static landmark and a tentative object born at the
+// previous scan as its possible continuation (id 20, continues_id 7, one hit).
+struct LostMoverScene : testing::StepScene {
+  int lost = -1;
+  int landmark = -1;
+  int candidate = -1;
+  static constexpr int64_t kUtime = 2 * testing::kSecond;
+  LostMoverScene() {
+    lost = AddMover({6.0, 6.0}, 0.5, {1.0, 1.0}, 0.3, ObjectClass::kMoving, 7);
+    ObjectRecord& r = state.object(lost).record;
+    r.last_seen_m = Eigen::Vector2d(1.0, 1.0);
+    r.first_seen_utime = 1;
+    r.hits = 12;
+    landmark = AddLandmark({3.0, -1.0}, 0.02);
+    candidate = AddMover({1.0, 3.0}, 0.2, {0.0, 0.0}, 1.0, ObjectClass::kUndecided, 20);
+    ObjectRecord& c = state.object(candidate).record;
+    c.confirmed = false;
+    c.continues_id = 7;
+    c.hits = 1;
+  }
+  ScanAssociation Scan(const std::vector<uint8_t>& may_update) const {
+    return ScanAssociation{measurements, may_update, kUtime};
+  }
+};
+
+TEST(TagPossibleContinuationsTest, ABirthWithinReachOfALostMoverCarriesItsId) {
+  LostMoverScene scene;
+  ASSERT_TRUE(IsLostMover(scene.state.object(scene.lost), true, LostMoverScene::kUtime,
+                          scene.options.tracks));
+  scene.Measure({1.0, -2.5});   // 0: 3.5 m from the last sighting: within reach
+  // 1: 17 cm behind the unmeasured landmark (NIS about 22: between dn and 2 dn), nearer the last
+  // sighting than measurement 0, but most likely the landmark's: no identity.
+  scene.Measure(Eigen::Vector2d(3.0, -1.0) + 0.17 * Eigen::Vector2d(3.0, -1.0).normalized());
+  scene.Measure({1.0, -2.6});   // 2: assigned to something: not a birth
+  const std::vector<uint8_t> may_update = scene.AllMayUpdate();
+  const std::vector<double> nearest(3, std::numeric_limits<double>::infinity());
+  Assignment assignment(3, 3);
+  assignment.Set(2, scene.candidate);
+  ObservationPredictions predicted(scene.options.sensor);
+  const std::vector<int64_t> tags =
+      TagPossibleContinuations(scene.Scan(may_update), nearest, {}, scene.options, &predicted,
+                               scene.state, assignment);
+  EXPECT_EQ(tags, (std::vector<int64_t>{7, 0, 0}));
+  // Not for a track whose identity was taken over this scan, nor with re-acquisition off.
+  EXPECT_EQ(TagPossibleContinuations(scene.Scan(may_update), nearest, {scene.lost}, scene.options,
+                                     &predicted, scene.state, assignment),
+            (std::vector<int64_t>{0, 0, 0}));
+  scene.options.tracks.reacquire_speed_mps = 0.0;
+  EXPECT_EQ(TagPossibleContinuations(scene.Scan(may_update), nearest, {}, scene.options,
+                                     &predicted, scene.state, assignment),
+            (std::vector<int64_t>{0, 0, 0}));
+}
+
+TEST(TakeOverLostIdentitiesTest, ATaggedObjectAtItsSecondHitTakesTheLostIdentity) {
+  LostMoverScene scene;
+  scene.state.object(scene.candidate).record.hits = 2;  // this scan's hit recorded
+  Assignment assignment(1, 3);
+  assignment.Set(0, scene.candidate);
+  StepCounts counts;
+  const std::vector<int> taken_over = TakeOverLostIdentities(
+      LostMoverScene::kUtime, scene.options, assignment, &scene.state, &counts);
+  EXPECT_EQ(taken_over, std::vector<int>{scene.lost});
+  EXPECT_EQ(counts.reacquired, 1);
+  const ObjectRecord& c = scene.state.object(scene.candidate).record;
+  EXPECT_EQ(c.id, 7);
+  EXPECT_EQ(c.first_seen_utime, 1);
+  EXPECT_EQ(c.hits, 14);
+  EXPECT_TRUE(c.confirmed);
+  EXPECT_EQ(c.object_class, ObjectClass::kMoving);
+  EXPECT_EQ(c.continues_id, 0);
+}
+
+TEST(TakeOverLostIdentitiesTest, NotWithoutAMeasurementNorWhenTheTrackIsFoundAgain) {
+  {
+    LostMoverScene scene;
+    scene.state.object(scene.candidate).record.hits = 2;
+    StepCounts counts;
+    EXPECT_TRUE(TakeOverLostIdentities(LostMoverScene::kUtime, scene.options, Assignment(1, 3),
+                                       &scene.state, &counts)
+                    .empty());
+    EXPECT_EQ(scene.state.object(scene.candidate).record.continues_id, 7) << "kept for later";
+  }
+  {
+    LostMoverScene scene;
+    scene.state.object(scene.candidate).record.hits = 2;
+    Assignment assignment(2, 3);
+    assignment.Set(0, scene.candidate);
+    assignment.Set(1, scene.lost);  // the lost track got a measurement itself
+    StepCounts counts;
+    EXPECT_TRUE(TakeOverLostIdentities(LostMoverScene::kUtime, scene.options, assignment,
+                                       &scene.state, &counts)
+                    .empty());
+    EXPECT_EQ(counts.reacquired, 0);
+    EXPECT_EQ(scene.state.object(scene.candidate).record.id, 20);
+    EXPECT_EQ(scene.state.object(scene.candidate).record.continues_id, 0) << "tried once";
+  }
 }
 
 // A robot standing at the origin with a 180-degree view (+x ahead), exact odometry, two posts

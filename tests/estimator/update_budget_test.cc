@@ -16,6 +16,8 @@
 #include "estimator/estimator.h"
 #include "estimator/gating.h"
 #include "estimator/testing/point_world.h"
+#include "estimator/update_budget.h"
+#include "tests/estimator/step_scene.h"
 
 namespace slammtt {
 namespace {
@@ -36,6 +38,28 @@ std::vector<Candidate> EveryPair(const std::vector<PointMeasurement>& measuremen
     }
   }
   return pairs;
+}
+
+TEST(ObjectsThatMayUpdateTest, TheKLeastRecentlyUpdatedLandmarksWithAPairAndEveryMover) {
+  testing::StepScene scene;
+  const int64_t updated_at[] = {5, 3, 3, 9, 1};
+  for (int k = 0; k < 5; ++k) {
+    scene.AddLandmark({5.0, 1.0 * k}, 0.1);
+    scene.state.object(k).record.last_update_utime = updated_at[k];
+  }
+  const int mover = scene.AddMover({-5.0, 0.0}, 0.1, {0.0, 0.0}, 0.1);
+  // Landmark 4 (the stalest) has no pair this scan; the mover has one.
+  const std::vector<Candidate> gated = {{0, 0, 1.0}, {1, 1, 1.0}, {2, 2, 1.0}, {3, 3, 1.0},
+                                        {4, mover, 1.0}, {5, 1, 2.0}};
+  // Budget 2 among landmarks 0-3: the least recently updated are 1 and 2 (tie at 3: both).
+  EXPECT_EQ(ObjectsThatMayUpdate(scene.state, gated, 2),
+            (std::vector<uint8_t>{0, 1, 1, 0, 1, 1}));
+  // A tie at the cut goes to the lower index.
+  EXPECT_EQ(ObjectsThatMayUpdate(scene.state, gated, 1),
+            (std::vector<uint8_t>{0, 1, 0, 0, 1, 1}));
+  // No limit, or a budget as large as the competitors.
+  EXPECT_EQ(ObjectsThatMayUpdate(scene.state, gated, 0), std::vector<uint8_t>(6, 1));
+  EXPECT_EQ(ObjectsThatMayUpdate(scene.state, gated, 4), std::vector<uint8_t>(6, 1));
 }
 
 TEST(GatingTest, BearingLookupFindsExactlyThePairsOfTheFullLoop) {

@@ -13,6 +13,7 @@
 #include "perception/centre_estimation.h"
 #include "perception/segmenter.h"
 #include "tests/perception/synthetic_scan.h"
+#include "tests/support/numerical_derivative.h"
 
 namespace slammtt {
 namespace {
@@ -252,6 +253,55 @@ TEST(CentreRuleTest, RuleNamesRoundTrip) {
   CentreRule parsed = CentreRule::kCircleFit;
   EXPECT_FALSE(ParseCentreRule("middle", &parsed));
   EXPECT_EQ(parsed, CentreRule::kCircleFit);
+}
+
+// The circle fit's residuals (CirclePointResidual, CircleTangentBearing): their Jacobians with
+// respect to (D, theta, R) against central differences, at circles in front of and beside the
+// sensor, for points on every side of the centre and both tangents.
+TEST(CircleFitResidualTest, JacobiansMatchNumericalDerivatives) {
+  using testing::NumericalJacobian;
+  const Eigen::Vector3d circles[] = {{3.0, 0.2, 0.25}, {1.2, -1.4, 0.1}, {8.0, 2.9, 0.6}};
+  for (const Eigen::Vector3d& c : circles) {
+    const FitCircle circle(c(0), c(1), c(2));
+    for (double angle = 0.0; angle < 2.0 * M_PI; angle += 0.7) {
+      const double x = circle.centre_x_m + 0.8 * c(2) * std::cos(angle);
+      const double y = circle.centre_y_m + 0.8 * c(2) * std::sin(angle);
+      double residual = 0.0;
+      Eigen::Vector3d jacobian;
+      ASSERT_TRUE(CirclePointResidual(circle, x, y, &residual, &jacobian));
+      EXPECT_NEAR(residual, -0.2 * c(2), 1e-12);
+      const Eigen::MatrixXd numerical = NumericalJacobian(
+          [&](const Eigen::VectorXd& v) -> Eigen::VectorXd {
+            double e = 0.0;
+            Eigen::Vector3d unused;
+            CirclePointResidual(FitCircle(v(0), v(1), v(2)), x, y, &e, &unused);
+            return Eigen::Matrix<double, 1, 1>(e);
+          },
+          c);
+      EXPECT_LT((jacobian.transpose() - numerical).cwiseAbs().maxCoeff(), 1e-7)
+          << "circle " << c.transpose() << ", point at angle " << angle;
+    }
+    for (int side : {-1, 1}) {
+      Eigen::Vector3d jacobian;
+      const double tangent = CircleTangentBearing(circle, side, &jacobian);
+      EXPECT_NEAR(tangent, c(1) + side * std::asin(c(2) / c(0)), 1e-12);
+      const Eigen::MatrixXd numerical = NumericalJacobian(
+          [&](const Eigen::VectorXd& v) -> Eigen::VectorXd {
+            Eigen::Vector3d unused;
+            return Eigen::Matrix<double, 1, 1>(
+                CircleTangentBearing(FitCircle(v(0), v(1), v(2)), side, &unused));
+          },
+          c);
+      EXPECT_LT((jacobian.transpose() - numerical).cwiseAbs().maxCoeff(), 1e-7)
+          << "circle " << c.transpose() << ", side " << side;
+    }
+  }
+  // A point at the centre has no gradient.
+  const FitCircle circle(3.0, 0.0, 0.2);
+  double residual = 0.0;
+  Eigen::Vector3d jacobian;
+  EXPECT_FALSE(CirclePointResidual(circle, circle.centre_x_m, circle.centre_y_m, &residual,
+                                   &jacobian));
 }
 
 }  // namespace

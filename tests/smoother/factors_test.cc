@@ -1,5 +1,5 @@
 // Every analytic Jacobian of the smoother's models against central differences
-// (tests/estimator/numerical_derivative.h), at random poses and points, with a laser mount
+// (tests/support/numerical_derivative.h), at random poses and points, with a laser mount
 // offset for the range-bearing model.
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 
 #include "smoother/factors.h"
 #include "smoother/pose2.h"
-#include "tests/estimator/numerical_derivative.h"
+#include "tests/support/numerical_derivative.h"
 
 namespace slammtt {
 namespace {

@@ -12,7 +12,7 @@
 #include "common/angle.h"
 #include "smoother/factors.h"
 #include "smoother/pose2.h"
-#include "tests/estimator/numerical_derivative.h"
+#include "tests/support/numerical_derivative.h"
 
 namespace slammtt {
 namespace {

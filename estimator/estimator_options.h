@@ -1,0 +1,149 @@
+// The estimator's options (estimator.h): the association mode, the sensor, the motion models,
+// robustness limits, the gates of Algorithm 2 and the options of each step. Defaults from the
+// paper where it gives one (Bahraini, Bozorg and Rad, Mechatronics 2018, section 5.1).
+#pragma once
+
+#include <Eigen/Core>
+#include <cmath>
+#include <string>
+
+#include "common/options_schema.h"
+#include "estimator/ml_ransac.h"
+#include "estimator/motion_classifier.h"
+#include "estimator/range_bearing_model.h"
+#include "estimator/robot_motion_model.h"
+#include "estimator/track_management.h"
+
+namespace slammtt {
+
+enum class AssociationMode { kMlRansac, kStaticNearestNeighbour, kRansacAllPairs };
+
+// How close to the edge of the field of view a feature's angular extent must come to count as
+// cut by it (EstimatorOptions::edge_of_view_sigma_m): two beams of the paper's 0.5-degree laser,
+// as the outermost beam that hit the object may be up to one spacing inside the edge.
+inline constexpr double kEdgeOfViewMargin_rad = 1.0 * M_PI / 180.0;
+
+struct EstimatorOptions {
+  AssociationMode mode = AssociationMode::kMlRansac;
+  Eigen::Vector3d initial_pose = Eigen::Vector3d::Zero();  // map frame = start pose
+
+  // Sensor (paper eq. 11 offset; section 5.1 noise and range).
+  SensorMount sensor;
+  double default_range_sigma_m = 0.2;            // paper 5.1: 0.2 m
+  double default_bearing_sigma_rad = 2.0 * M_PI / 180.0;  // paper 5.1: 2 degrees
+  bool use_feature_covariance = true;            // a feature's own R when it carries one
+  double min_range_sigma_m = 0.0;                // floors applied to a feature's own R
+  double min_bearing_sigma_rad = 0.0;
+  double min_range_m = 0.01;                     // features outside are rejected
+  double max_range_m = 30.0;                     // paper 5.1: 30 m
+  double field_of_view_rad = 2.0 * M_PI;         // for "in view" (static landmark pruning)
+  // Range up to which a person-sized object is expected to produce a feature (0: max_range_m).
+  // With raw scans the segmenter needs a few beams on an object, so a 0.5 m person is detected
+  // up to about 0.5 m / (min_points * resolution): 19 m at 0.5 degrees and 3 points.
+  double detection_range_m = 0.0;
+  // A cluster that reaches the edge of a limited field of view is only the visible part of its
+  // object: the rest lies beyond the edge, so its centre can be off by up to about one object
+  // radius, along the range and across it (a person leaving a 180-degree view beside the robot:
+  // 0.15-0.25 m on s2-lobby). Such a feature gets this standard deviation added in both
+  // directions (range variance + s^2, bearing variance + min(s / range, pi)^2). A feature is at the
+  // edge when its angular extent, atan(width / 2 / range) either side of its bearing, comes
+  // within kEdgeOfViewMargin_rad of the edge. 0 disables it.
+  double edge_of_view_sigma_m = 0.3;
+
+  // Motion models.
+  OdometryNoiseOptions odometry_noise;
+  // The odometry's systematic heading drift b [rad per metre travelled], estimated as a state
+  // (slam_state.h, ekf_prediction.h): prior b ~ N(0, sigma^2). Its physical origin is a
+  // difference of the two wheels' effective diameters (UMBmark's type-B error, Borenstein and
+  // Feng 1996): a relative difference e on an axle of length L turns the odometry by e / L
+  // radians per metre. The P3-DX's wheels (195 mm) are about 0.33 m apart (docs/world.md,
+  // odometry.axle_length_m); pneumatic tyres differ by up to about 0.5 % in effective
+  // diameter with load and pressure, which gives |b| up to 0.005 / 0.33 = 0.015 rad/m: the
+  // default puts that at 2 sigma. 0 turns the drift state off (b stays exactly 0).
+  double heading_drift_sigma_rad_per_m = 0.0075;
+  // Random walk of b [rad^2/m^2 per metre travelled]: 1e-8 lets b change by 1e-3 rad/m (a
+  // 0.03 % change of a wheel's size) over 100 m, the order of a tyre warming up or losing
+  // pressure over a run. Ignored when the prior sigma is 0.
+  double heading_drift_walk_var_per_m = 1e-8;
+  // sigma_Q of eq. 8. A MOVING object walks at a steady velocity between turns (its turns are
+  // manoeuvres, below); an UNDECIDED one gets a more forgiving model while its velocity is
+  // judged, so that its velocity covariance does not become overconfident about a static
+  // object seen from a drifting robot.
+  double mover_acceleration_sigma_mps2 = 0.02;
+  double undecided_acceleration_sigma_mps2 = 0.2;
+  double new_object_velocity_sigma_mps = 1.0;    // prior of a new object's velocity
+  // Manoeuvres: a MOVING object with no measurement after level 2 while an
+  // unassigned measurement lies inside its gate dn gets a velocity jump of this standard
+  // deviation over the last interval (ekf_prediction.h: AddVelocityJump) before level 3 tries
+  // again. 0 disables it.
+  double manoeuvre_velocity_sigma_mps = 1.5;
+
+  // Robustness.
+  double max_time_gap_s = 1.0;                   // longer gaps inflate the uncertainty
+  // The longest interval one prediction covers: a longer gap (the process was paused, a
+  // corrupted utime years ahead) is inflated, and movers and extrapolated motion predicted, as
+  // if it were this long. Minutes without a measurement leave a person anywhere and a robot
+  // without odometry beyond what an EKF can recover; unbounded, the inflation (0.5 m/s, 0.2
+  // rad/s, 1 m/s per mover, each times the gap) drives the covariance's condition number past
+  // what double precision updates stay positive semi-definite at (a 2e4 s gap did).
+  double max_prediction_s = 30.0;
+  // A message older than the newest of its stream by more than this is not a late message but
+  // a new time base: a log played again or another log (lcm-logplayer), a restarted simulator,
+  // the robot's clock stepped back, or the return to normal after one corrupted far-future
+  // utime. The estimator starts over from the initial pose with an empty map (track ids keep
+  // counting up, the counters keep counting) instead of dropping everything until the clock
+  // passes its newest utime. Shorter steps back are out-of-order messages and are dropped: 2 s
+  // is far beyond any delivery delay (LCM delivers within milliseconds; a scan's FEATURES come
+  // within its processing time) and shorter than any log worth replaying.
+  double time_jump_back_restart_s = 2.0;
+  double gap_robot_position_sigma_mps = 0.5;     // added robot std per second of gap
+  double gap_robot_heading_sigma_radps = 0.2;
+  double gap_mover_velocity_sigma_mps = 1.0;     // added to every mover's velocity std
+  double extrapolation_speed_sigma_mps = 0.3;    // noise of motion without odometry, per
+  // second of extrapolation. The turn's is 0.3 rad/s as the configuration reader has always
+  // applied it, through degrees and back: one unit in the last place below 0.3, kept so that
+  // the outputs of every shipped run stay the same (scripts/check-outputs-identical.py).
+  double extrapolation_turn_sigma_radps = 0.3 * 180.0 / M_PI * M_PI / 180.0;
+  int max_objects = 500;
+
+  // Association (Algorithm 2). Gates are NIS thresholds (chi-square, 2 dof).
+  double gate_d1_chi2 = 9.21;                    // 99 %
+  bool level3 = true;
+  double gate_d2_chi2 = 13.82;                   // 99.9 %
+  double new_object_gate_dn_chi2 = 20.0;
+  RansacOptions ransac;
+  int update_group_size = 32;                    // observations per batch update (ekf_update.h)
+  // Per-scan budget of static-landmark updates (0: no limit). Every measurement is still gated
+  // and associated (hits, misses, classification and new objects see every association), and
+  // objects with velocity states (moving, undecided) always update; but of the static
+  // landmarks that have a candidate pair this scan, only the K least recently updated may
+  // update the state (ties: lower object index). The choice depends on the state's
+  // book-keeping only, never on the measurements' values, so dropping the others keeps the
+  // filter consistent: it only gives up information. The dense update costs O(n^2) per
+  // observation, so this bounds the cost of a scan that sees hundreds of landmarks
+  // (docs/estimator.md, "Speed").
+  int max_static_updates_per_scan = 32;
+
+  TrackManagementOptions tracks;
+  MotionClassifierOptions classifier;
+};
+
+// The options schema of the estimator (common/options_schema.h): every option once, with its
+// range, unit and doc, in the order of EstimatorOptions. The configuration reader
+// (ReadEstimatorOptions, estimator_stage.h), the validation (CheckEstimatorOptions) and the
+// table of docs/estimator.md (EstimatorOptionsTable) come from it. Keys: the field's path,
+// groups joined by '_' (sensor_forward_m, ransac_max_hypotheses, tracks_confirm_hits,
+// classifier_moving_chi2), angles in degrees (field_of_view_deg).
+void VisitEstimatorOptions(OptionVisitor* visitor, EstimatorOptions* options);
+
+// Empty when the options are usable, else one line naming the first bad option by its key:
+// each value within its range (the schema), then the conditions between options (max_range_m
+// > min_range_m, max_prediction_s >= max_time_gap_s, gate_d2_chi2 > gate_d1_chi2 with level 3).
+std::string CheckEstimatorOptions(const EstimatorOptions& options);
+
+// The Markdown table of every option: key, default, valid values, one line.
+std::string EstimatorOptionsTable();
+
+const char* AssociationModeName(AssociationMode mode);
+
+}  // namespace slammtt

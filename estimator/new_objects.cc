@@ -1,0 +1,48 @@
+#include "estimator/new_objects.h"
+
+#include <limits>
+
+#include "estimator/motion_classifier.h"
+#include "estimator/range_bearing_model.h"
+#include "estimator/track_management.h"
+
+namespace slammtt {
+
+void AddNewObjects(const ScanAssociation& scan, const std::vector<double>& nearest_nis,
+                   const std::vector<int64_t>& continues_id, const EstimatorOptions& options,
+                   const Assignment& assignment, int64_t* next_id, SlamState* state,
+                   StepCounts* counts) {
+  const bool static_world = options.mode == AssociationMode::kStaticNearestNeighbour;
+  for (int i = 0; i < assignment.num_measurements(); ++i) {
+    if (!assignment.MeasurementFree(i) ||
+        nearest_nis[static_cast<size_t>(i)] < options.new_object_gate_dn_chi2) {
+      continue;
+    }
+    if (state->num_objects() >= options.max_objects) {
+      ++counts->objects_refused;
+      continue;
+    }
+    const PointMeasurement& z = scan.measurements[static_cast<size_t>(i)];
+    Eigen::Matrix<double, 2, 3> jacobian_robot;
+    Eigen::Matrix2d jacobian_measurement;
+    const Eigen::Vector2d position = PointFromRangeBearing(
+        state->robot_pose(), z.range_bearing, options.sensor, &jacobian_robot,
+        &jacobian_measurement);
+    ObjectRecord record = NewObjectRecord(
+        (*next_id)++, scan.utime, static_world ? ObjectClass::kStatic : ObjectClass::kUndecided);
+    RestartStillWindow(position, std::numeric_limits<double>::infinity(), scan.utime, &record);
+    record.confirmed = static_world;
+    record.last_seen_m = position;
+    record.continues_id = continues_id[static_cast<size_t>(i)];
+    const int k = state->AddObject(
+        position, jacobian_robot,
+        jacobian_measurement * z.covariance * jacobian_measurement.transpose(), record);
+    if (!static_world) {
+      const double sigma = options.new_object_velocity_sigma_mps;
+      state->AddVelocity(k, Eigen::Vector2d::Zero(), sigma * sigma * Eigen::Matrix2d::Identity());
+    }
+    ++counts->new_objects;
+  }
+}
+
+}  // namespace slammtt

@@ -1,0 +1,26 @@
+// New objects (paper Algorithm 2, line 13): every measurement that no level took and whose NIS
+// to every object is at least gate dn starts an object, at the point the inverse of eq. 10
+// gives from the robot's pose, with its cross-covariance with the robot (SlamState::AddObject).
+// A new object is UNDECIDED and tentative, with zero velocity and velocity covariance
+// new_object_velocity_sigma_mps^2 I, its "still" window open, and the lost track it may continue
+// (reacquisition.h). In baseline (a), the static world, it is a STATIC landmark without
+// velocity states, confirmed at once (plain EKF-SLAM maps a landmark at its first sighting).
+// At most max_objects objects: the measurements beyond are refused and counted.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "estimator/association.h"
+
+namespace slammtt {
+
+// Adds the new objects with ids from *next_id on (counts->new_objects, objects_refused).
+// `nearest_nis`: per measurement (scan_gating.h); `continues_id`: per measurement, the lost
+// track's id it may continue (0: none).
+void AddNewObjects(const ScanAssociation& scan, const std::vector<double>& nearest_nis,
+                   const std::vector<int64_t>& continues_id, const EstimatorOptions& options,
+                   const Assignment& assignment, int64_t* next_id, SlamState* state,
+                   StepCounts* counts);
+
+}  // namespace slammtt

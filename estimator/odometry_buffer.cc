@@ -1,0 +1,72 @@
+#include "estimator/odometry_buffer.h"
+
+#include <algorithm>
+
+#include "common/angle.h"
+#include "common/utime.h"
+
+namespace slammtt {
+
+void OdometryBuffer::Add(const OdometryReading& reading) {
+  OdometryReading r = reading;
+  r.pose(2) = WrapAngle(r.pose(2));
+  if (!cursor_) {
+    cursor_ = Cursor{r.utime, r.pose, r.linear_mps, r.angular_radps};
+    return;
+  }
+  if (r.utime <= cursor_->utime) {
+    // Late reading (older than the last scan): its velocities are the freshest we have.
+    cursor_->linear_mps = r.linear_mps;
+    cursor_->angular_radps = r.angular_radps;
+    return;
+  }
+  readings_.push_back(r);
+}
+
+bool OdometryBuffer::AddMotionTo(int64_t utime, const OdometryNoiseOptions& noise,
+                                 const ExtrapolationNoise& extrapolation,
+                                 RobotMotionAccumulator* motion) {
+  if (!cursor_) return false;
+  bool covered = false;
+  Cursor previous = *cursor_;
+  while (!readings_.empty() && readings_.front().utime <= utime) {
+    const OdometryReading& r = readings_.front();
+    const OdometryIncrement increment = IncrementBetweenOdometryPoses(previous.pose, r.pose);
+    motion->Add(increment, OdometryIncrementCovariance(
+                               increment, SecondsBetween(r.utime, previous.utime), noise));
+    previous = Cursor{r.utime, r.pose, r.linear_mps, r.angular_radps};
+    readings_.pop_front();
+    covered = true;
+  }
+  if (!readings_.empty()) {
+    // The scan falls between two readings: the part of the next increment up to the scan.
+    const OdometryReading& next = readings_.front();
+    const double fraction = MicrosecondsBetween(utime, previous.utime) /
+                            MicrosecondsBetween(next.utime, previous.utime);
+    const OdometryIncrement full = IncrementBetweenOdometryPoses(previous.pose, next.pose);
+    const OdometryIncrement part{fraction * full.distance_m, fraction * full.rotation_rad};
+    motion->Add(part,
+                OdometryIncrementCovariance(part, SecondsBetween(utime, previous.utime), noise));
+    cursor_ = Cursor{utime, PredictRobotPose(previous.pose, part), next.linear_mps,
+                     next.angular_radps};
+    return true;
+  }
+  // No reading at or after the scan yet: extrapolate with the last velocities, with noise that
+  // grows with the extrapolated time.
+  const double tau = std::min(SecondsBetween(utime, previous.utime), extrapolation.max_s);
+  const OdometryIncrement part{previous.linear_mps * tau, previous.angular_radps * tau};
+  Eigen::Matrix2d covariance = OdometryIncrementCovariance(part, tau, noise);
+  covariance(0, 0) += extrapolation.speed_var_per_s2 * tau * tau;
+  covariance(1, 1) += extrapolation.turn_var_per_s2 * tau * tau;
+  motion->Add(part, covariance);
+  cursor_ = Cursor{utime, PredictRobotPose(previous.pose, part), previous.linear_mps,
+                   previous.angular_radps};
+  return covered;
+}
+
+void OdometryBuffer::Clear() {
+  cursor_.reset();
+  readings_.clear();
+}
+
+}  // namespace slammtt

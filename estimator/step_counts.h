@@ -1,0 +1,30 @@
+// What one scan of the estimator did (ScanResult::counts, estimator.h): every step of
+// Algorithm 2 adds its own counts.
+#pragma once
+
+namespace slammtt {
+
+// What one scan did.
+struct StepCounts {
+  int features = 0;             // received
+  int features_rejected = 0;
+  int features_at_edge_of_view = 0;  // cut by the edge of the field of view (R inflated)
+  int level1_updates = 0;
+  int level2_updates = 0;
+  int level3_updates = 0;
+  int manoeuvres = 0;           // movers given a velocity jump before level 3
+  int hypotheses = 0;
+  int new_objects = 0;
+  int reacquired = 0;           // lost movers seen again (identity taken over, reacquisition.h)
+  int objects_refused = 0;      // by the object cap
+  int pruned = 0;
+  int became_moving = 0;
+  int became_static = 0;
+  int started_moving = 0;
+  int updates_failed = 0;
+  int static_updates_skipped = 0;  // associated landmarks left out by the per-scan budget
+  int observation_predictions = 0;  // times every object's observation was predicted (once
+                                    // per state the scan passed through)
+};
+
+}  // namespace slammtt

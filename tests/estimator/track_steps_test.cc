@@ -1,0 +1,233 @@
+// The track-management steps of a scan: hits and misses (estimator/hits_and_misses.h),
+// classification (estimator/classification.h), pruning (estimator/pruning.h) and new objects
+// (estimator/new_objects.h).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "estimator/classification.h"
+#include "estimator/hits_and_misses.h"
+#include "estimator/new_objects.h"
+#include "estimator/pruning.h"
+#include "estimator/scan_gating.h"
+#include "tests/estimator/step_scene.h"
+
+namespace slammtt {
+namespace {
+
+using testing::kSecond;
+using testing::StepScene;
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+// ---------------------------------------------------------------------------------------------
+// Hits and misses.
+
+TEST(HitsAndMissesTest, AMeasuredObjectIsHitAnUnmeasuredOneMissed) {
+  StepScene scene;
+  scene.options.field_of_view_rad = M_PI;
+  const int seen = scene.AddMover({4.0, 0.0}, 0.05, {0.0, 0.0}, 0.1);
+  const int unseen = scene.AddMover({0.0, 4.0}, 0.05, {0.0, 0.0}, 0.1);  // 90 degrees: edge
+  const int behind = scene.AddMover({-4.0, 0.0}, 0.05, {0.0, 0.0}, 0.1);   // out of view
+  const int in_view = scene.AddMover({4.0, -2.0}, 0.05, {0.0, 0.0}, 0.1);  // in view, missed
+  scene.state.object(seen).record.hits = 2;
+  scene.Measure({4.02, 0.0});
+  Assignment assignment(1, 4);
+  assignment.Set(0, seen);
+  const std::vector<uint8_t> may_update = scene.AllMayUpdate();
+  const ScanAssociation scan{scene.measurements, may_update, 3 * kSecond};
+  RecordHitsAndMisses(scan, {0.0}, 0.125, scene.options, scene.Predictions(), assignment,
+                      &scene.state);
+  const ObjectRecord& hit = scene.state.object(seen).record;
+  EXPECT_EQ(hit.hits, 3);
+  EXPECT_EQ(hit.last_seen_utime, 3 * kSecond);
+  EXPECT_EQ(hit.last_seen_m, scene.state.position(seen));
+  EXPECT_EQ(hit.unseen_observable_s, 0.0);
+  EXPECT_EQ(scene.state.object(unseen).record.unseen_observable_s, 0.0) << "not surely in view";
+  EXPECT_EQ(scene.state.object(behind).record.unseen_observable_s, 0.0);
+  EXPECT_EQ(scene.state.object(in_view).record.unseen_observable_s, 0.125);
+  EXPECT_EQ(scene.state.object(in_view).record.unseen_in_view_s, 0.125);
+}
+
+TEST(HitsAndMissesTest, AnObjectInTheShadowOfAFeatureIsNotExpectedVisible) {
+  StepScene scene;
+  const int hidden = scene.AddMover({8.0, 0.0}, 0.05, {0.0, 0.0}, 0.1);
+  scene.Measure({4.0, 0.0});  // something in front of it
+  const std::vector<uint8_t> may_update = scene.AllMayUpdate();
+  const ScanAssociation scan{scene.measurements, may_update, kSecond};
+  RecordHitsAndMisses(scan, {0.5}, 0.125, scene.options, scene.Predictions(), Assignment(1, 1),
+                      &scene.state);
+  EXPECT_EQ(scene.state.object(hidden).record.unseen_observable_s, 0.125);
+  EXPECT_EQ(scene.state.object(hidden).record.unseen_in_view_s, 0.0);
+  // The static world of baseline (a) counts no misses.
+  scene.options.mode = AssociationMode::kStaticNearestNeighbour;
+  RecordHitsAndMisses(scan, {0.5}, 0.125, scene.options, scene.Predictions(), Assignment(1, 1),
+                      &scene.state);
+  EXPECT_EQ(scene.state.object(hidden).record.unseen_observable_s, 0.125);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Classification.
+
+TEST(ClassificationTest, ALandmarksOwnMeasurementSpeaksForItElseTheNearestFreeOneInsideDn) {
+  StepScene scene;
+  const int measured = scene.AddLandmark({5.0, 0.0}, 0.05);
+  const int unmeasured = scene.AddLandmark({0.0, 5.0}, 0.05);
+  const int mover = scene.AddMover({-5.0, 0.0}, 0.05, {0.0, 0.0}, 0.1);
+  scene.Measure({5.0, 0.02});   // 0: the landmark's own
+  scene.Measure({5.0, -0.02});  // 1: also near it, unassigned
+  scene.Measure({0.05, 5.2});   // 2: 20 cm from the other landmark, unassigned (NIS < dn)
+  scene.Measure({0.0, 5.1});    // 3: 10 cm from it: nearer
+  scene.Measure({-5.0, 0.01});  // 4: the mover's (movers are judged by their velocity)
+  Assignment assignment(5, 3);
+  assignment.Set(0, measured);
+  ObservationPredictions predicted(scene.options.sensor);
+  const ScanGating gating = GateScan(scene.measurements, predicted.At(scene.state), scene.options);
+  const std::vector<int> m = LandmarkMeasurements(gating.gated, scene.options, scene.state,
+                                                  assignment);
+  EXPECT_EQ(m[static_cast<size_t>(measured)], 0);
+  EXPECT_EQ(m[static_cast<size_t>(unmeasured)], 3);
+  EXPECT_EQ(m[static_cast<size_t>(mover)], -1);
+}
+
+TEST(ClassificationTest, AFastObjectBecomesMovingAStillOneStaticAMovedLandmarkUndecided) {
+  StepScene scene;
+  scene.options.classifier.moving_confirm_scans = 1;
+  const int fast = scene.AddMover({4.0, 2.0}, 0.05, {1.0, 0.0}, 0.05, ObjectClass::kUndecided);
+  const int still = scene.AddMover({4.0, -2.0}, 0.05, {0.0, 0.0}, 0.02, ObjectClass::kMoving);
+  ObjectRecord& r = scene.state.object(still).record;
+  r.still_anchor_m = scene.state.position(still);
+  r.still_anchor_utime = 0;
+  r.still_anchor_variance_m2 = 0.0025;
+  r.last_seen_utime = 5 * kSecond;  // measured this scan, still for 5 s
+  const int landmark = scene.AddLandmark({-4.0, 0.0}, 0.02);
+  scene.state.object(landmark).record.num_offsets = 0;
+  // Measurements 12 cm beside the landmark at every scan (inside its gate dn): it has moved.
+  const std::vector<uint8_t> may_update = {1, 1, 1};
+  int started = 0;
+  for (int scan_index = 0; scan_index < 4 && started == 0; ++scan_index) {
+    scene.measurements.clear();
+    scene.Measure({-4.0, 0.12});
+    ObservationPredictions predicted(scene.options.sensor);
+    const ScanGating gating =
+        GateScan(scene.measurements, predicted.At(scene.state), scene.options);
+    const ScanAssociation scan{scene.measurements, may_update, 5 * kSecond};
+    Assignment assignment(1, 3);
+    StepCounts counts;
+    ClassifyObjects(scan, gating.gated, scene.options, scene.Predictions(), assignment,
+                    &scene.state, &counts);
+    if (scan_index == 0) {
+      EXPECT_EQ(counts.became_moving, 1);
+      EXPECT_EQ(counts.became_static, 1);
+      EXPECT_EQ(scene.state.object(fast).record.object_class, ObjectClass::kMoving);
+      EXPECT_EQ(scene.state.object(still).record.object_class, ObjectClass::kStatic);
+      EXPECT_FALSE(scene.state.object(still).has_velocity());
+    }
+    started += counts.started_moving;
+  }
+  EXPECT_EQ(started, 1);
+  EXPECT_EQ(scene.state.object(landmark).record.object_class, ObjectClass::kUndecided);
+  EXPECT_TRUE(scene.state.object(landmark).has_velocity());
+}
+
+TEST(ClassificationTest, TheStaticWorldClassifiesNothing) {
+  StepScene scene;
+  scene.options.mode = AssociationMode::kStaticNearestNeighbour;
+  scene.options.classifier.moving_confirm_scans = 1;
+  scene.AddMover({4.0, 2.0}, 0.05, {1.0, 0.0}, 0.05, ObjectClass::kUndecided);
+  const std::vector<uint8_t> may_update = {1};
+  const ScanAssociation scan{scene.measurements, may_update, kSecond};
+  ClassifyObjects(scan, {}, scene.options, scene.Predictions(), Assignment(0, 1), &scene.state,
+                  &scene.counts);
+  EXPECT_EQ(scene.counts.became_moving, 0);
+  EXPECT_EQ(scene.state.object(0).record.object_class, ObjectClass::kUndecided);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Pruning.
+
+TEST(PruningTest, DropsWhatShouldPruneSaysAndTheTakenOverTracksWithoutCountingThem) {
+  StepScene scene;
+  const int stale = scene.AddMover({4.0, 0.0}, 0.05, {0.0, 0.0}, 0.1, ObjectClass::kUndecided);
+  scene.state.object(stale).record.confirmed = false;  // tentative, unseen for 2 s
+  const int fresh = scene.AddMover({0.0, 4.0}, 0.05, {0.0, 0.0}, 0.1);
+  scene.state.object(fresh).record.last_seen_utime = 2 * kSecond;
+  const int taken_over = scene.AddMover({-4.0, 0.0}, 0.05, {0.0, 0.0}, 0.1);
+  scene.state.object(taken_over).record.last_seen_utime = 2 * kSecond;
+  const int64_t fresh_id = scene.state.object(fresh).record.id;
+  const std::vector<ObjectPrediction> predictions = scene.Predictions();
+  EXPECT_EQ(ObjectsToPrune(2 * kSecond, scene.options, predictions, scene.state,
+                           Assignment(0, 3)),
+            std::vector<int>{stale});
+  PruneObjects(2 * kSecond, {taken_over}, scene.options, predictions, Assignment(0, 3),
+               &scene.state, &scene.counts);
+  EXPECT_EQ(scene.counts.pruned, 1);
+  ASSERT_EQ(scene.state.num_objects(), 1);
+  EXPECT_EQ(scene.state.object(0).record.id, fresh_id);
+  // Baseline (a) prunes nothing.
+  scene.options.mode = AssociationMode::kStaticNearestNeighbour;
+  scene.state.object(0).record.confirmed = false;
+  EXPECT_TRUE(ObjectsToPrune(60 * kSecond, scene.options, scene.Predictions(), scene.state,
+                             Assignment(0, 1))
+                  .empty());
+}
+
+// ---------------------------------------------------------------------------------------------
+// New objects.
+
+TEST(NewObjectsTest, FreeMeasurementsOutsideDnOfEveryObjectStartUndecidedTentativeObjects) {
+  StepScene scene;
+  scene.AddLandmark({5.0, 0.0}, 0.05);
+  scene.Measure({5.02, 0.0});  // 0: near the landmark (NIS < dn): no new object
+  scene.Measure({0.0, 4.0});   // 1: new
+  scene.Measure({0.0, -4.0});  // 2: new, the continuation of lost track 42
+  ObservationPredictions predicted(scene.options.sensor);
+  const ScanGating gating = GateScan(scene.measurements, predicted.At(scene.state), scene.options);
+  ASSERT_LT(gating.nearest_nis[0], scene.options.new_object_gate_dn_chi2);
+  const std::vector<uint8_t> may_update = {1};
+  const ScanAssociation scan{scene.measurements, may_update, 4 * kSecond};
+  int64_t next_id = 10;
+  AddNewObjects(scan, gating.nearest_nis, {0, 0, 42}, scene.options, Assignment(3, 1), &next_id,
+                &scene.state, &scene.counts);
+  EXPECT_EQ(scene.counts.new_objects, 2);
+  EXPECT_EQ(next_id, 12);
+  ASSERT_EQ(scene.state.num_objects(), 3);
+  for (int k : {1, 2}) {
+    const StateObject& o = scene.state.object(k);
+    EXPECT_EQ(o.record.id, 9 + k);
+    EXPECT_EQ(o.record.object_class, ObjectClass::kUndecided);
+    EXPECT_FALSE(o.record.confirmed);
+    EXPECT_EQ(o.record.first_seen_utime, 4 * kSecond);
+    ASSERT_TRUE(o.has_velocity());
+    EXPECT_EQ(scene.state.velocity(k), Eigen::Vector2d::Zero());
+    const double sigma = scene.options.new_object_velocity_sigma_mps;
+    EXPECT_EQ(scene.state.covariance()(o.velocity_index, o.velocity_index), sigma * sigma);
+  }
+  EXPECT_NEAR((scene.state.position(1) - Eigen::Vector2d(0.0, 4.0)).norm(), 0.0, 1e-12);
+  EXPECT_EQ(scene.state.object(1).record.continues_id, 0);
+  EXPECT_EQ(scene.state.object(2).record.continues_id, 42);
+}
+
+TEST(NewObjectsTest, TheCapRefusesAndTheStaticWorldMapsConfirmedLandmarks) {
+  StepScene scene;
+  scene.options.mode = AssociationMode::kStaticNearestNeighbour;
+  scene.options.max_objects = 1;
+  scene.Measure({0.0, 4.0});
+  scene.Measure({0.0, -4.0});
+  const std::vector<uint8_t> may_update;
+  const ScanAssociation scan{scene.measurements, may_update, kSecond};
+  int64_t next_id = 1;
+  AddNewObjects(scan, {kInfinity, kInfinity}, {0, 0}, scene.options, Assignment(2, 0), &next_id,
+                &scene.state, &scene.counts);
+  EXPECT_EQ(scene.counts.new_objects, 1);
+  EXPECT_EQ(scene.counts.objects_refused, 1);
+  ASSERT_EQ(scene.state.num_objects(), 1);
+  EXPECT_EQ(scene.state.object(0).record.object_class, ObjectClass::kStatic);
+  EXPECT_TRUE(scene.state.object(0).record.confirmed);
+  EXPECT_FALSE(scene.state.object(0).has_velocity());
+}
+
+}  // namespace
+}  // namespace slammtt
