@@ -1,5 +1,6 @@
 #include "runtime/lcm_io.h"
 
+#include "runtime/lcm_url.h"
 #include "runtime/log.h"
 
 #include <fcntl.h>
@@ -43,6 +44,11 @@ std::unique_ptr<lcm::LCM> ConstructQuietly(const std::string& url) {
 }  // namespace
 
 std::unique_ptr<lcm::LCM> OpenLcm(const std::string& url) {
+  try {
+    ParseLcmUrl(url);
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(e.what());
+  }
   auto lcm = ConstructQuietly(url);
   if (!lcm->good()) {
     std::string message = "cannot open LCM at '" + url + "'";

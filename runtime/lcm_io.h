@@ -26,8 +26,10 @@ inline constexpr const char* kDefaultLcmUrl = "udpm://239.255.76.67:7667?ttl=0";
 std::string ResolveLcmUrl(const std::optional<std::string>& from_command_line,
                           const std::optional<std::string>& from_config);
 
-// Opens the bus; throws std::runtime_error with a one-line explanation (and the fix for the
-// usual cause, a host without a multicast route) when LCM cannot start.
+// Opens the bus; throws std::runtime_error with a one-line explanation when the URL is not one
+// ParseLcmUrl accepts (runtime/lcm_url.h: LCM itself would take "?ttl=abc" as ttl 0, "?ttl=300"
+// as 44 and ignore "?tll=0") or when LCM cannot start (with the fix for the usual cause, a host
+// without a multicast route).
 std::unique_ptr<lcm::LCM> OpenLcm(const std::string& url);
 
 // Encodes any lcm-gen type.
