@@ -423,6 +423,35 @@ void P3dxDriver::HandleSip(const P3dxStandardSip& sip, int64_t arrival_utime) {
   if (flags_changed) PublishStatus();
 }
 
+void P3dxDriver::SetCommandKey(const CommandKey& key) {
+  CommandVerifierOptions verifier_options;
+  verifier_options.max_age_s = options_.command_max_age_s;
+  verifier_ = std::make_unique<VelocityCommandVerifier>(key, channels_.velocity_command,
+                                                        verifier_options);
+}
+
+void P3dxDriver::ReceiveVelocityCommand(const slammtt_msgs::velocity_command_t& command) {
+  if (state_ == State::kStopped) return;
+  if (options_.command_authentication == P3dxDriverOptions::CommandAuthentication::kSigned) {
+    const CommandVerdict verdict = verifier_ ? verifier_->Check(command, clock_->NowUtime())
+                                             : CommandVerdict::kUnauthenticated;
+    if (verdict != CommandVerdict::kAccepted) {
+      ++(verdict == CommandVerdict::kStale      ? commands_stale_
+         : verdict == CommandVerdict::kReplayed ? commands_replayed_
+                                                : commands_unauthenticated_);
+      if (IsReportable(commands_refused())) {
+        LogWarning() << "VELOCITY_COMMAND refused: "
+                     << (verifier_ ? CommandVerdictName(verdict)
+                                   : "no command key (set p3dx.command_key_file, docs/robot.md)")
+                     << " (" << commands_refused() << " refused so far, counted in BASE_STATUS)";
+      }
+      return;
+    }
+  }
+  ++commands_accepted_;
+  HandleVelocityCommand(command);
+}
+
 void P3dxDriver::HandleVelocityCommand(const slammtt_msgs::velocity_command_t& command) {
   if (state_ == State::kStopped) return;
   if (!std::isfinite(command.linear_mps) || !std::isfinite(command.angular_radps)) {
@@ -489,7 +518,8 @@ void P3dxDriver::Shutdown() {
   LogInfo() << "SIPs " << status.sips_received << ", checksum errors " << status.checksum_errors
             << ", short packets " << status.short_packets << ", bad byte counts "
             << decoder_.counters().bad_byte_counts << ", reconnects " << status.reconnects
-            << ", commands skipped " << commands_skipped_;
+            << ", commands accepted " << commands_accepted_ << ", refused " << commands_refused()
+            << ", skipped " << commands_skipped_;
   PublishStatus();
 }
 
@@ -519,6 +549,16 @@ slammtt_msgs::base_status_t P3dxDriver::Status() const {
   status.short_packets = decoder_.counters().truncated + short_sips_;
   status.reconnects = reconnects_;
   status.last_error = last_error_;
+  if (options_.command_authentication == P3dxDriverOptions::CommandAuthentication::kNone) {
+    status.command_auth = "none (local only)";
+  } else {
+    status.command_auth =
+        verifier_ ? "hmac-sha256" : "hmac-sha256 without a key: every command refused";
+  }
+  status.commands_accepted = commands_accepted_;
+  status.commands_unauthenticated = commands_unauthenticated_;
+  status.commands_stale = commands_stale_;
+  status.commands_replayed = commands_replayed_;
   return status;
 }
 

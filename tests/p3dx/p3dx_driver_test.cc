@@ -240,6 +240,105 @@ TEST_F(P3dxDriverTest, NonFiniteCommandsAreSkippedAndCounted) {
   EXPECT_FALSE(driver_->Status().last_error.empty());
 }
 
+// Commands from the bus (ReceiveVelocityCommand): what slammtt-p3dx hands every VELOCITY_COMMAND.
+class P3dxCommandAuthTest : public P3dxDriverTest {
+ protected:
+  static CommandKey Key(uint8_t seed) {
+    CommandKey key{};
+    for (size_t k = 0; k < key.size(); ++k) key[k] = static_cast<uint8_t>(seed * 7 + k);
+    return key;
+  }
+  slammtt_msgs::velocity_command_t Unsigned(double linear_mps) {
+    slammtt_msgs::velocity_command_t command{};
+    command.utime = clock_.NowUtime();
+    command.linear_mps = linear_mps;
+    return command;
+  }
+  slammtt_msgs::velocity_command_t SignedBy(VelocityCommandSigner* signer, double linear_mps,
+                                            int64_t utime_offset_us = 0) {
+    slammtt_msgs::velocity_command_t command = Unsigned(linear_mps);
+    command.utime += utime_offset_us;
+    signer->Sign(&command);
+    return command;
+  }
+  double Speed() const {
+    return 0.5 * (robot_->model().left_wheel_mmps() + robot_->model().right_wheel_mmps());
+  }
+};
+
+TEST_F(P3dxCommandAuthTest, WithoutAKeyNoCommandMovesTheRobot) {
+  Start();
+  RunFor(1.0);
+  VelocityCommandSigner signer(Key(1), "VELOCITY_COMMAND", 11);
+  for (int k = 0; k < 10; ++k) {
+    driver_->ReceiveVelocityCommand(Unsigned(0.4));
+    driver_->ReceiveVelocityCommand(SignedBy(&signer, 0.4));
+    RunFor(0.1);
+    ASSERT_EQ(Speed(), 0.0);
+  }
+  const slammtt_msgs::base_status_t status = driver_->Status();
+  EXPECT_EQ(status.command_auth, "hmac-sha256 without a key: every command refused");
+  EXPECT_EQ(status.commands_unauthenticated, 20);
+  EXPECT_EQ(status.commands_accepted, 0);
+}
+
+TEST_F(P3dxCommandAuthTest, OnlyFreshSignedCommandsWithTheRobotsKeyMoveIt) {
+  Start();
+  driver_->SetCommandKey(Key(1));
+  RunFor(1.0);
+  VelocityCommandSigner base_station(Key(1), "VELOCITY_COMMAND", 11);
+  VelocityCommandSigner stranger(Key(2), "VELOCITY_COMMAND", 12);
+  VelocityCommandSigner other_channel(Key(1), "VELOCITY_COMMAND_2", 13);
+
+  // 40 unsigned commands at 10 Hz (the attack), forged and foreign ones: nothing moves.
+  for (int k = 0; k < 40; ++k) {
+    driver_->ReceiveVelocityCommand(Unsigned(0.4));
+    RunFor(0.1);
+    ASSERT_EQ(Speed(), 0.0);
+  }
+  slammtt_msgs::velocity_command_t forged = SignedBy(&base_station, 0.1);
+  forged.linear_mps = 0.4;
+  driver_->ReceiveVelocityCommand(forged);
+  driver_->ReceiveVelocityCommand(SignedBy(&stranger, 0.4));
+  driver_->ReceiveVelocityCommand(SignedBy(&other_channel, 0.4));
+  // Signed with the key, but 2 s old or 2 s ahead of the robot's clock (window 1 s).
+  driver_->ReceiveVelocityCommand(SignedBy(&base_station, 0.4, -2000000));
+  driver_->ReceiveVelocityCommand(SignedBy(&base_station, 0.4, 2000000));
+  RunFor(0.2);
+  EXPECT_EQ(Speed(), 0.0);
+
+  // The base station drives it.
+  const slammtt_msgs::velocity_command_t good = SignedBy(&base_station, 0.3);
+  driver_->ReceiveVelocityCommand(good);
+  RunFor(0.05);
+  EXPECT_NEAR(Speed(), 300.0, 1e-9);
+  // Played back: refused; the robot stops at the command timeout as if nothing came.
+  for (int k = 0; k < 10; ++k) {
+    driver_->ReceiveVelocityCommand(good);
+    RunFor(0.1);
+  }
+  EXPECT_EQ(Speed(), 0.0);
+
+  const slammtt_msgs::base_status_t status = driver_->Status();
+  EXPECT_EQ(status.command_auth, "hmac-sha256");
+  EXPECT_EQ(status.commands_accepted, 1);
+  EXPECT_EQ(status.commands_unauthenticated, 43);
+  EXPECT_EQ(status.commands_stale, 2);
+  EXPECT_EQ(status.commands_replayed, 10);
+  EXPECT_EQ(driver_->commands_refused(), 55);
+}
+
+TEST_F(P3dxCommandAuthTest, UnauthenticatedSetupTakesEveryCommand) {
+  options_.command_authentication = P3dxDriverOptions::CommandAuthentication::kNone;
+  Start();
+  RunFor(1.0);
+  driver_->ReceiveVelocityCommand(Unsigned(0.2));
+  RunFor(0.05);
+  EXPECT_NEAR(Speed(), 200.0, 1e-9);
+  EXPECT_EQ(driver_->Status().command_auth, "none (local only)");
+  EXPECT_EQ(driver_->Status().commands_accepted, 1);
+}
+
 TEST_F(P3dxDriverTest, StopsWhenCommandsStopArriving) {
   options_.command_timeout_s = 0.5;
   Start();

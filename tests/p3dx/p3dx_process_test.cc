@@ -15,6 +15,9 @@
 #include <mutex>
 #include <thread>
 
+#include "drivers/command_auth/command_key.h"
+#include "drivers/command_auth/command_signature.h"
+#include "drivers/common/driver_clock.h"
 #include "drivers/p3dx/p3dx_commands.h"
 #include "drivers/p3dx/p3dx_emulator.h"
 #include "runtime/lcm_io.h"
@@ -38,6 +41,12 @@ class P3dxProcessTest : public ::testing::TestWithParam<Transport> {
  protected:
   void SetUp() override {
     directory_ = testing::MakeTempDirectory("p3dx-process-test");
+    // The robot's command key, and a stack file naming it: only signed commands move the base.
+    const CommandKey key = NewCommandKey();
+    WriteNewCommandKeyFile(directory_ + "/command.key", key);
+    std::ofstream(directory_ + "/stack.yaml")
+        << "p3dx:\n  command_key_file: " << directory_ << "/command.key\n";
+    signer_ = std::make_unique<VelocityCommandSigner>(key, "VELOCITY_COMMAND", NewSenderId());
     lcm_ = OpenLcm(kDefaultLcmUrl);
     lcm_->subscribeFunction("ODOMETRY", &P3dxProcessTest::OnOdometry, this);
     lcm_->subscribeFunction("BASE_STATUS", &P3dxProcessTest::OnStatus, this);
@@ -64,7 +73,8 @@ class P3dxProcessTest : public ::testing::TestWithParam<Transport> {
   }
 
   void StartDriver(std::vector<std::string> extra = {}) {
-    std::vector<std::string> argv = {std::string(SLAMMTT_BIN_DIR) + "/slammtt-p3dx", "--port",
+    std::vector<std::string> argv = {std::string(SLAMMTT_BIN_DIR) + "/slammtt-p3dx", "--config",
+                                     directory_ + "/stack.yaml", "--port",
                                      emulator_->Endpoint()};
     argv.insert(argv.end(), extra.begin(), extra.end());
     driver_ = std::make_unique<ChildProcess>(argv, directory_ + "/driver.log");
@@ -83,8 +93,10 @@ class P3dxProcessTest : public ::testing::TestWithParam<Transport> {
 
   void Command(double linear_mps, double angular_radps) {
     slammtt_msgs::velocity_command_t command{};
+    command.utime = wall_clock_.NowUtime();
     command.linear_mps = linear_mps;
     command.angular_radps = angular_radps;
+    signer_->Sign(&command);
     lcm_->publish("VELOCITY_COMMAND", &command);
     last_command_us_ = P3dxEmulator::NowUs();
   }
@@ -126,6 +138,8 @@ class P3dxProcessTest : public ::testing::TestWithParam<Transport> {
   }
 
   std::string directory_;
+  std::unique_ptr<VelocityCommandSigner> signer_;
+  SystemDriverClock wall_clock_;
   std::unique_ptr<lcm::LCM> lcm_;
   std::unique_ptr<P3dxEmulator> emulator_;
   std::thread emulator_thread_;
