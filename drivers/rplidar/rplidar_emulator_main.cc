@@ -23,11 +23,11 @@ using namespace slammtt::rplidar;
 // The emulator's faults (docs/rplidar.md) and their default arguments: bytes of garbage,
 // packets corrupted or cut, seconds of silence or of a pulled cable.
 const std::vector<std::string> kFaultKinds = {"garbage", "bad-checksum", "drop", "silence",
-                                              "disconnect"};
+                                              "mute", "disconnect"};
 
 double DefaultFaultArgument(const std::string& kind) {
   if (kind == "garbage") return 100.0;
-  if (kind == "silence" || kind == "disconnect") return 3.0;
+  if (kind == "silence" || kind == "mute" || kind == "disconnect") return 3.0;
   return 1.0;
 }
 
@@ -109,7 +109,7 @@ int main(int argc, char** argv) {
     command_line.AddRepeatedOption(
         "fault", "KIND@S[:ARG]",
         "at S seconds: garbage[:BYTES=100], bad-checksum[:PACKETS=1], drop[:PACKETS=1], "
-        "silence[:SECONDS=3], disconnect[:SECONDS=3]");
+        "silence[:SECONDS=3], mute[:SECONDS=3], disconnect[:SECONDS=3]");
     command_line.AddFlag("verbose", "print debug messages", 'v');
     command_line.AddFlag("quiet", "print only warnings and errors", 'q');
     if (!command_line.Parse(arg_count, args)) return 0;
@@ -163,6 +163,7 @@ int main(int argc, char** argv) {
         if (kind == "bad-checksum") server.CorruptPackets(static_cast<int>(argument));
         if (kind == "drop") server.DropBytes(static_cast<int>(argument));
         if (kind == "silence") server.Silence(static_cast<int>(argument * 1000));
+        if (kind == "mute") server.Mute(static_cast<int>(argument * 1000));
         if (kind == "disconnect") server.Disconnect(static_cast<int>(argument * 1000));
       }
       std::this_thread::sleep_for(std::chrono::milliseconds(20));

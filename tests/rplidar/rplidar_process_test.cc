@@ -153,6 +153,35 @@ TEST_F(RplidarProcessTest, StandardOverTcpWithAccessoryBoardStopsOnSigint) {
   ExpectBeamsAgreeWithRoom();
 }
 
+// Before: SIGTERM while the driver was in its reconnect backoff or waiting for a reply left the
+// motor turning (3 of 3 runs): a muted device (no output, still hearing) kept PWM 660.
+TEST_F(RplidarProcessTest, SigtermWhileReconnectingStopsTheMotor) {
+  for (const int delay_ms : {0, 500}) {  // in the backoff; in the GET_INFO wait after it
+    EmulatorTransportOptions transport;
+    transport.kind = EmulatorTransportOptions::Kind::kTcp;
+    RplidarDeviceOptions device_options;
+    device_options.accessory_board = true;
+    RplidarEmulatorServer emulator(device_options, transport);
+    emulator.Start();
+    auto driver = StartDriver(emulator.endpoint(), "express");
+    ASSERT_TRUE(HandleUntil([&] { return sink_.scan_count() >= 5; }));
+    ASSERT_EQ(emulator.stats().device.pwm, 660);
+    emulator.Mute(60000);
+    ASSERT_TRUE(HandleUntil([&] {
+      return sink_.last_status() && sink_.last_status()->state == "reconnecting";
+    }));
+    std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
+    driver->Signal(SIGTERM);
+    EXPECT_EQ(driver->Wait(kGuardMs), std::optional<int>(0)) << "delay " << delay_ms;
+    // The emulator's thread handles what the driver sent on its own time.
+    WaitFor([&] { return !emulator.stats().device.motor_running; });
+    const auto device = emulator.stats().device;
+    EXPECT_EQ(device.pwm, 0) << "delay " << delay_ms;
+    EXPECT_FALSE(device.motor_running) << "delay " << delay_ms;
+    sink_.Clear();
+  }
+}
+
 TEST_F(RplidarProcessTest, UnpluggedPtyIsReopenedAtTheSameName) {
   EmulatorTransportOptions transport;
   transport.link_path = directory_ + "/lidar";
