@@ -18,6 +18,7 @@ constexpr int64_t kStaleEstopAfterUs = 1000000;      // a stale robot still movi
 constexpr int64_t kStaleCloseQuietUs = 300000;       // no SIP for this long after CLOSE: closed
 constexpr int64_t kStaleCloseGiveUpUs = 3000000;
 constexpr int kWriteTimeoutMs = 500;
+constexpr int kStopWriteTimeoutMs = 50;             // the stop when a link is given up
 constexpr int64_t kShutdownDrainUs = 500000;         // read after CLOSE: see Shutdown()
 constexpr int64_t kShutdownQuietUs = 150000;
 
@@ -114,6 +115,13 @@ void P3dxDriver::TryOpen(int64_t now_us) {
 
 void P3dxDriver::LinkLost(const std::string& reason) {
   if (!link_) return;
+  // A link given up for silence may still carry our bytes to a robot that drives on: stop it
+  // before letting go (a write that fails here changes nothing).
+  try {
+    const std::vector<uint8_t> stop = EncodeP3dxVel2(0, 0);
+    link_->Write(stop.data(), stop.size(), kStopWriteTimeoutMs);
+  } catch (const LinkError&) {
+  }
   link_.reset();
   if (shutting_down_) {
     LogWarning() << endpoint_description_ << ": link lost while stopping (" << reason << ")";
@@ -152,6 +160,9 @@ void P3dxDriver::SendSync(int index) {
   sync_index_ = index;
   ++sync_attempts_;
   sync_sent_us_ = clock_->NowMonotonicUs();
+  // A robot still in an earlier session takes SYNC0 as a keep-alive and keeps its last speed:
+  // every SYNC0 goes out behind a stop. A robot waiting for SYNC0 ignores it.
+  if (index == 0 && !Send(EncodeP3dxVel2(0, 0))) return;
   Send(EncodeP3dxCommand(static_cast<uint8_t>(index)));
 }
 

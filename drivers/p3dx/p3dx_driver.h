@@ -11,7 +11,9 @@
 //  1. open the link, flush it, send SYNC0; SYNC0 and SYNC1 must come back as echoes, SYNC2's
 //     reply is the name packet (name, class, subclass: the subclass picks DistConvFactor).
 //     A SYNC without reply is re-sent every sync_reply_timeout_s; after sync_attempts the link
-//     is reopened. A wrong reply restarts at SYNC0.
+//     is reopened. A wrong reply restarts at SYNC0. Every SYNC0 goes out behind VEL2 0: a
+//     robot still in a session (one that went quiet but still hears) takes SYNC0 as a
+//     keep-alive and would keep driving; a robot waiting for SYNC0 ignores the VEL2.
 //  2. A robot still connected to an earlier client answers SYNC with SIPs. If it is moving
 //     (0x33) it takes our SYNC0 as a keep-alive and keeps driving, so we stop it first: VEL2 0,
 //     and ESTOP if it still moves 1 s later. Once a SIP says stopped (0x32) we send CLOSE, wait
@@ -26,9 +28,10 @@
 //  5. No valid command for command_timeout_s while moving: VEL 0 + RVEL 0 (the robot stops
 //     with its configured deceleration) and command_timeout_stop in BASE_STATUS until the next
 //     command. A command with a non-finite value is skipped and counted.
-//  6. No valid SIP for sip_timeout_s, or a LinkError: the link is lost: reported, closed, and
-//     reopened after a backoff (0.5 s doubling to 8 s) with the full handshake; the odometry
-//     stays continuous across the gap (P3dxOdometryIntegrator::Reanchor).
+//  6. No valid SIP for sip_timeout_s, or a LinkError: the link is lost: VEL2 0 is sent if the
+//     link still takes it, the loss reported, the link closed and reopened after a backoff
+//     (0.5 s doubling to 8 s) with the full handshake; the odometry stays continuous across the
+//     gap (P3dxOdometryIntegrator::Reanchor).
 //  7. Shutdown(): VEL 0 + RVEL 0, then CLOSE (which also stops the robot and ends its SIPs).
 // Who may drive it: a VELOCITY_COMMAND from the bus goes through ReceiveVelocityCommand(), which
 // accepts only a command signed with the robot's key (SetCommandKey; command_signature.h), or

@@ -251,6 +251,29 @@ TEST_P(P3dxProcessTest, ReconnectsAfterTheDeviceIsUnplugged) {
   EXPECT_GE(odometry_.size() - before, 7u);
 }
 
+// A robot that goes quiet but still hears, while the planner goes on commanding 0.3 m/s: the
+// driver's resync must not keep it driving (SYNC0 is a keep-alive to its open session). Before:
+// it drove on through every SYNC0 retry (issue 15: 3.9 s, 0.84 m).
+TEST_P(P3dxProcessTest, AQuietRobotIsStoppedWhenItsLinkIsGivenUp) {
+  StartEmulator();
+  StartDriver();
+  ASSERT_TRUE(WaitConnected());
+  PumpUntil(1.0, Commanding(0.3, 0.0, {}));
+  ASSERT_TRUE(RobotMoving());
+  const int64_t quiet_from = P3dxEmulator::NowUs();
+  emulator_->WithModel([](P3dxRobotModel& m) { m.MuteFor(15000000, P3dxEmulator::NowUs()); return 0; });
+  int64_t stopped_us = 0;
+  PumpUntil(8.0, Commanding(0.3, 0.0, [&] {
+              if (stopped_us == 0 && !RobotMoving()) stopped_us = P3dxEmulator::NowUs();
+              return false;
+            }));
+  ASSERT_NE(stopped_us, 0) << "still moving 8 s after the robot went quiet";
+  // The 1 s SIP timeout plus scheduling slack; the firmware's own watchdog (2 s after the last
+  // byte it heard) never had to act.
+  EXPECT_LE((stopped_us - quiet_from) * 1e-6, 1.6);
+  EXPECT_EQ(emulator_->WithModel([](P3dxRobotModel& m) { return m.watchdog_stops(); }), 0);
+}
+
 TEST_P(P3dxProcessTest, DamagedPacketsNeverBecomeOdometry) {
   // The robot stands still, so every ODOMETRY must be exactly zero: any pose or speed that is
   // not came from a damaged packet.
