@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
+#include <limits>
 #include <string>
 
 #include "slammtt_msgs/stage_timing_t.hpp"
@@ -108,6 +109,70 @@ TEST(TimingReportTest, JsonHasNullWhereThereIsNoPeriod) {
   EXPECT_TRUE(j["stages"][0]["period_median_us"].is_null());
   EXPECT_TRUE(j["stages"][0]["share_of_period"].is_null());
   EXPECT_TRUE(j["stages"][0]["load"].is_null());
+}
+
+// Before: one STAGE_TIMING with a non-UTF-8 byte in its stage name made slammtt-timing --json
+// fail ("[json.exception.type_error.316] invalid UTF-8 byte at index 3: 0xFF", exit 1).
+TEST(TimingReportTest, JsonTextSurvivesANameThatIsNoUtf8) {
+  const std::string name = "bad\xff\xfename";
+  const std::string text = TimingJsonText(
+      TimingJson(SummariseTiming({{5, name, 10, {{name, 4}}, {}}}), "t\xff.lcm", "STAGE_TIMING",
+                 1, 0));
+  const nlohmann::json j = nlohmann::json::parse(text);
+  EXPECT_EQ(j["stages"][0]["stage"], "bad\xEF\xBF\xBD\xEF\xBF\xBDname");  // U+FFFD each
+  EXPECT_EQ(j["stages"][0]["substages"][0]["name"], j["stages"][0]["stage"]);
+  EXPECT_EQ(text.back(), '\n');
+}
+
+// Before: 10 records of total_ns = INT64_MAX gave a load of -8.9e-09 and a mean of -1 (the sum
+// overflowed); durations beyond an hour are no measurement and are now skipped and counted.
+TEST(TimingTableTest, HugeDurationsNeverOverflowTheSums) {
+  const int64_t huge = std::numeric_limits<int64_t>::max() / 4;
+  const DurationStats stats = ComputeStats({huge, huge, huge, huge, huge, huge});
+  EXPECT_EQ(stats.sum, std::numeric_limits<int64_t>::max());  // saturated
+  EXPECT_DOUBLE_EQ(stats.mean, static_cast<double>(huge));
+  std::vector<TimingRecord> records;
+  for (int k = 0; k < 10; ++k) records.push_back({1000000 + 125000 * k, "estimator", huge, {}, {}});
+  const StageTimingSummary summary = SummariseTiming(records)[0];
+  ASSERT_TRUE(summary.load.has_value());
+  EXPECT_GT(*summary.load, 0.0);
+}
+
+TEST(TimingLogTest, DurationsBeyondAnHourAreSkippedAndCounted) {
+  testing::TempDir dir;
+  LogWriter writer(dir.File("timing.lcm"));
+  for (int k = 0; k < 10; ++k) {
+    slammtt_msgs::stage_timing_t msg{};
+    msg.utime = 1000000 + 125000 * k;
+    msg.stage = "estimator";
+    msg.total_ns = k < 7 ? 100000 : std::numeric_limits<int64_t>::max();
+    writer.WriteMessage(msg.utime, "STAGE_TIMING", msg);
+  }
+  slammtt_msgs::stage_timing_t sub{};
+  sub.utime = 3000000;
+  sub.stage = "estimator";
+  sub.total_ns = 1000;
+  sub.num_substages = 1;
+  sub.substage = {"ransac"};
+  sub.substage_ns = {int64_t{3600} * 1000000000 + 1};
+  writer.WriteMessage(sub.utime, "STAGE_TIMING", sub);
+  writer.Commit();
+  const TimingLog log = ReadTimingLog(dir.File("timing.lcm"), "STAGE_TIMING");
+  EXPECT_EQ(log.records.size(), 7u);
+  EXPECT_EQ(log.implausible, 4);
+  int status = 0;
+  const std::string out = RunCommand(std::string(SLAMMTT_BIN_DIR) + "/slammtt-timing --json " +
+                                         dir.File("timing.lcm") + " 2>" + dir.File("err.txt"),
+                                     &status);
+  ASSERT_EQ(status, 0) << out;
+  const nlohmann::json j = nlohmann::json::parse(out);
+  EXPECT_EQ(j["messages"], 7);
+  EXPECT_EQ(j["skipped_messages"], 4);
+  EXPECT_GT(j["stages"][0]["load"].get<double>(), 0.0);
+  EXPECT_NE(testing::FileBytes(dir.File("err.txt")).find("skipped 4 STAGE_TIMING messages with "
+                                                         "a duration beyond an hour"),
+            std::string::npos)
+      << testing::FileBytes(dir.File("err.txt"));
 }
 
 TEST(TimingLogTest, SkipsAndCountsBadMessages) {
