@@ -132,7 +132,8 @@ Config Config::LoadFile(const std::string& path) {
   close(fd);
   if (!regular) throw ConfigError(path + ": not a regular file (a configuration is a YAML file)");
   if (size > kMaxConfigFileBytes) {
-    throw ConfigError(path + ": " + std::to_string(size) + " bytes is not a configuration (at most " +
+    throw ConfigError(path + ": " + std::to_string(size) +
+                      " bytes is not a configuration (at most " +
                       std::to_string(kMaxConfigFileBytes) + ")");
   }
   return FromString(text, path);

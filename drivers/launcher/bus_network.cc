@@ -75,9 +75,8 @@ GroupRoute RouteOfGroup(const std::string& group) {
   if (interface_index <= 0) throw std::runtime_error("no route for the LCM group " + group);
   GroupRoute result;
   char name[IF_NAMESIZE] = "";
-  result.interface_name = if_indextoname(static_cast<unsigned int>(interface_index), name) != nullptr
-                              ? name
-                              : "interface " + std::to_string(interface_index);
+  const bool named = if_indextoname(static_cast<unsigned int>(interface_index), name) != nullptr;
+  result.interface_name = named ? name : "interface " + std::to_string(interface_index);
   ifaddrs* interfaces = nullptr;
   if (getifaddrs(&interfaces) == 0) {
     for (const ifaddrs* i = interfaces; i != nullptr; i = i->ifa_next) {

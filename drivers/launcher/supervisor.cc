@@ -194,7 +194,8 @@ std::string Supervisor::NextLogFile(bool create) const {
   for (int i = 1;; ++i) {
     struct stat info = {};
     // lstat: a planted symlink, even a dangling one, takes its name.
-    const bool taken = create ? !CreateExclusively(candidate) : lstat(candidate.c_str(), &info) == 0;
+    const bool taken =
+        create ? !CreateExclusively(candidate) : lstat(candidate.c_str(), &info) == 0;
     if (!taken) return candidate;
     if (i > 10000) throw std::runtime_error("no free log file name beside " + base);
     candidate = base.substr(0, base.size() - 4) + "-" + std::to_string(i) + ".lcm";

@@ -121,7 +121,8 @@ TEST(CommandSignatureTest, VerifierRefusesUnsignedForgedWrongChannelAndStaleComm
     signer.Sign(&old);
     EXPECT_EQ(verifier.Check(old, kNow), CommandVerdict::kStale) << offset_us;
   }
-  for (const int64_t offset_us : {int64_t{-1000000}, int64_t{999999}}) {  // the window's edges are inside
+  // The window's edges are inside.
+  for (const int64_t offset_us : {int64_t{-1000000}, int64_t{999999}}) {
     slammtt_msgs::velocity_command_t edge = Command(kNow + offset_us, 0.1, 0.0);
     signer.Sign(&edge);
     EXPECT_EQ(verifier.Check(edge, kNow), CommandVerdict::kAccepted) << offset_us;

@@ -341,7 +341,8 @@ TEST_F(LauncherProcessTest, ALogDirectoryOthersMayWriteIsRefused) {
   const std::string logs = directory_ + "/logs";
   ASSERT_EQ(mkdir(logs.c_str(), 0755), 0);
   ASSERT_EQ(chmod(logs.c_str(), 0777), 0);
-  Launch(WriteConfig("  processes:\n    - {name: a, program: sh, pass_config: false, args: ['-c', 'echo ran']}\n"));
+  Launch(WriteConfig("  processes:\n"
+                     "    - {name: a, program: sh, pass_config: false, args: ['-c', 'echo ran']}\n"));
   EXPECT_EQ(launcher_->Wait(10000), 1);
   const std::string all = ReadWholeFile(out_) + ReadWholeFile(err_);
   EXPECT_NE(all.find("is writable by other users"), std::string::npos) << all;
@@ -353,7 +354,8 @@ TEST_F(LauncherProcessTest, ALogDirectoryOthersMayWriteIsRefused) {
 
 // robot.network: loopback (the default) needs a bus that stays on the computer, routed on lo.
 TEST_F(LauncherProcessTest, TheLoopbackSetupRefusesABusTheLanCanReach) {
-  const std::string body = "  processes:\n    - {name: a, program: sh, pass_config: false, args: ['-c', 'echo ran']}\n";
+  const std::string body =
+      "  processes:\n    - {name: a, program: sh, pass_config: false, args: ['-c', 'echo ran']}\n";
   const auto launch_with = [&](const std::string& head) {
     const std::string path = directory_ + "/robot.yaml";
     std::ofstream(path) << head << "robot:\n  log_directory: " << directory_ << "/logs\n" << body;
@@ -386,7 +388,8 @@ TEST_F(LauncherProcessTest, TheLoopbackSetupRefusesABusTheLanCanReach) {
       << all;
   // The same robot, told its bus is for the LAN: starts.
   const std::string path = directory_ + "/robot.yaml";
-  std::ofstream(path) << "lcm:\n  url: \"udpm://239.255.76.67:7667?ttl=1\"\nrobot:\n  network: lan\n"
+  std::ofstream(path) << "lcm:\n  url: \"udpm://239.255.76.67:7667?ttl=1\"\n"
+                      << "robot:\n  network: lan\n"
                       << "  log_directory: " << directory_ << "/logs\n" << body;
   Launch(path);
   EXPECT_EQ(launcher_->Wait(10000), 0);

@@ -74,7 +74,8 @@ class CommandSecurityTest : public ::testing::Test {
     base_ = std::make_unique<ChildProcess>(
         std::vector<std::string>{"unshare", "--net", "--", "sleep", "600"},
         directory_ + "/base-namespace.log");
-    ASSERT_TRUE(WaitForOwnNamespace(base_->pid())) << ReadWholeFile(directory_ + "/base-namespace.log");
+    ASSERT_TRUE(WaitForOwnNamespace(base_->pid()))
+        << ReadWholeFile(directory_ + "/base-namespace.log");
     base_netns_ = "/proc/" + std::to_string(base_->pid()) + "/ns/net";
     ASSERT_EQ(Run("ip link add veth-robot type veth peer name veth-base netns " +
                   std::to_string(base_->pid())), 0);
@@ -139,7 +140,8 @@ class CommandSecurityTest : public ::testing::Test {
     std::ofstream(config) << "lcm:\n  url: \"" << lcm_url << "\"\np3dx:\n  port: "
                           << emulator_->Endpoint() << "\n" << p3dx_section;
     driver_ = std::make_unique<ChildProcess>(
-        std::vector<std::string>{std::string(SLAMMTT_BIN_DIR) + "/slammtt-p3dx", "--config", config},
+        std::vector<std::string>{std::string(SLAMMTT_BIN_DIR) + "/slammtt-p3dx", "--config",
+                                 config},
         directory_ + "/driver.log");
     ASSERT_TRUE(Pump(10.0, [&] { return !status_.empty() && status_.back().connected; }))
         << ReadWholeFile(directory_ + "/driver.log");

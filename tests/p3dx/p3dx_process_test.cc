@@ -261,7 +261,10 @@ TEST_P(P3dxProcessTest, AQuietRobotIsStoppedWhenItsLinkIsGivenUp) {
   PumpUntil(1.0, Commanding(0.3, 0.0, {}));
   ASSERT_TRUE(RobotMoving());
   const int64_t quiet_from = P3dxEmulator::NowUs();
-  emulator_->WithModel([](P3dxRobotModel& m) { m.MuteFor(15000000, P3dxEmulator::NowUs()); return 0; });
+  emulator_->WithModel([](P3dxRobotModel& m) {
+    m.MuteFor(15000000, P3dxEmulator::NowUs());
+    return 0;
+  });
   int64_t stopped_us = 0;
   PumpUntil(8.0, Commanding(0.3, 0.0, [&] {
               if (stopped_us == 0 && !RobotMoving()) stopped_us = P3dxEmulator::NowUs();

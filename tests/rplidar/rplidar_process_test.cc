@@ -80,6 +80,17 @@ class RplidarProcessTest : public ::testing::Test {
     return true;
   }
 
+  // The emulated A2 with its accessory board (motor by PWM) on a TCP port, serving.
+  static std::unique_ptr<RplidarEmulatorServer> StartTcpEmulatorWithAccessoryBoard() {
+    EmulatorTransportOptions transport;
+    transport.kind = EmulatorTransportOptions::Kind::kTcp;
+    RplidarDeviceOptions device_options;
+    device_options.accessory_board = true;
+    auto emulator = std::make_unique<RplidarEmulatorServer>(device_options, transport);
+    emulator->Start();
+    return emulator;
+  }
+
   bool WaitFor(const std::function<bool()>& done) {
     const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(kGuardMs);
     while (!done()) {
@@ -133,12 +144,8 @@ TEST_F(RplidarProcessTest, ExpressOverLibserialportPtyThenCleanStopOnSigterm) {
 }
 
 TEST_F(RplidarProcessTest, StandardOverTcpWithAccessoryBoardStopsOnSigint) {
-  EmulatorTransportOptions transport;
-  transport.kind = EmulatorTransportOptions::Kind::kTcp;
-  RplidarDeviceOptions device_options;
-  device_options.accessory_board = true;
-  RplidarEmulatorServer emulator(device_options, transport);
-  emulator.Start();
+  const auto emulator_owner = StartTcpEmulatorWithAccessoryBoard();
+  RplidarEmulatorServer& emulator = *emulator_owner;
   auto driver = StartDriver(emulator.endpoint(), "standard");
   ASSERT_TRUE(HandleUntil([&] { return sink_.scan_count() >= 10; }));
   EXPECT_EQ(emulator.stats().device.pwm, 660);
@@ -157,12 +164,8 @@ TEST_F(RplidarProcessTest, StandardOverTcpWithAccessoryBoardStopsOnSigint) {
 // motor turning (3 of 3 runs): a muted device (no output, still hearing) kept PWM 660.
 TEST_F(RplidarProcessTest, SigtermWhileReconnectingStopsTheMotor) {
   for (const int delay_ms : {0, 500}) {  // in the backoff; in the GET_INFO wait after it
-    EmulatorTransportOptions transport;
-    transport.kind = EmulatorTransportOptions::Kind::kTcp;
-    RplidarDeviceOptions device_options;
-    device_options.accessory_board = true;
-    RplidarEmulatorServer emulator(device_options, transport);
-    emulator.Start();
+    const auto emulator_owner = StartTcpEmulatorWithAccessoryBoard();
+    RplidarEmulatorServer& emulator = *emulator_owner;
     auto driver = StartDriver(emulator.endpoint(), "express");
     ASSERT_TRUE(HandleUntil([&] { return sink_.scan_count() >= 5; }));
     ASSERT_EQ(emulator.stats().device.pwm, 660);

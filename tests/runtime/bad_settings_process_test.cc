@@ -48,12 +48,14 @@ class BadSettingsTest : public ::testing::Test {
 TEST_F(BadSettingsTest, BusUrlsLcmWouldMisreadAreOneLine) {
   const std::string segmenter = Bin("slammtt-segmenter");
   for (const Case& c : std::vector<Case>{
-           {{segmenter, "--lcm-url", "tcpq://127.0.0.1:7700"}, 1, "the tcpq provider is not supported"},
+           {{segmenter, "--lcm-url", "tcpq://127.0.0.1:7700"}, 1,
+            "the tcpq provider is not supported"},
            {{segmenter, "--lcm-url", "udpm://239.255.76.67:7667?ttl=abc"}, 1,
             "ttl must be a whole number in 0..255, got 'abc'"},
            {{segmenter, "--lcm-url", "udpm://239.255.76.67:7667?ttl=300"}, 1, "got '300'"},
            {{segmenter, "--lcm-url", "udpm://239.255.76.67:7667?tll=0"}, 1, "unknown option 'tll'"},
-           {{Bin("slammtt-p3dx"), "--port", "tcp://127.0.0.1:9", "--lcm-url", "udpm://10.1.1.1:7667"},
+           {{Bin("slammtt-p3dx"), "--port", "tcp://127.0.0.1:9", "--lcm-url",
+             "udpm://10.1.1.1:7667"},
             1, "not a multicast address"},
        }) {
     Expect(c);
@@ -78,7 +80,8 @@ TEST_F(BadSettingsTest, AbsurdOptionValuesAreOneLine) {
   Expect({{Bin("slammtt-rplidar"), "--config",
            File("angle.yaml", "rplidar:\n  port: tcp://127.0.0.1:9\n  angle_offset_deg: 1e300\n")},
           1, "rplidar.angle_offset_deg: must be within [-360, 360] degrees"});
-  Expect({{Bin("slammtt-estimator"), "--config", File("objects.yaml", "estimator:\n  max_objects: 0\n")},
+  Expect({{Bin("slammtt-estimator"), "--config",
+           File("objects.yaml", "estimator:\n  max_objects: 0\n")},
           1, "estimator.max_objects"});
 }
 

@@ -122,7 +122,8 @@ TEST(LogWriterTest, PlantedLinksAreNeverWrittenThrough) {
   const std::string path = directory + "/out.lcm";
   ASSERT_EQ(symlink(victim.c_str(), (path + ".partial." + std::to_string(getpid())).c_str()), 0);
   for (int n = 0; n < 4; ++n) {
-    const std::string link = path + ".partial." + std::to_string(getpid()) + "." + std::to_string(n);
+    const std::string link =
+        path + ".partial." + std::to_string(getpid()) + "." + std::to_string(n);
     ASSERT_EQ(symlink(victim.c_str(), link.c_str()), 0);
   }
   std::filesystem::create_symlink(victim, path);  // the output's own name, too

@@ -150,7 +150,9 @@ TEST_F(ReplaySignalTest, SigtermAndSigintStopItWithNoOutputLeft) {
 
 TEST_F(ReplaySignalTest, SigkillLeavesNoPartialOutput) {
   const int probe = open(dir_.path().c_str(), O_TMPFILE | O_WRONLY, 0600);
-  if (probe < 0) GTEST_SKIP() << dir_.path() << " has no O_TMPFILE: a killed replay leaves its partial file";
+  if (probe < 0) {
+    GTEST_SKIP() << dir_.path() << " has no O_TMPFILE: a killed replay leaves its partial file";
+  }
   close(probe);
   std::string out;
   ASSERT_EQ(Shell(Bin("slammtt-world") + " --quiet --scenario s2-lobby --seed 2 --duration 300 " +

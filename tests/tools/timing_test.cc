@@ -17,6 +17,15 @@ namespace {
 
 using testing::RunCommand;
 
+// slammtt-timing --json on `log`, stderr into `err_path`; the parsed JSON (exit status 0 asserted).
+nlohmann::json TimingProgramJson(const std::string& log, const std::string& err_path) {
+  int status = 0;
+  const std::string out = RunCommand(
+      std::string(SLAMMTT_BIN_DIR) + "/slammtt-timing --json " + log + " 2>" + err_path, &status);
+  EXPECT_EQ(status, 0) << out;
+  return status == 0 ? nlohmann::json::parse(out) : nlohmann::json();
+}
+
 TEST(TimingTableTest, NearestRankPercentiles) {
   std::vector<int64_t> values;
   for (int64_t v = 100; v >= 1; --v) values.push_back(v);  // any order
@@ -160,12 +169,8 @@ TEST(TimingLogTest, DurationsBeyondAnHourAreSkippedAndCounted) {
   const TimingLog log = ReadTimingLog(dir.File("timing.lcm"), "STAGE_TIMING");
   EXPECT_EQ(log.records.size(), 7u);
   EXPECT_EQ(log.implausible, 4);
-  int status = 0;
-  const std::string out = RunCommand(std::string(SLAMMTT_BIN_DIR) + "/slammtt-timing --json " +
-                                         dir.File("timing.lcm") + " 2>" + dir.File("err.txt"),
-                                     &status);
-  ASSERT_EQ(status, 0) << out;
-  const nlohmann::json j = nlohmann::json::parse(out);
+  const nlohmann::json j = TimingProgramJson(dir.File("timing.lcm"), dir.File("err.txt"));
+  ASSERT_FALSE(j.is_null());
   EXPECT_EQ(j["messages"], 7);
   EXPECT_EQ(j["skipped_messages"], 4);
   EXPECT_GT(j["stages"][0]["load"].get<double>(), 0.0);
@@ -230,12 +235,8 @@ TEST(TimingProgramTest, PrintsJsonFromATimingLog) {
   writer.Write(5000001, "OTHER", junk.data(), static_cast<int>(junk.size()));
   writer.Commit();
 
-  int status = 0;
-  const std::string out = RunCommand(std::string(SLAMMTT_BIN_DIR) + "/slammtt-timing --json " +
-                                         dir.File("timing.lcm") + " 2>" + dir.File("err.txt"),
-                                     &status);
-  ASSERT_EQ(status, 0) << out;
-  const nlohmann::json j = nlohmann::json::parse(out);
+  const nlohmann::json j = TimingProgramJson(dir.File("timing.lcm"), dir.File("err.txt"));
+  ASSERT_FALSE(j.is_null());
   EXPECT_EQ(j["messages"], 20);
   EXPECT_EQ(j["skipped_messages"], 1);
   ASSERT_EQ(j["stages"].size(), 1u);
@@ -253,6 +254,7 @@ TEST(TimingProgramTest, PrintsJsonFromATimingLog) {
             std::string::npos);
 
   // The text table names every sub-stage.
+  int status = 0;
   const std::string table =
       RunCommand(std::string(SLAMMTT_BIN_DIR) + "/slammtt-timing " + dir.File("timing.lcm") +
                      " 2>/dev/null",
