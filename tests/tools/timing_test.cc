@@ -3,9 +3,11 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "slammtt_msgs/stage_timing_t.hpp"
 #include "tests/tools/log_test_util.h"
@@ -178,6 +180,38 @@ TEST(TimingLogTest, DurationsBeyondAnHourAreSkippedAndCounted) {
                                                          "a duration beyond an hour"),
             std::string::npos)
       << testing::FileBytes(dir.File("err.txt"));
+}
+
+// The probe through the program: one STAGE_TIMING whose stage, sub-stage and counter
+// names hold bytes that are no UTF-8, among good ones. Before: exit 1 and no JSON.
+TEST(TimingProgramTest, JsonOfANameThatIsNoUtf8) {
+  testing::TempDir dir;
+  LogWriter writer(dir.File("timing.lcm"));
+  for (int k = 0; k < 5; ++k) {
+    slammtt_msgs::stage_timing_t msg{};
+    msg.utime = 1000000 + k * 125000;
+    msg.stage = k == 2 ? "seg\xffmenter" : "segmenter";
+    msg.total_ns = 1000;
+    msg.num_substages = 1;
+    msg.substage = {k == 2 ? "so\xc3rt" : "sort"};
+    msg.substage_ns = {300};
+    msg.num_counters = 1;
+    msg.counter_name = {k == 2 ? "\x80" "beams" : "beams"};
+    msg.counter_value = {400};
+    writer.WriteMessage(msg.utime, "STAGE_TIMING", msg);
+  }
+  writer.Commit();
+  const nlohmann::json j = TimingProgramJson(dir.File("timing.lcm"), dir.File("err.txt"));
+  ASSERT_FALSE(j.is_null()) << testing::FileBytes(dir.File("err.txt"));
+  EXPECT_EQ(j["messages"], 5);
+  ASSERT_EQ(j["stages"].size(), 2u);
+  std::vector<std::string> stages;
+  for (const auto& stage : j["stages"]) stages.push_back(stage["stage"]);
+  std::sort(stages.begin(), stages.end());
+  EXPECT_EQ(stages, (std::vector<std::string>{"segmenter", "seg\xEF\xBF\xBDmenter"}));
+  const std::string text = j.dump();
+  EXPECT_NE(text.find("so\xEF\xBF\xBDrt"), std::string::npos) << text;
+  EXPECT_NE(text.find("\xEF\xBF\xBD" "beams"), std::string::npos) << text;
 }
 
 TEST(TimingLogTest, SkipsAndCountsBadMessages) {
