@@ -54,7 +54,7 @@ def test_writer_leaves_no_partial_file_on_failure(tmp_path):
         with LogWriter(out) as writer:
             writer.write(1, "ODOMETRY", odometry(1, 0.0))
             raise RuntimeError("boom")
-    assert not out.exists() and not (tmp_path / "out.lcm.partial").exists()
+    assert not out.exists() and not [p for p in tmp_path.iterdir() if ".partial" in p.name]
 
 
 def test_truncated_tail_is_a_warning_and_strict_an_error(tmp_path):
