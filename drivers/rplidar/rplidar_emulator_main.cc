@@ -3,7 +3,6 @@
 
 #include <chrono>
 #include <cstdio>
-#include <fstream>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -12,6 +11,7 @@
 #include "drivers/common/fault_schedule.h"
 #include "drivers/rplidar/rplidar_emulator_server.h"
 #include "runtime/log.h"
+#include "runtime/output_file.h"
 #include "runtime/process.h"
 #include "runtime/shutdown.h"
 
@@ -74,16 +74,14 @@ DeviceHealth ParseHealth(const std::string& text) {
   return health;
 }
 
+// An OutputFile: whole when it appears, never written through a link planted beside it.
 void WriteEndpointFile(const std::string& path, const std::string& endpoint) {
-  const std::string temporary = path + ".tmp";
-  {
-    std::ofstream file(temporary);
-    file << endpoint << "\n";
-    if (!file) throw std::runtime_error(path + ": cannot write the endpoint file");
-  }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
+  OutputFile file(path);
+  const std::string line = endpoint + "\n";
+  if (std::fwrite(line.data(), 1, line.size(), file.stream()) != line.size()) {
     throw std::runtime_error(path + ": cannot write the endpoint file");
   }
+  file.Commit();
 }
 
 }  // namespace
