@@ -3,17 +3,11 @@
 import struct
 
 import pytest
-from slammtt_msgs import features_t, leg_labels_t, odometry_t
+from conftest import odometry
+from slammtt_msgs import features_t, leg_labels_t
 
 from slammtt import msgs
 from slammtt.lcmlog import HEADER, LogError, LogReader, LogWriter
-
-
-def odometry(utime, x):
-    m = odometry_t()
-    m.utime = utime
-    m.x_m = x
-    return m
 
 
 def write(path, events):

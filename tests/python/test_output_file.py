@@ -7,19 +7,12 @@ overwritten, the link left in place)."""
 import os
 
 import pytest
-from slammtt_msgs import odometry_t
+from conftest import odometry
 
 from slammtt.lcmlog import LogReader, LogWriter
 from slammtt.output_file import create_partial, write_text_atomically
 
 VICTIM_TEXT = b"not yours to overwrite\n"
-
-
-def odometry(utime, x):
-    m = odometry_t()
-    m.utime = utime
-    m.x_m = x
-    return m
 
 
 def plant_links(tmp_path, out):
