@@ -85,7 +85,7 @@ void VisitRobustnessOptions(OptionVisitor* v, EstimatorOptions* o) {
             "speed noise of motion extrapolated past the last odometry, per second");
   v->Double("extrapolation_turn_sigma_radps", &o->extrapolation_turn_sigma_radps, R::AtLeast(0),
             "turn noise of motion extrapolated past the last odometry, per second", deg);
-  v->Int("max_objects", &o->max_objects, R::Between(0, 100000),
+  v->Int("max_objects", &o->max_objects, R::Between(1, 100000),
          "the most objects held; new ones beyond are refused and counted");
 }
 

@@ -1,8 +1,13 @@
 #include "runtime/config.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 #include <yaml-cpp/yaml.h>
 
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <map>
 #include <set>
@@ -20,6 +25,9 @@ struct Config::Shared {
 };
 
 namespace {
+
+// The largest configuration or scenario file read: the shipped ones are a few kilobytes.
+constexpr off_t kMaxConfigFileBytes = 16 << 20;
 
 std::string Describe(const YAML::Node& node) {
   if (!node.IsDefined() || node.IsNull()) return "nothing";
@@ -101,11 +109,34 @@ Config Config::FromString(const std::string& yaml_text, const std::string& sourc
 }
 
 Config Config::LoadFile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw ConfigError(path + ": cannot open file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return FromString(text.str(), path);
+  // A configuration is a regular file of human size: a directory would read as an empty file
+  // (an empty configuration, silently), /dev/zero or a FIFO would never end. O_NONBLOCK keeps
+  // open() of a FIFO from waiting for a writer.
+  const int fd = open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY | O_NONBLOCK);
+  if (fd < 0) throw ConfigError(path + ": cannot open file: " + std::strerror(errno));
+  struct stat info {};
+  const bool regular = fstat(fd, &info) == 0 && S_ISREG(info.st_mode);
+  const off_t size = info.st_size;
+  std::string text;
+  if (regular && size <= kMaxConfigFileBytes) {
+    text.resize(static_cast<size_t>(size));
+    size_t used = 0;
+    while (used < text.size()) {
+      const ssize_t n = read(fd, text.data() + used, text.size() - used);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) break;
+      used += static_cast<size_t>(n);
+    }
+    text.resize(used);
+  }
+  close(fd);
+  if (!regular) throw ConfigError(path + ": not a regular file (a configuration is a YAML file)");
+  if (size > kMaxConfigFileBytes) {
+    throw ConfigError(path + ": " + std::to_string(size) +
+                      " bytes is not a configuration (at most " +
+                      std::to_string(kMaxConfigFileBytes) + ")");
+  }
+  return FromString(text, path);
 }
 
 const std::string& Config::Source() const { return shared_->source; }

@@ -28,8 +28,9 @@ class Config {
  public:
   // An empty mapping (every Get returns its default).
   Config();
-  // Parses a YAML file; throws ConfigError "PATH: ..." when it is missing or not valid YAML, or
-  // when its top level is not a mapping.
+  // Parses a YAML file; throws ConfigError "PATH: ..." when it is missing, not a regular file
+  // (a directory, /dev/zero, a FIFO), larger than 16 MiB or not valid YAML, or when its top
+  // level is not a mapping.
   static Config LoadFile(const std::string& path);
   // Parses YAML text; `source` names it in error messages.
   static Config FromString(const std::string& yaml_text, const std::string& source = "<string>");

@@ -1,5 +1,6 @@
 #include "runtime/lcm_io.h"
 
+#include "runtime/lcm_url.h"
 #include "runtime/log.h"
 
 #include <fcntl.h>
@@ -43,6 +44,11 @@ std::unique_ptr<lcm::LCM> ConstructQuietly(const std::string& url) {
 }  // namespace
 
 std::unique_ptr<lcm::LCM> OpenLcm(const std::string& url) {
+  try {
+    ParseLcmUrl(url);
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(e.what());
+  }
   auto lcm = ConstructQuietly(url);
   if (!lcm->good()) {
     std::string message = "cannot open LCM at '" + url + "'";
@@ -65,34 +71,36 @@ void LcmSink::Publish(const std::string& channel, const void* data, int size) {
   }
 }
 
-// The partial file carries the process id, so two processes given the same path by mistake
-// cannot write into one partial file (the last to finish wins the rename, whole).
 LogWriter::LogWriter(const std::string& path)
-    : path_(path), partial_path_(path + ".partial." + std::to_string(getpid())) {
-  file_ = std::make_unique<lcm::LogFile>(partial_path_, "w");
-  if (!file_->good()) {
-    file_.reset();
-    throw std::runtime_error(path + ": cannot create log file");
-  }
+    : path_(path), file_(std::make_unique<OutputFile>(path)) {}
+
+LogWriter::~LogWriter() = default;  // an uncommitted OutputFile discards itself
+
+namespace {
+
+bool WriteBigEndian(std::FILE* f, uint64_t value, int bytes) {
+  uint8_t buffer[8];
+  for (int k = 0; k < bytes; ++k) buffer[k] = static_cast<uint8_t>(value >> (8 * (bytes - 1 - k)));
+  return std::fwrite(buffer, 1, static_cast<size_t>(bytes), f) == static_cast<size_t>(bytes);
 }
 
-LogWriter::~LogWriter() {
-  if (!committed_) {
-    file_.reset();
-    std::remove(partial_path_.c_str());
-  }
-}
+constexpr uint32_t kLogSyncWord = 0xEDA1DA01u;
+
+}  // namespace
 
 void LogWriter::Write(int64_t timestamp_us, const std::string& channel, const void* data,
                       int size) {
-  if (committed_ || !file_) throw std::runtime_error(path_ + ": log already closed");
-  lcm::LogEvent event;
-  event.eventnum = 0;  // lcm numbers events itself
-  event.timestamp = timestamp_us;
-  event.channel = channel;
-  event.datalen = size;
-  event.data = const_cast<void*>(data);
-  if (file_->writeEvent(&event) != 0) throw std::runtime_error(path_ + ": write failed");
+  if (committed_) throw std::runtime_error(path_ + ": log already closed");
+  if (size < 0) throw std::invalid_argument(path_ + ": negative event size");
+  std::FILE* f = file_->stream();
+  const bool ok = WriteBigEndian(f, kLogSyncWord, 4) &&
+                  WriteBigEndian(f, static_cast<uint64_t>(events_written_), 8) &&
+                  WriteBigEndian(f, static_cast<uint64_t>(timestamp_us), 8) &&
+                  WriteBigEndian(f, static_cast<uint32_t>(channel.size()), 4) &&
+                  WriteBigEndian(f, static_cast<uint32_t>(size), 4) &&
+                  std::fwrite(channel.data(), 1, channel.size(), f) == channel.size() &&
+                  std::fwrite(data, 1, static_cast<size_t>(size), f) == static_cast<size_t>(size);
+  if (!ok) throw std::runtime_error(path_ + ": write failed");
   ++events_written_;
 }
 
@@ -102,14 +110,7 @@ void LogWriter::Publish(const std::string& channel, const void* data, int size) 
 
 void LogWriter::Commit() {
   if (committed_) return;
-  FILE* stream = file_->getFilePtr();
-  if (std::fflush(stream) != 0 || std::ferror(stream) != 0 || fsync(fileno(stream)) != 0) {
-    throw std::runtime_error(path_ + ": write failed (disk full?)");
-  }
-  file_.reset();
-  if (std::rename(partial_path_.c_str(), path_.c_str()) != 0) {
-    throw std::runtime_error(path_ + ": cannot move the finished log into place");
-  }
+  file_->Commit();
   committed_ = true;
 }
 

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "runtime/message_checks.h"
+#include "runtime/output_file.h"
 
 namespace slammtt {
 
@@ -26,8 +27,10 @@ inline constexpr const char* kDefaultLcmUrl = "udpm://239.255.76.67:7667?ttl=0";
 std::string ResolveLcmUrl(const std::optional<std::string>& from_command_line,
                           const std::optional<std::string>& from_config);
 
-// Opens the bus; throws std::runtime_error with a one-line explanation (and the fix for the
-// usual cause, a host without a multicast route) when LCM cannot start.
+// Opens the bus; throws std::runtime_error with a one-line explanation when the URL is not one
+// ParseLcmUrl accepts (runtime/lcm_url.h: LCM itself would take "?ttl=abc" as ttl 0, "?ttl=300"
+// as 44 and ignore "?tll=0") or when LCM cannot start (with the fix for the usual cause, a host
+// without a multicast route).
 std::unique_ptr<lcm::LCM> OpenLcm(const std::string& url);
 
 // Encodes any lcm-gen type.
@@ -92,9 +95,17 @@ class LcmSink : public MessageSink {
   int64_t failed_publishes_ = 0;
 };
 
-// Writes an LCM event log (lcm-logger's format, playable by lcm-logplayer). The log is written
-// to "<path>.partial.<pid>" and renamed to <path> by Commit(); destroying an uncommitted writer
-// removes the partial file, so a failed run leaves nothing that looks like a finished log.
+// Writes an LCM event log (lcm-logger's format, playable by lcm-logplayer) as an OutputFile
+// (runtime/output_file.h): the log appears under `path` only when Commit() succeeds; until
+// then it is an unnamed file in the same directory (or an exclusively created
+// "<path>.partial.<pid>.<n>"), never written through a link, and destroying an uncommitted
+// writer leaves nothing behind (nor does killing the process, where the file system has
+// O_TMPFILE).
+//
+// Format (LCM documentation, "LCM Log File Format"; what lcm_eventlog_write_event writes): per
+// event, big-endian, the sync word 0xEDA1DA01, int64 event number (0, 1, 2, ... in file order),
+// int64 timestamp [us], int32 channel length, int32 data length, then the channel name without
+// its NUL and the data. The bytes are those lcm::LogFile would write (tested).
 class LogWriter : public MessageSink {
  public:
   // Throws std::runtime_error when the file cannot be created.
@@ -115,15 +126,16 @@ class LogWriter : public MessageSink {
     Write(timestamp_us, channel, bytes.data(), static_cast<int>(bytes.size()));
   }
 
-  // Flushes, closes and renames the log into place. Throws on an I/O error.
+  // Flushes, closes and moves the log into place. Throws on an I/O error.
   void Commit();
   int64_t events_written() const { return events_written_; }
   const std::string& path() const { return path_; }
+  // The unfinished log's name on disk ("" when it has none), for tests.
+  const std::string& partial_path() const { return file_->partial_path(); }
 
  private:
   std::string path_;
-  std::string partial_path_;
-  std::unique_ptr<lcm::LogFile> file_;
+  std::unique_ptr<OutputFile> file_;
   int64_t timestamp_us_ = 0;
   int64_t events_written_ = 0;
   bool committed_ = false;

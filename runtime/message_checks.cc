@@ -166,6 +166,9 @@ bool PlausibleBaseStatus(const void* data, int size) {
   // sips_received, checksum_errors, short_packets, reconnects
   w.Fixed(kDouble + 2 * kBoolean + kInt32 + 2 * kBoolean + 4 * kInt64);
   w.String();  // last_error
+  w.String();  // command_auth
+  // commands_accepted, commands_unauthenticated, commands_stale, commands_replayed
+  w.Fixed(4 * kInt64);
   return w.End();
 }
 

@@ -6,7 +6,7 @@
 set -eu
 PACKAGES="cmake ninja-build g++ pkg-config iproute2 util-linux
 liblcm-dev liblcm-bin libglib2.0-dev libeigen3-dev libsuitesparse-dev libserialport-dev
-libyaml-cpp-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev"
+libyaml-cpp-dev nlohmann-json3-dev libgtest-dev libbenchmark-dev libssl-dev"
 if [ "${1:-}" = "--python" ]; then
   PACKAGES="python3 python3-venv"
 fi

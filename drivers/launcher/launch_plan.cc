@@ -36,6 +36,14 @@ double PositiveSeconds(const Config& section, const std::string& key, double fal
 
 LaunchPlan ReadLaunchPlan(const Config& robot) {
   LaunchPlan plan;
+  const std::string network = robot.GetString("network", "loopback");
+  if (network == "loopback") {
+    plan.network = BusNetwork::kLoopback;
+  } else if (network == "lan") {
+    plan.network = BusNetwork::kLan;
+  } else {
+    robot.FailKey("network", "expected loopback or lan, got '" + network + "'");
+  }
   plan.log_directory = robot.GetString("log_directory", plan.log_directory);
   if (plan.log_directory.empty()) robot.FailKey("log_directory", "must not be empty");
   plan.stop_grace_s = PositiveSeconds(robot, "stop_grace_s", plan.stop_grace_s);

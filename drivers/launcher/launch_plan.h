@@ -2,6 +2,7 @@
 // a plan. Pure (no processes, no files): the supervisor (supervisor.h) carries it out.
 //
 //   robot:
+//     network: loopback                  # or lan: who may reach the bus (bus_network.h)
 //     log_directory: /var/log/slammtt   # {log_file} = <dir>/slammtt-YYYYmmdd-HHMMSS.lcm
 //     stop_grace_s: 5.0                  # SIGTERM, then SIGKILL after this long
 //     max_restarts: 5                    # restarts in a row before giving up on a process
@@ -11,8 +12,8 @@
 //     on_give_up: stop_all               # or keep_running
 //     processes:
 //       - name: logger
-//         program: lcm-logger
-//         args: ["--quiet", "--lcm-url={lcm_url}", "{log_file}"]
+//         program: lcm-logger                # --force: the launcher created {log_file} itself
+//         args: ["--quiet", "--force", "--lcm-url={lcm_url}", "{log_file}"]
 //         pass_config: false
 //         stop_last: true
 //       - name: p3dx
@@ -51,8 +52,15 @@ enum class GiveUpAction {
   kKeepRunning,  // leave the others running; exit 1 at the end
 };
 
+// Which machines the stack's bus is for (docs/robot.md, "Who can drive the robot").
+enum class BusNetwork {
+  kLoopback,  // this computer only (default): the bus must keep to the loopback interface
+  kLan,       // base stations on a LAN too: commands must then be signed (p3dx.command_key_file)
+};
+
 struct LaunchPlan {
   std::vector<ProcessSpec> processes;  // in start order
+  BusNetwork network = BusNetwork::kLoopback;
   std::string log_directory = "logs";
   double stop_grace_s = 5.0;
   int max_restarts = 5;

@@ -16,6 +16,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "drivers/launcher/bus_network.h"
 #include "drivers/launcher/line_prefixer.h"
 #include "drivers/launcher/restart_policy.h"
 #include "runtime/log.h"
@@ -63,6 +64,36 @@ void MakeDirectories(const std::string& path) {
   if (stat(path.c_str(), &info) != 0 || !S_ISDIR(info.st_mode) || access(path.c_str(), W_OK) != 0) {
     throw std::runtime_error("the log directory " + path + " is not a writable directory");
   }
+  // Anyone who may rename or remove files in it could swap a log for a link to another file
+  // between the launcher creating it and lcm-logger opening it.
+  if ((info.st_mode & S_IWOTH) != 0 && (info.st_mode & S_ISVTX) == 0) {
+    throw std::runtime_error("the log directory " + path +
+                             " is writable by other users (chmod o-w it, or set the sticky bit)");
+  }
+}
+
+// Creates `path` as a new empty file, never through a link and never over an existing file
+// (O_CREAT | O_EXCL, which also refuses a symlink of that name, dangling or not). False when
+// the name is taken; throws for any other failure.
+bool CreateExclusively(const std::string& path) {
+  const int fd = open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0640);
+  if (fd >= 0) {
+    close(fd);
+    return true;
+  }
+  if (errno == EEXIST) return false;
+  throw std::runtime_error("cannot create the log file " + path + ": " + std::strerror(errno));
+}
+
+// Whether an argument of `spec` expands {log_file} (a literal "{{log_file}}" does not).
+bool UsesLogFile(const ProcessSpec& spec) {
+  const std::string marker = "\x01";
+  for (const std::string& arg : spec.args) {
+    const std::string expanded = ExpandLaunchArgument(
+        arg, {{"config", ""}, {"lcm_url", ""}, {"log_directory", ""}, {"log_file", marker}});
+    if (expanded.find(marker) != std::string::npos) return true;
+  }
+  return false;
 }
 
 std::string DescribeStatus(int status) {
@@ -152,7 +183,7 @@ Supervisor::~Supervisor() {
   }
 }
 
-std::string Supervisor::NextLogFile() const {
+std::string Supervisor::NextLogFile(bool create) const {
   const std::time_t now = std::time(nullptr);
   std::tm local = {};
   localtime_r(&now, &local);
@@ -160,10 +191,15 @@ std::string Supervisor::NextLogFile() const {
                            LogFileName(local.tm_year + 1900, local.tm_mon + 1, local.tm_mday,
                                        local.tm_hour, local.tm_min, local.tm_sec);
   std::string candidate = base;
-  for (int i = 1; access(candidate.c_str(), F_OK) == 0; ++i) {
+  for (int i = 1;; ++i) {
+    struct stat info = {};
+    // lstat: a planted symlink, even a dangling one, takes its name.
+    const bool taken =
+        create ? !CreateExclusively(candidate) : lstat(candidate.c_str(), &info) == 0;
+    if (!taken) return candidate;
+    if (i > 10000) throw std::runtime_error("no free log file name beside " + base);
     candidate = base.substr(0, base.size() - 4) + "-" + std::to_string(i) + ".lcm";
   }
-  return candidate;
 }
 
 std::vector<std::string> Supervisor::Arguments(
@@ -181,7 +217,7 @@ std::vector<std::vector<std::string>> Supervisor::CommandLines() const {
       {"config", settings_.config_path},
       {"lcm_url", settings_.lcm_url},
       {"log_directory", plan_.log_directory},
-      {"log_file", NextLogFile()}};
+      {"log_file", NextLogFile(/*create=*/false)}};
   for (const auto& child : children_) {
     std::vector<std::string> line = {child->path};
     for (std::string& arg : Arguments(*child, variables)) line.push_back(std::move(arg));
@@ -195,7 +231,7 @@ void Supervisor::Start(Child* child) {
       {"config", settings_.config_path},
       {"lcm_url", settings_.lcm_url},
       {"log_directory", plan_.log_directory},
-      {"log_file", NextLogFile()}};
+      {"log_file", UsesLogFile(child->spec) ? NextLogFile(/*create=*/true) : std::string()}};
   std::vector<std::string> argv = {child->path};
   for (std::string& arg : Arguments(*child, variables)) argv.push_back(std::move(arg));
   std::vector<char*> c_argv;
@@ -388,6 +424,8 @@ void Supervisor::StopGroup(bool stop_last_group) {
 }
 
 int Supervisor::Run() {
+  const std::string bus_problem = BusNetworkProblem(settings_.lcm_url, plan_.network);
+  if (!bus_problem.empty()) throw std::runtime_error(bus_problem);
   MakeDirectories(plan_.log_directory);
   for (auto& child : children_) {
     if (ShutdownRequested()) break;

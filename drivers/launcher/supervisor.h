@@ -46,7 +46,9 @@ class Supervisor {
   // The command lines that Run() would start first, for --dry-run and the docs.
   std::vector<std::vector<std::string>> CommandLines() const;
 
-  // Creates the log directory (std::runtime_error when it cannot, before anything starts), then
+  // Checks the bus against robot.network (bus_network.h) and creates the log directory
+  // (std::runtime_error when either fails, before anything starts; a log directory other users
+  // may write to without the sticky bit is refused), then
   // runs the stack until shutdown is requested (runtime/shutdown.h), until a process is given up
   // with on_give_up: stop_all, or until every process ended for good. Stops everything before
   // returning. Returns 0, or 1 when a process failed for good.
@@ -59,7 +61,10 @@ class Supervisor {
   void Reap(bool stopping);
   void StopGroup(bool stop_last_group);
   void DrainAndClose(Child* child);
-  std::string NextLogFile() const;
+  // A new timestamped name in the log directory; with `create`, the file is created there
+  // exclusively (never through a link, never over a file), so whoever opens it next (lcm-logger)
+  // writes into the file the launcher made.
+  std::string NextLogFile(bool create) const;
   std::vector<std::string> Arguments(const Child& child,
                                      const std::map<std::string, std::string>& variables) const;
 

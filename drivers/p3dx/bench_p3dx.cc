@@ -14,14 +14,19 @@
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <chrono>
+#include <fstream>
 #include <memory>
 #include <thread>
 
+#include "drivers/command_auth/command_key.h"
+#include "drivers/command_auth/command_signature.h"
+#include "drivers/common/driver_clock.h"
 #include "drivers/p3dx/p3dx_commands.h"
 #include "drivers/p3dx/p3dx_emulator.h"
 #include "drivers/p3dx/p3dx_odometry.h"
@@ -90,7 +95,24 @@ void BM_CommandLatency(benchmark::State& state) {
   std::thread serve([&] { emulator.Run([&] { return stop.load(); }); });
   const std::string driver = std::string(SLAMMTT_BIN_DIR) + "/slammtt-p3dx";
   const std::string endpoint = emulator.Endpoint();
-  const char* argv[] = {driver.c_str(), "--port", endpoint.c_str(), "--quiet", nullptr};
+  // The driver moves the robot only for commands signed with its key (docs/robot.md): the
+  // latency includes the tag check.
+  char directory[] = "/tmp/bench-p3dx-XXXXXX";
+  if (mkdtemp(directory) == nullptr) {
+    stop = true;
+    serve.join();
+    state.SkipWithError("cannot make a temporary directory");
+    return;
+  }
+  const std::string key_path = std::string(directory) + "/command.key";
+  const std::string config_path = std::string(directory) + "/stack.yaml";
+  const CommandKey key = NewCommandKey();
+  WriteNewCommandKeyFile(key_path, key);
+  std::ofstream(config_path) << "p3dx:\n  command_key_file: " << key_path << "\n";
+  VelocityCommandSigner signer(key, "VELOCITY_COMMAND", NewSenderId());
+  SystemDriverClock wall_clock;
+  const char* argv[] = {driver.c_str(), "--config", config_path.c_str(), "--port",
+                        endpoint.c_str(), "--quiet", nullptr};
   pid_t pid = -1;
   if (posix_spawn(&pid, driver.c_str(), nullptr, nullptr, const_cast<char**>(argv), environ) != 0) {
     stop = true;
@@ -126,6 +148,8 @@ void BM_CommandLatency(benchmark::State& state) {
     slammtt_msgs::velocity_command_t command{};
     command.linear_mps = value_mmps / 1000.0;
     const auto start = std::chrono::steady_clock::now();
+    command.utime = wall_clock.NowUtime();
+    signer.Sign(&command);
     lcm->publish("VELOCITY_COMMAND", &command);
     bool arrived = false;
     while (!arrived && std::chrono::steady_clock::now() - start < std::chrono::seconds(2)) {
@@ -154,6 +178,9 @@ void BM_CommandLatency(benchmark::State& state) {
   }
   kill(pid, SIGTERM);
   waitpid(pid, nullptr, 0);
+  unlink(key_path.c_str());
+  unlink(config_path.c_str());
+  rmdir(directory);
   if (!latencies_ms.empty()) {
     std::sort(latencies_ms.begin(), latencies_ms.end());
     auto percentile = [&](double p) {  // nearest rank

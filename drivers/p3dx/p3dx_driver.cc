@@ -18,6 +18,7 @@ constexpr int64_t kStaleEstopAfterUs = 1000000;      // a stale robot still movi
 constexpr int64_t kStaleCloseQuietUs = 300000;       // no SIP for this long after CLOSE: closed
 constexpr int64_t kStaleCloseGiveUpUs = 3000000;
 constexpr int kWriteTimeoutMs = 500;
+constexpr int kStopWriteTimeoutMs = 50;             // the stop when a link is given up
 constexpr int64_t kShutdownDrainUs = 500000;         // read after CLOSE: see Shutdown()
 constexpr int64_t kShutdownQuietUs = 150000;
 
@@ -114,6 +115,13 @@ void P3dxDriver::TryOpen(int64_t now_us) {
 
 void P3dxDriver::LinkLost(const std::string& reason) {
   if (!link_) return;
+  // A link given up for silence may still carry our bytes to a robot that drives on: stop it
+  // before letting go (a write that fails here changes nothing).
+  try {
+    const std::vector<uint8_t> stop = EncodeP3dxVel2(0, 0);
+    link_->Write(stop.data(), stop.size(), kStopWriteTimeoutMs);
+  } catch (const LinkError&) {
+  }
   link_.reset();
   if (shutting_down_) {
     LogWarning() << endpoint_description_ << ": link lost while stopping (" << reason << ")";
@@ -152,6 +160,9 @@ void P3dxDriver::SendSync(int index) {
   sync_index_ = index;
   ++sync_attempts_;
   sync_sent_us_ = clock_->NowMonotonicUs();
+  // A robot still in an earlier session takes SYNC0 as a keep-alive and keeps its last speed:
+  // every SYNC0 goes out behind a stop. A robot waiting for SYNC0 ignores it.
+  if (index == 0 && !Send(EncodeP3dxVel2(0, 0))) return;
   Send(EncodeP3dxCommand(static_cast<uint8_t>(index)));
 }
 
@@ -423,6 +434,35 @@ void P3dxDriver::HandleSip(const P3dxStandardSip& sip, int64_t arrival_utime) {
   if (flags_changed) PublishStatus();
 }
 
+void P3dxDriver::SetCommandKey(const CommandKey& key) {
+  CommandVerifierOptions verifier_options;
+  verifier_options.max_age_s = options_.command_max_age_s;
+  verifier_ = std::make_unique<VelocityCommandVerifier>(key, channels_.velocity_command,
+                                                        verifier_options);
+}
+
+void P3dxDriver::ReceiveVelocityCommand(const slammtt_msgs::velocity_command_t& command) {
+  if (state_ == State::kStopped) return;
+  if (options_.command_authentication == P3dxDriverOptions::CommandAuthentication::kSigned) {
+    const CommandVerdict verdict = verifier_ ? verifier_->Check(command, clock_->NowUtime())
+                                             : CommandVerdict::kUnauthenticated;
+    if (verdict != CommandVerdict::kAccepted) {
+      ++(verdict == CommandVerdict::kStale      ? commands_stale_
+         : verdict == CommandVerdict::kReplayed ? commands_replayed_
+                                                : commands_unauthenticated_);
+      if (IsReportable(commands_refused())) {
+        LogWarning() << "VELOCITY_COMMAND refused: "
+                     << (verifier_ ? CommandVerdictName(verdict)
+                                   : "no command key (set p3dx.command_key_file, docs/robot.md)")
+                     << " (" << commands_refused() << " refused so far, counted in BASE_STATUS)";
+      }
+      return;
+    }
+  }
+  ++commands_accepted_;
+  HandleVelocityCommand(command);
+}
+
 void P3dxDriver::HandleVelocityCommand(const slammtt_msgs::velocity_command_t& command) {
   if (state_ == State::kStopped) return;
   if (!std::isfinite(command.linear_mps) || !std::isfinite(command.angular_radps)) {
@@ -489,7 +529,8 @@ void P3dxDriver::Shutdown() {
   LogInfo() << "SIPs " << status.sips_received << ", checksum errors " << status.checksum_errors
             << ", short packets " << status.short_packets << ", bad byte counts "
             << decoder_.counters().bad_byte_counts << ", reconnects " << status.reconnects
-            << ", commands skipped " << commands_skipped_;
+            << ", commands accepted " << commands_accepted_ << ", refused " << commands_refused()
+            << ", skipped " << commands_skipped_;
   PublishStatus();
 }
 
@@ -519,6 +560,16 @@ slammtt_msgs::base_status_t P3dxDriver::Status() const {
   status.short_packets = decoder_.counters().truncated + short_sips_;
   status.reconnects = reconnects_;
   status.last_error = last_error_;
+  if (options_.command_authentication == P3dxDriverOptions::CommandAuthentication::kNone) {
+    status.command_auth = "none (local only)";
+  } else {
+    status.command_auth =
+        verifier_ ? "hmac-sha256" : "hmac-sha256 without a key: every command refused";
+  }
+  status.commands_accepted = commands_accepted_;
+  status.commands_unauthenticated = commands_unauthenticated_;
+  status.commands_stale = commands_stale_;
+  status.commands_replayed = commands_replayed_;
   return status;
 }
 

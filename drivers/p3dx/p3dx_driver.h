@@ -11,7 +11,9 @@
 //  1. open the link, flush it, send SYNC0; SYNC0 and SYNC1 must come back as echoes, SYNC2's
 //     reply is the name packet (name, class, subclass: the subclass picks DistConvFactor).
 //     A SYNC without reply is re-sent every sync_reply_timeout_s; after sync_attempts the link
-//     is reopened. A wrong reply restarts at SYNC0.
+//     is reopened. A wrong reply restarts at SYNC0. Every SYNC0 goes out behind VEL2 0: a
+//     robot still in a session (one that went quiet but still hears) takes SYNC0 as a
+//     keep-alive and would keep driving; a robot waiting for SYNC0 ignores the VEL2.
 //  2. A robot still connected to an earlier client answers SYNC with SIPs. If it is moving
 //     (0x33) it takes our SYNC0 as a keep-alive and keeps driving, so we stop it first: VEL2 0,
 //     and ESTOP if it still moves 1 s later. Once a SIP says stopped (0x32) we send CLOSE, wait
@@ -26,10 +28,15 @@
 //  5. No valid command for command_timeout_s while moving: VEL 0 + RVEL 0 (the robot stops
 //     with its configured deceleration) and command_timeout_stop in BASE_STATUS until the next
 //     command. A command with a non-finite value is skipped and counted.
-//  6. No valid SIP for sip_timeout_s, or a LinkError: the link is lost: reported, closed, and
-//     reopened after a backoff (0.5 s doubling to 8 s) with the full handshake; the odometry
-//     stays continuous across the gap (P3dxOdometryIntegrator::Reanchor).
+//  6. No valid SIP for sip_timeout_s, or a LinkError: the link is lost: VEL2 0 is sent if the
+//     link still takes it, the loss reported, the link closed and reopened after a backoff
+//     (0.5 s doubling to 8 s) with the full handshake; the odometry stays continuous across the
+//     gap (P3dxOdometryIntegrator::Reanchor).
 //  7. Shutdown(): VEL 0 + RVEL 0, then CLOSE (which also stops the robot and ends its SIPs).
+// Who may drive it: a VELOCITY_COMMAND from the bus goes through ReceiveVelocityCommand(), which
+// accepts only a command signed with the robot's key (SetCommandKey; command_signature.h), or
+// any command when options.command_authentication is kNone; a refused command never moves the
+// robot, and is counted by reason in BASE_STATUS and reported the 1st, 10th, 100th, ... time.
 // Bad checksums, bad byte counts, truncated packets and SIPs too short for their fields are
 // skipped and counted; none of them ever gives odometry.
 #pragma once
@@ -42,6 +49,8 @@
 #include "drivers/common/byte_stream.h"
 #include "drivers/common/driver_clock.h"
 #include "drivers/common/reconnect_backoff.h"
+#include "drivers/command_auth/command_key.h"
+#include "drivers/command_auth/command_signature.h"
 #include "drivers/p3dx/p3dx_driver_options.h"
 #include "drivers/p3dx/p3dx_odometry.h"
 #include "drivers/p3dx/p3dx_packet.h"
@@ -59,6 +68,7 @@ using ByteStreamFactory =
 struct P3dxDriverChannels {
   std::string odometry = "ODOMETRY";
   std::string base_status = "BASE_STATUS";
+  std::string velocity_command = "VELOCITY_COMMAND";  // a signed command's tag covers it
 };
 
 class P3dxDriver {
@@ -84,7 +94,13 @@ class P3dxDriver {
   // handles what came. Never throws for link trouble (that is reported and retried). Returns
   // without waiting when there is no link.
   void Poll(int max_wait_ms);
-  // A VELOCITY_COMMAND from the bus (sent at once when connected).
+  // The key signed commands must carry (with command_authentication kSigned; without a key every
+  // command is refused).
+  void SetCommandKey(const CommandKey& key);
+  // A VELOCITY_COMMAND from the bus: checked as the header says, then, when accepted, handled
+  // as HandleVelocityCommand does.
+  void ReceiveVelocityCommand(const slammtt_msgs::velocity_command_t& command);
+  // A command from someone allowed to drive the robot (sent at once when connected).
   void HandleVelocityCommand(const slammtt_msgs::velocity_command_t& command);
   // Stops the robot and ends the session (VEL 0, RVEL 0, CLOSE); publishes the final status.
   void Shutdown();
@@ -102,6 +118,9 @@ class P3dxDriver {
   slammtt_msgs::base_status_t Status() const;
 
   int64_t commands_skipped() const { return commands_skipped_; }
+  int64_t commands_refused() const {
+    return commands_unauthenticated_ + commands_stale_ + commands_replayed_;
+  }
   const P3dxDecoderCounters& decoder_counters() const { return decoder_.counters(); }
 
  private:
@@ -163,6 +182,13 @@ class P3dxDriver {
   int64_t last_write_us_ = 0;
   bool command_timeout_stop_ = false;
   int64_t commands_skipped_ = 0;
+
+  // Who drives the robot.
+  std::unique_ptr<VelocityCommandVerifier> verifier_;
+  int64_t commands_accepted_ = 0;
+  int64_t commands_unauthenticated_ = 0;
+  int64_t commands_stale_ = 0;
+  int64_t commands_replayed_ = 0;
 
   // Status.
   P3dxStandardSip last_sip_;

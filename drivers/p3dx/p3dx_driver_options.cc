@@ -7,6 +7,7 @@
 
 #include "drivers/common/byte_stream.h"
 #include "drivers/p3dx/p3dx_odometry.h"
+#include "runtime/lcm_url.h"
 
 namespace slammtt {
 namespace {
@@ -43,6 +44,18 @@ P3dxDriverOptions ReadP3dxDriverOptions(const Config& section) {
   o.subclass = section.GetString("subclass", o.subclass);
   o.enable_motors = section.GetBool("enable_motors", o.enable_motors);
   o.status_period_s = section.GetDouble("status_period_s", o.status_period_s);
+  const std::string auth = section.GetString(
+      "command_authentication", CommandAuthenticationName(o.command_authentication));
+  if (auth == "hmac-sha256") {
+    o.command_authentication = P3dxDriverOptions::CommandAuthentication::kSigned;
+  } else if (auth == "none") {
+    o.command_authentication = P3dxDriverOptions::CommandAuthentication::kNone;
+  } else {
+    section.FailKey("command_authentication",
+                    "must be hmac-sha256 or none, got '" + auth + "'");
+  }
+  o.command_key_file = section.GetString("command_key_file", o.command_key_file);
+  o.command_max_age_s = section.GetDouble("command_max_age_s", o.command_max_age_s);
   try {
     ValidateP3dxDriverOptions(o);
   } catch (const std::invalid_argument& e) {
@@ -79,6 +92,25 @@ void ApplyP3dxDriverCommandLine(const CommandLine& command_line, P3dxDriverOptio
   }
 }
 
+const char* CommandAuthenticationName(P3dxDriverOptions::CommandAuthentication mode) {
+  return mode == P3dxDriverOptions::CommandAuthentication::kNone ? "none" : "hmac-sha256";
+}
+
+void CheckCommandAuthenticationForBus(const P3dxDriverOptions& options,
+                                      const std::string& lcm_url) {
+  if (options.command_authentication != P3dxDriverOptions::CommandAuthentication::kNone) return;
+  if (!IsLocalOnly(ParseLcmUrl(lcm_url))) {
+    throw std::invalid_argument(
+        "p3dx.command_authentication: none is for a bus whose packets stay on this computer "
+        "(udpm://...?ttl=0), not '" +
+        lcm_url + "': give the robot a command key instead (docs/robot.md)");
+  }
+  if (!options.command_key_file.empty()) {
+    throw std::invalid_argument(
+        "p3dx.command_authentication: none and p3dx.command_key_file exclude each other");
+  }
+}
+
 void ValidateP3dxDriverOptions(const P3dxDriverOptions& o) {
   auto positive = [](double value, const char* name) {
     if (!(value > 0.0) || !std::isfinite(value)) {
@@ -112,6 +144,9 @@ void ValidateP3dxDriverOptions(const P3dxDriverOptions& o) {
   // VEL carries at most 32767 mm/s and RVEL 32767 deg/s; the P3-DX tops out near 1.2 m/s.
   if (o.max_linear_mps > 2.0) throw std::invalid_argument("max_linear_mps above 2.0 m/s");
   if (o.max_angular_radps > 6.0) throw std::invalid_argument("max_angular_radps above 6.0 rad/s");
+  if (!(o.command_max_age_s > 0.0 && o.command_max_age_s <= 60.0)) {
+    throw std::invalid_argument("command_max_age_s must be in (0, 60] s");
+  }
   if (!o.subclass.empty() && !P3dxConversionForSubclass(o.subclass)) {
     throw std::invalid_argument("subclass '" + o.subclass +
                                 "' has no conversion factors (use p3dx or p3dx-sh)");

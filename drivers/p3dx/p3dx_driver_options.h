@@ -35,7 +35,19 @@ struct P3dxDriverOptions {
   std::string subclass;
   bool enable_motors = true;      // send ENABLE 1 after OPEN
   double status_period_s = 1.0;   // BASE_STATUS period (also sent on every state change)
+
+  // Who may drive the robot (drivers/command_auth/command_signature.h; docs/robot.md, "Who can
+  // drive the robot"). kSigned: only a VELOCITY_COMMAND signed with the key in command_key_file;
+  // without a key file every command is refused (and counted). kNone: any VELOCITY_COMMAND
+  // moves the robot; allowed only on a bus that keeps its packets on the host (ttl=0).
+  enum class CommandAuthentication { kSigned, kNone };
+  CommandAuthentication command_authentication = CommandAuthentication::kSigned;
+  std::string command_key_file;     // empty: no key
+  double command_max_age_s = 1.0;   // freshness window of a signed command, either way
 };
+
+// "hmac-sha256" or "none", the configuration's spelling.
+const char* CommandAuthenticationName(P3dxDriverOptions::CommandAuthentication mode);
 
 // Reads the `p3dx:` section; ConfigError naming the key for a bad value. The caller runs
 // CheckUnused() on the section afterwards.
@@ -48,5 +60,10 @@ void ApplyP3dxDriverCommandLine(const CommandLine& command_line, P3dxDriverOptio
 // Throws std::invalid_argument, one line naming the option, when a value is out of range or the
 // port is not a well-formed endpoint (drivers/common CheckEndpoint).
 void ValidateP3dxDriverOptions(const P3dxDriverOptions& options);
+
+// Throws std::invalid_argument, one line, when commands are unauthenticated (kNone) on a bus
+// whose packets may leave the host: anything but memq or udpm with ttl=0 (runtime/lcm_url.h).
+void CheckCommandAuthenticationForBus(const P3dxDriverOptions& options,
+                                      const std::string& lcm_url);
 
 }  // namespace slammtt

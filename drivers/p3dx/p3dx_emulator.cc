@@ -24,6 +24,7 @@ constexpr FaultName kFaultNames[] = {
     {"short", P3dxEmulatorFault::Kind::kShort},
     {"truncate", P3dxEmulatorFault::Kind::kTruncate},
     {"silence", P3dxEmulatorFault::Kind::kSilence},
+    {"mute", P3dxEmulatorFault::Kind::kMute},
     {"disconnect", P3dxEmulatorFault::Kind::kDisconnect},
     {"bumper", P3dxEmulatorFault::Kind::kBumper},
     {"stall", P3dxEmulatorFault::Kind::kStall},
@@ -127,6 +128,9 @@ void P3dxEmulator::ApplyDueFaults(int64_t now_us) {
         break;
       case P3dxEmulatorFault::Kind::kSilence:
         model_.SilenceFor(std::llround(FaultNumber(arg, 3.0, arg) * 1e6), now_us);
+        break;
+      case P3dxEmulatorFault::Kind::kMute:
+        model_.MuteFor(std::llround(FaultNumber(arg, 3.0, arg) * 1e6), now_us);
         break;
       case P3dxEmulatorFault::Kind::kDisconnect:
         Disconnect(now_us, std::llround(FaultNumber(arg, 2.0, arg) * 1e6));

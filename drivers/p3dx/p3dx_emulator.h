@@ -30,6 +30,8 @@ struct P3dxEmulatorFault {
     kShort,        // the next ARG SIPs are cut to 12 bytes in a valid frame (default 1)
     kTruncate,     // the next ARG packets stop halfway (default 1)
     kSilence,      // ARG seconds without a byte out or in (default 3)
+    kMute,         // ARG seconds without a byte out while everything heard is carried out
+                   // (default 3): a robot whose transmit line failed
     kDisconnect,   // the link goes away for ARG seconds (default 2): pty hung up and created
                    // anew (new /dev/pts/N, the symlink follows), TCP client dropped and the
                    // port closed

@@ -40,7 +40,7 @@ int Main(int argc, char** argv) {
                "start in a session left open by an earlier client, moving at V m/s, W rad/s");
   cl.AddRepeatedOption("fault", "KIND@SECONDS[:ARG]",
                        "scheduled fault: garbage[:BYTES], bad-checksum[:N], drop[:BYTES], "
-                       "short[:N], truncate[:N], silence[:S], disconnect[:S], "
+                       "short[:N], truncate[:N], silence[:S], mute[:S], disconnect[:S], "
                        "bumper[:LEFT,RIGHT], stall[:LEFT,RIGHT]");
   cl.AddFlag("quiet", "print only warnings and errors", 'q');
   if (!cl.Parse(argc, argv)) return 0;

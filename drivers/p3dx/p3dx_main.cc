@@ -5,11 +5,13 @@
 #include <cerrno>
 #include <cstring>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
 #include "drivers/common/byte_stream.h"
 #include "drivers/common/driver_clock.h"
+#include "drivers/command_auth/command_key.h"
 #include "drivers/p3dx/p3dx_driver.h"
 #include "drivers/p3dx/p3dx_driver_options.h"
 #include "runtime/lcm_io.h"
@@ -39,6 +41,13 @@ int Main(int argc, char** argv) {
   P3dxDriverOptions options = ReadP3dxDriverOptions(section);
   section.CheckUnused();
   ApplyP3dxDriverCommandLine(cl, &options);
+  try {
+    CheckCommandAuthenticationForBus(options, settings.lcm_url);
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(e.what());
+  }
+  std::optional<CommandKey> key;
+  if (!options.command_key_file.empty()) key = LoadCommandKeyFile(options.command_key_file);
 
   std::unique_ptr<lcm::LCM> lcm = OpenLcm(settings.lcm_url);
   LcmSink sink(lcm.get());
@@ -46,9 +55,11 @@ int Main(int argc, char** argv) {
   P3dxDriverChannels channels;
   channels.odometry = settings.channels.Get("odometry");
   channels.base_status = settings.channels.Get("base_status");
+  channels.velocity_command = settings.channels.Get("velocity_command");
   P3dxDriver driver(
       options, [](const std::string& endpoint, int baud) { return OpenByteStream(endpoint, baud); },
       &clock, &sink, channels);
+  if (key) driver.SetCommandKey(*key);
 
   // An exception must not unwind through LCM's C dispatch: the handler keeps the first one and
   // the loop rethrows it once handle() has returned (the driver's destructor stops the robot).
@@ -69,7 +80,7 @@ int Main(int argc, char** argv) {
           return;
         }
         try {
-          c->driver->HandleVelocityCommand(command);
+          c->driver->ReceiveVelocityCommand(command);
         } catch (const std::exception& e) {
           if (c->error.empty()) c->error = e.what();
         }
@@ -78,6 +89,18 @@ int Main(int argc, char** argv) {
   LogInfo() << "driving " << options.port << " (max " << options.max_linear_mps << " m/s, "
             << options.max_angular_radps << " rad/s, command timeout "
             << options.command_timeout_s << " s)";
+  if (options.command_authentication == P3dxDriverOptions::CommandAuthentication::kNone) {
+    LogWarning() << "VELOCITY_COMMAND is not authenticated (p3dx.command_authentication: none): "
+                    "any program on this computer can drive the robot, and so can any host that "
+                    "reaches the bus's UDP port on this computer unless a firewall stops it "
+                    "(docs/robot.md)";
+  } else if (key) {
+    LogInfo() << "VELOCITY_COMMAND must be signed with the key of " << options.command_key_file
+              << " (freshness window " << options.command_max_age_s << " s)";
+  } else {
+    LogWarning() << "no command key (p3dx.command_key_file): every VELOCITY_COMMAND is refused "
+                    "and the robot does not move (docs/robot.md, \"Who can drive the robot\")";
+  }
 
   // One wait for everything: the bus (VELOCITY_COMMAND is sent the moment it arrives), the link
   // (a SIP is handled the moment its bytes arrive), the shutdown request, and the driver's next

@@ -151,7 +151,7 @@ void P3dxRobotModel::AdvanceTo(int64_t now_us) {
       ++watchdog_stops_;
     }
     if (open && now_us_ >= next_sip_us_) {
-      if (now_us_ >= silent_until_us_) SendSip();
+      if (now_us_ >= silent_until_us_ && now_us_ >= muted_until_us_) SendSip();
       next_sip_us_ += options_.sip_cycle_ms * int64_t{1000};
     }
     if (now_us_ >= now_us) break;
@@ -165,6 +165,7 @@ int64_t P3dxRobotModel::NextEventUs() const {
     if (moving()) next = std::min<int64_t>(next, last_packet_us_ + options_.watchdog_ms * int64_t{1000});
   }
   if (silent_until_us_ > now_us_) next = std::min(next, silent_until_us_);
+  if (muted_until_us_ > now_us_) next = std::min(next, muted_until_us_);
   return next;
 }
 
@@ -204,6 +205,7 @@ void P3dxRobotModel::SendSip() {
 }
 
 void P3dxRobotModel::Send(std::vector<uint8_t> packet) {
+  if (now_us_ < muted_until_us_) return;
   if (corrupt_checksums_ > 0) {
     --corrupt_checksums_;
     packet.back() ^= 0x01;
@@ -261,6 +263,11 @@ void P3dxRobotModel::TruncateNextPackets(int packets) { truncate_packets_ += pac
 void P3dxRobotModel::SilenceFor(int64_t duration_us, int64_t now_us) {
   AdvanceTo(now_us);
   silent_until_us_ = now_us_ + duration_us;
+}
+
+void P3dxRobotModel::MuteFor(int64_t duration_us, int64_t now_us) {
+  AdvanceTo(now_us);
+  muted_until_us_ = now_us_ + duration_us;
 }
 
 void P3dxRobotModel::SetBumpers(int left_bits, int right_bits) {

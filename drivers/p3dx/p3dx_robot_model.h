@@ -81,6 +81,9 @@ class P3dxRobotModel {
   void SendShortSips(int packets);         // valid frame, SIP cut after 12 payload bytes
   void TruncateNextPackets(int packets);   // cut the frame in half, the rest never comes
   void SilenceFor(int64_t duration_us, int64_t now_us);  // no output, input ignored
+  // No output (no SIP, no reply) while every packet is still heard and carried out: a robot
+  // whose transmit line failed. Its watchdog is fed by whatever the host sends.
+  void MuteFor(int64_t duration_us, int64_t now_us);
   void SetBumpers(int left_bits, int right_bits);        // 7 bits each
   void SetWheelStall(bool left, bool right);
 
@@ -118,6 +121,7 @@ class P3dxRobotModel {
   int64_t next_sip_us_ = 0;
   int64_t last_packet_us_ = 0;
   int64_t silent_until_us_ = 0;
+  int64_t muted_until_us_ = 0;
 
   bool motors_enabled_ = false;
   double left_mmps_ = 0.0;

@@ -86,7 +86,8 @@ void RplidarDeviceModel::OnHostBytes(const uint8_t* data, size_t size, int64_t n
   parser_.Feed(data, size, &requests);
   stats_.bad_requests = parser_.bad_checksums();
   for (const Request& request : requests) {
-    const bool silent = silent_until_us_ >= 0 && now_us < silent_until_us_;
+    const bool silent =
+        silent_until_us_ >= 0 && now_us < silent_until_us_ && !silence_hears_requests_;
     const bool booting = booting_until_us_ >= 0 && now_us < booting_until_us_;
     if (silent || booting) {
       ++stats_.ignored_requests;
@@ -217,6 +218,11 @@ void RplidarDeviceModel::CorruptPackets(int count) { corrupt_pending_ += count; 
 void RplidarDeviceModel::DropBytes(int count) { drop_pending_ += count; }
 void RplidarDeviceModel::Silence(int64_t duration_us, int64_t now_us) {
   silent_until_us_ = now_us + duration_us;
+  silence_hears_requests_ = false;
+}
+void RplidarDeviceModel::Mute(int64_t duration_us, int64_t now_us) {
+  silent_until_us_ = now_us + duration_us;
+  silence_hears_requests_ = true;
 }
 void RplidarDeviceModel::SetHealth(const DeviceHealth& health, bool persists_after_reset) {
   health_ = health;

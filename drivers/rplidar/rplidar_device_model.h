@@ -102,6 +102,9 @@ class RplidarDeviceModel {
   void CorruptPackets(int count);            // capsule: bad checksum; node: lost sync/check bit
   void DropBytes(int count);                 // one byte missing inside each of `count` packets
   void Silence(int64_t duration_us, int64_t now_us);  // transmits nothing, ignores requests
+  // Transmits nothing but still carries out requests (SET_MOTOR_PWM 0 stops the motor): a
+  // device whose transmit line failed, or one stuck in a state that never answers.
+  void Mute(int64_t duration_us, int64_t now_us);
   void SetHealth(const DeviceHealth& health, bool persists_after_reset);
 
   const RplidarDeviceStats& stats() const { return stats_; }
@@ -145,6 +148,7 @@ class RplidarDeviceModel {
   int64_t motor_on_since_us_ = -1;
 
   int64_t silent_until_us_ = -1;
+  bool silence_hears_requests_ = false;  // Mute() rather than Silence()
   int64_t booting_until_us_ = -1;
   bool banner_pending_ = false;
 

@@ -16,6 +16,13 @@ class NoReply : public LinkError {
   using LinkError::LinkError;
 };
 
+// A stop was requested while the driver waited for a reply: the session ends at once (the
+// motor is stopped on the way out), without waiting out the reply's timeout.
+class StopRequested : public std::exception {
+ public:
+  const char* what() const noexcept override { return "stop requested"; }
+};
+
 constexpr size_t kMaxSingleReply = 1024;
 constexpr int kReadSliceMs = 20;
 constexpr size_t kMaxRevolutionTimes = 11;
@@ -68,6 +75,7 @@ bool RplidarDriver::SleepMs(int64_t ms, const std::function<bool()>& should_stop
 }
 
 void RplidarDriver::Run(const std::function<bool()>& should_stop) {
+  should_stop_ = &should_stop;
   MaybePublishStatus(true);
   while (!should_stop()) {
     std::unique_ptr<ByteStream> stream;
@@ -76,7 +84,12 @@ void RplidarDriver::Run(const std::function<bool()>& should_stop) {
       stream = open_stream_();
       status_.connected = true;
       status_.endpoint = stream->Describe();
-      const SessionEnd end = Session(*stream, should_stop);
+      SessionEnd end = SessionEnd::kStopRequested;
+      try {
+        end = Session(*stream, should_stop);
+      } catch (const StopRequested&) {
+        end = SessionEnd::kStopRequested;
+      }
       if (end == SessionEnd::kStopRequested) {
         StopDevice(*stream);
         break;
@@ -102,9 +115,23 @@ void RplidarDriver::Run(const std::function<bool()>& should_stop) {
       // Anything else (the bus failing to publish, say) ends the process: the device must not
       // go on scanning with its motor turning until someone restarts us.
       if (stream) StopDevice(*stream);
+      should_stop_ = nullptr;
       throw;
     }
   }
+  // Stopped while the link was closed (in the backoff after a link error, or between a failed
+  // session and the next): a device that lost its link, or stopped answering, may still turn
+  // its motor, which STOP alone never stops. Reopen once and stop it.
+  if (motor_may_run_) {
+    try {
+      std::unique_ptr<ByteStream> stream = open_stream_();
+      LogInfo() << "reopened " << stream->Describe() << " to stop the motor";
+      StopDevice(*stream);
+    } catch (const LinkError& e) {
+      LogWarning() << "could not reopen the link to stop the motor: " << e.what();
+    }
+  }
+  should_stop_ = nullptr;
   status_.connected = false;
   SetState("stopped");
   MaybePublishStatus(true);
@@ -150,6 +177,7 @@ std::vector<uint8_t> RplidarDriver::ReadReply(ByteStream& stream, uint8_t data_t
                                     pending.begin() + kDescriptorSize + descriptor->length);
       }
     }
+    if (should_stop_ != nullptr && (*should_stop_)()) throw StopRequested();
     const int64_t left_us = deadline_us - clock_->NowMonotonicUs();
     if (left_us <= 0) {
       throw NoReply(stream.Describe() + ": no reply to " + what + " within " +
@@ -163,8 +191,6 @@ std::vector<uint8_t> RplidarDriver::ReadReply(ByteStream& stream, uint8_t data_t
 
 RplidarDriver::SessionEnd RplidarDriver::Session(ByteStream& stream,
                                                  const std::function<bool()>& should_stop) {
-  use_pwm_ = false;
-  motor_started_ = false;
   DeviceInfo info;
   for (;;) {
     // A scan may still run from an earlier session: stop it and drop what is in flight
@@ -320,7 +346,7 @@ void RplidarDriver::StartMotor(ByteStream& stream) {
     default:
       break;
   }
-  motor_started_ = control != MotorControl::kNone;
+  motor_may_run_ = control != MotorControl::kNone;
   LogDebug() << "motor "
              << (control == MotorControl::kPwm ? "PWM " + std::to_string(options_.motor_pwm)
                                                : control == MotorControl::kDtr ? "on (DTR)"
@@ -331,11 +357,14 @@ void RplidarDriver::StopDevice(ByteStream& stream) {
   try {
     Send(stream, StopRequest());
     clock_->SleepUs(2000);
-    if (use_pwm_) {
+    // The device's STOP ends the scan, not the motor. use_pwm_ remembers how any session of
+    // this process started it, so a stop before this session's StartMotor still sends PWM 0.
+    if (use_pwm_ || options_.motor_control == MotorControl::kPwm) {
       Send(stream, SetMotorPwmRequest(0));
     } else if (options_.motor_control != MotorControl::kNone) {
       stream.SetDtr(true);  // DTR asserted = motor off
     }
+    motor_may_run_ = false;
     LogInfo() << "scan stopped, motor off";
   } catch (const LinkError& e) {
     LogWarning() << "could not stop the device: " << e.what();

@@ -16,7 +16,10 @@
 // data for data_timeout_ms closes the link, is reported (LIDAR_STATUS state "reconnecting",
 // last_error) and the link is reopened after a backoff doubling from reconnect_initial_ms to
 // reconnect_max_ms. On shutdown: STOP, then the motor off (PWM 0 or DTR asserted), status
-// "stopped".
+// "stopped", on every exit path: a stop requested while the driver waits for a reply ends the
+// wait at once; one requested while the link is closed (the backoff after a link error)
+// reopens it once to stop the motor; PWM 0 is sent whenever any session of the process started
+// the motor by PWM (the device's STOP does not stop the motor).
 //
 // Time: utime of a LASER_SCAN is the host time (DriverClock::NowUtime) at which the bytes of
 // its first sample arrived, read right after the read that returned them; scan_duration_us
@@ -86,8 +89,9 @@ class RplidarDriver {
 
   ReconnectBackoff backoff_;
   bool reset_done_ = false;      // one RESET per health problem, until health is good again
-  bool use_pwm_ = false;         // how the motor of this session was started
-  bool motor_started_ = false;
+  bool use_pwm_ = false;         // a session of this process started the motor by PWM
+  bool motor_may_run_ = false;   // started and not stopped since
+  const std::function<bool()>* should_stop_ = nullptr;  // during Run(), for reply waits
   ScanMode active_mode_ = ScanMode::kExpress;  // the configured mode unless the firmware lacks it
   StandardNodeDecoder standard_decoder_;
   ExpressCapsuleDecoder express_decoder_;

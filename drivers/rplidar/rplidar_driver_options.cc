@@ -1,5 +1,6 @@
 #include "drivers/rplidar/rplidar_driver_options.h"
 
+#include <cmath>
 #include <stdexcept>
 
 #include "drivers/common/byte_stream.h"
@@ -50,6 +51,11 @@ RplidarDriverOptions ReadRplidarDriverOptions(const Config& section) {
   if (pwm < 0 || pwm > 1023) section.FailKey("motor_pwm", "must be within 0..1023");
   options.motor_pwm = static_cast<int>(pwm);
   options.beams.angle_offset_deg = section.GetDouble("angle_offset_deg", 0.0);
+  // A mount yaw is within a turn either way; a huge value would leave nothing of the beam
+  // angle after the subtraction in double.
+  if (!(std::abs(options.beams.angle_offset_deg) <= 360.0)) {
+    section.FailKey("angle_offset_deg", "must be within [-360, 360] degrees");
+  }
   options.beams.upside_down = section.GetBool("upside_down", false);
   options.beams.range_min_m = section.GetDouble("range_min_m", options.beams.range_min_m);
   options.beams.range_max_m = section.GetDouble("range_max_m", options.beams.range_max_m);

@@ -3,7 +3,6 @@
 
 #include <chrono>
 #include <cstdio>
-#include <fstream>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -12,6 +11,7 @@
 #include "drivers/common/fault_schedule.h"
 #include "drivers/rplidar/rplidar_emulator_server.h"
 #include "runtime/log.h"
+#include "runtime/output_file.h"
 #include "runtime/process.h"
 #include "runtime/shutdown.h"
 
@@ -23,11 +23,11 @@ using namespace slammtt::rplidar;
 // The emulator's faults (docs/rplidar.md) and their default arguments: bytes of garbage,
 // packets corrupted or cut, seconds of silence or of a pulled cable.
 const std::vector<std::string> kFaultKinds = {"garbage", "bad-checksum", "drop", "silence",
-                                              "disconnect"};
+                                              "mute", "disconnect"};
 
 double DefaultFaultArgument(const std::string& kind) {
   if (kind == "garbage") return 100.0;
-  if (kind == "silence" || kind == "disconnect") return 3.0;
+  if (kind == "silence" || kind == "mute" || kind == "disconnect") return 3.0;
   return 1.0;
 }
 
@@ -74,16 +74,14 @@ DeviceHealth ParseHealth(const std::string& text) {
   return health;
 }
 
+// An OutputFile: whole when it appears, never written through a link planted beside it.
 void WriteEndpointFile(const std::string& path, const std::string& endpoint) {
-  const std::string temporary = path + ".tmp";
-  {
-    std::ofstream file(temporary);
-    file << endpoint << "\n";
-    if (!file) throw std::runtime_error(path + ": cannot write the endpoint file");
-  }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
+  OutputFile file(path);
+  const std::string line = endpoint + "\n";
+  if (std::fwrite(line.data(), 1, line.size(), file.stream()) != line.size()) {
     throw std::runtime_error(path + ": cannot write the endpoint file");
   }
+  file.Commit();
 }
 
 }  // namespace
@@ -109,7 +107,7 @@ int main(int argc, char** argv) {
     command_line.AddRepeatedOption(
         "fault", "KIND@S[:ARG]",
         "at S seconds: garbage[:BYTES=100], bad-checksum[:PACKETS=1], drop[:PACKETS=1], "
-        "silence[:SECONDS=3], disconnect[:SECONDS=3]");
+        "silence[:SECONDS=3], mute[:SECONDS=3], disconnect[:SECONDS=3]");
     command_line.AddFlag("verbose", "print debug messages", 'v');
     command_line.AddFlag("quiet", "print only warnings and errors", 'q');
     if (!command_line.Parse(arg_count, args)) return 0;
@@ -163,6 +161,7 @@ int main(int argc, char** argv) {
         if (kind == "bad-checksum") server.CorruptPackets(static_cast<int>(argument));
         if (kind == "drop") server.DropBytes(static_cast<int>(argument));
         if (kind == "silence") server.Silence(static_cast<int>(argument * 1000));
+        if (kind == "mute") server.Mute(static_cast<int>(argument * 1000));
         if (kind == "disconnect") server.Disconnect(static_cast<int>(argument * 1000));
       }
       std::this_thread::sleep_for(std::chrono::milliseconds(20));

@@ -170,6 +170,11 @@ void RplidarEmulatorServer::Silence(int duration_ms) {
   model_.Silence(int64_t{duration_ms} * 1000, Now());
 }
 
+void RplidarEmulatorServer::Mute(int duration_ms) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  model_.Mute(int64_t{duration_ms} * 1000, Now());
+}
+
 void RplidarEmulatorServer::Disconnect(int duration_ms) {
   // Carried out by the serving thread, the only one that touches the link objects.
   std::lock_guard<std::mutex> lock(mutex_);

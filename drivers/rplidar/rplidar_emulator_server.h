@@ -65,6 +65,7 @@ class RplidarEmulatorServer {
   void CorruptPackets(int count);
   void DropBytes(int count);
   void Silence(int duration_ms);
+  void Mute(int duration_ms);  // transmits nothing, still carries out requests
   void Disconnect(int duration_ms);
   void SetHealth(const DeviceHealth& health, bool persists_after_reset);
 

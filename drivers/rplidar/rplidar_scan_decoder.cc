@@ -127,6 +127,8 @@ void ExpressCapsuleDecoder::Reset() {
   waiting_.reset();
   previous_base_q16_ = -1;
   previous_span_q6_ = 0;
+  expected_offset_ = buffer_offset_;
+  failed_offsets_.clear();
   in_sync_ = true;
 }
 
@@ -172,7 +174,15 @@ void ExpressCapsuleDecoder::Feed(const uint8_t* data, size_t size, int64_t arriv
     const uint8_t received = static_cast<uint8_t>((bytes[0] & 0xF) | ((bytes[1] & 0xF) << 4));
     const uint16_t start_word = ReadU16(bytes + 2);
     if (checksum != received) {
-      ++counters_.checksum_errors;
+      // Whether this was a capsule or a window whose sync nibbles matched by chance while the
+      // decoder searched (1 in 256) is known only from where it sits: see CountChecksumError.
+      const uint64_t offset = buffer_offset_ + pos;
+      if (offset == expected_offset_) {
+        ++counters_.checksum_errors;  // due right after the last good capsule
+        expected_offset_ = offset + kExpressCapsuleSize;
+      } else if (failed_offsets_.size() < kMaxFailedOffsets) {
+        failed_offsets_.push_back(offset);  // decided when the next good capsule is found
+      }
       Skip(1);
       ++pos;
       continue;
@@ -209,9 +219,15 @@ void ExpressCapsuleDecoder::Feed(const uint8_t* data, size_t size, int64_t arriv
         previous_span_q6_ = span_q6;
       }
     }
+    // Failed windows a whole number of capsules before this good one were capsules too.
+    for (const uint64_t failed : failed_offsets_) {
+      if ((capsule.offset - failed) % kExpressCapsuleSize == 0) ++counters_.checksum_errors;
+    }
+    failed_offsets_.clear();
     waiting_ = capsule;
     in_sync_ = true;
     pos += kExpressCapsuleSize;
+    expected_offset_ = buffer_offset_ + pos;
   }
   buffer_.erase(buffer_.begin(), buffer_.begin() + static_cast<std::ptrdiff_t>(pos));
   buffer_offset_ += pos;
@@ -251,9 +267,33 @@ void ExpressCapsuleDecoder::Decode(const Capsule& capsule, uint16_t next_start_a
   }
 }
 
+bool RevolutionAssembler::StartsRevolution(const ScanSample& sample) {
+  constexpr int64_t kHalfTurnQ6 = kFullTurnQ6 / 2;
+  constexpr int64_t kQuarterTurnQ6 = kFullTurnQ6 / 4;
+  bool wrapped = false;
+  if (have_last_angle_) {
+    const int64_t step = (int64_t{sample.angle_q6} - last_angle_q6_ + kFullTurnQ6) % kFullTurnQ6;
+    if (step < kHalfTurnQ6) covered_q6_ += step;  // a step back is jitter, not coverage
+    wrapped = int64_t{sample.angle_q6} + kHalfTurnQ6 < int64_t{last_angle_q6_};
+  }
+  have_last_angle_ = true;
+  last_angle_q6_ = sample.angle_q6;
+  bool start = false;
+  if (sample.start_of_revolution) {
+    start = !(started_by_wrap_ && covered_q6_ < kQuarterTurnQ6);
+    if (start) started_by_wrap_ = false;
+  } else if (wrapped && (!started_ || covered_q6_ > kHalfTurnQ6)) {
+    start = true;
+    started_by_wrap_ = true;
+    if (started_) ++starts_without_mark_;
+  }
+  if (start) covered_q6_ = 0;
+  return start;
+}
+
 std::optional<std::vector<ScanSample>> RevolutionAssembler::Add(const ScanSample& sample) {
   std::optional<std::vector<ScanSample>> finished;
-  if (sample.start_of_revolution) {
+  if (StartsRevolution(sample)) {
     if (started_ && !current_.empty()) finished = std::move(current_);
     current_.clear();
     started_ = true;
@@ -278,6 +318,9 @@ void RevolutionAssembler::Reset() {
   dropped_samples_ += static_cast<int64_t>(current_.size());
   current_.clear();
   started_ = false;
+  have_last_angle_ = false;
+  covered_q6_ = 0;
+  started_by_wrap_ = false;
 }
 
 }  // namespace rplidar

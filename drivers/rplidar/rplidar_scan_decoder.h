@@ -48,8 +48,11 @@
 // and their angles are the same.
 //
 // Counters follow lidar_status_t: a resync is one episode of discarding bytes (or untrusted
-// nodes) until valid data is found again; a checksum error is one express capsule that failed
-// its checksum.
+// nodes) until valid data is found again; a checksum error is one whole express capsule that
+// failed its checksum: a window that fails where a capsule was due (right after the last good
+// one), or a whole number of capsules before the next good one. A window that matched the two
+// sync nibbles by chance while the decoder searched (1 in 256: about 0.3 inside each damaged
+// capsule) is not one, and neither is a capsule that lost bytes (it is a resync).
 #pragma once
 
 #include <array>
@@ -149,13 +152,21 @@ class ExpressCapsuleDecoder {
   std::optional<Capsule> waiting_;  // decoded when the next valid capsule arrives
   int64_t previous_base_q16_ = -1;  // interpolated angle of the last sample, for the wrap
   int64_t previous_span_q6_ = 0;    // angle between the last two decoded capsules, 0: unknown
+  uint64_t expected_offset_ = 0;    // where the next capsule is due: after the last one
+  static constexpr size_t kMaxFailedOffsets = 64;
+  std::vector<uint64_t> failed_offsets_;  // windows that failed since the last good capsule
   bool in_sync_ = true;
   DecoderCounters counters_;
 };
 
-// Splits samples into revolutions at start_of_revolution. Samples before the first start are
-// a partial revolution and are dropped (as the SDK's scan holder does); so is a revolution
-// that exceeds `max_samples` without a start (a lost start mark), counted in overlong().
+// Splits samples into revolutions at start_of_revolution, and also where the angle wraps past
+// 360 degrees (it falls by more than half a turn from one sample to the next) once the
+// revolution has covered more than half a turn: a fault that corrupts the node with the
+// standard scan's S bit must not give a 720-degree scan. A start mark within a quarter turn
+// after a start made by a wrap is that same start (a mark one node late), not a new one.
+// Samples before the first start are a partial revolution and are dropped (as the SDK's scan
+// holder does); so is a revolution that exceeds `max_samples` without a start, counted in
+// overlong().
 class RevolutionAssembler {
  public:
   explicit RevolutionAssembler(size_t max_samples = 8192) : max_samples_(max_samples) {}
@@ -165,13 +176,23 @@ class RevolutionAssembler {
   void Reset();
   int64_t dropped_samples() const { return dropped_samples_; }
   int64_t overlong() const { return overlong_; }
+  // Revolutions started where the angle wrapped without a start mark (a lost S bit).
+  int64_t starts_without_mark() const { return starts_without_mark_; }
 
  private:
+  // Whether `sample` starts a revolution; updates the angle covered since the last start.
+  bool StartsRevolution(const ScanSample& sample);
+
   size_t max_samples_;
   std::vector<ScanSample> current_;
   bool started_ = false;
+  bool have_last_angle_ = false;
+  uint16_t last_angle_q6_ = 0;
+  int64_t covered_q6_ = 0;          // forward angle since the last start
+  bool started_by_wrap_ = false;
   int64_t dropped_samples_ = 0;
   int64_t overlong_ = 0;
+  int64_t starts_without_mark_ = 0;
 };
 
 }  // namespace rplidar

@@ -23,6 +23,7 @@ import struct
 import lcm
 
 from slammtt import msgs
+from slammtt.output_file import create_partial, reopen_path
 
 SYNC_WORD = 0xEDA1DA01
 HEADER = struct.Struct(">IqqII")
@@ -141,15 +142,22 @@ def _next_event_header(log, start, size):
 
 
 class LogWriter:
-    """Writes an LCM log with LCM's own writer, to PATH.partial, renamed to PATH by close():
-    a failure leaves no half log behind (as slammtt-replay's writer). Use as a context manager;
-    an exception inside the block removes the partial file."""
+    """Writes an LCM log with LCM's own writer, to a partial file (slammtt.output_file: created
+    exclusively, never through a planted link), renamed to PATH by close(): a failure leaves no
+    half log behind (as slammtt-replay's writer). Use as a context manager; an exception inside
+    the block removes the partial file."""
 
     def __init__(self, path):
         self.path = os.fspath(path)
-        self.partial = self.path + ".partial"
+        fd, self.partial = create_partial(self.path)
         self.events_written = 0
-        self._log = lcm.EventLog(self.partial, "w", overwrite=True)
+        try:
+            self._log = lcm.EventLog(reopen_path(fd, self.partial), "w", overwrite=True)
+        except BaseException:
+            os.remove(self.partial)
+            raise
+        finally:
+            os.close(fd)
 
     def write(self, utime, channel, message):
         """One event at timestamp `utime` [us] holding `message` (a slammtt_msgs object or
@@ -164,7 +172,7 @@ class LogWriter:
 
     def abort(self):
         self._log.close()
-        if os.path.exists(self.partial):
+        if os.path.lexists(self.partial):
             os.remove(self.partial)
 
     def __enter__(self):

@@ -353,6 +353,12 @@ TEST_F(BadInputTest, OptionsAreChecked) {
   o = EstimatorOptions{};
   o.ransac.success_probability = 1.0;
   EXPECT_NE(CheckEstimatorOptions(o), "");
+  // Before: 0 was taken, and an estimator that may hold no object maps and tracks nothing.
+  o = EstimatorOptions{};
+  o.max_objects = 0;
+  EXPECT_NE(CheckEstimatorOptions(o).find("max_objects = 0: must be"), std::string::npos);
+  o.max_objects = 1;
+  EXPECT_EQ(CheckEstimatorOptions(o), "");
   // 0 disables these two rules; a negative value is a mistake, not another way to disable them.
   o = EstimatorOptions{};
   o.classifier.still_velocity_chi2 = -1.0;

@@ -38,6 +38,7 @@ robot:
       restart: always
 )");
   EXPECT_EQ(plan.log_directory, "logs");
+  EXPECT_EQ(plan.network, BusNetwork::kLoopback);
   EXPECT_DOUBLE_EQ(plan.stop_grace_s, 5.0);
   EXPECT_EQ(plan.max_restarts, 5);
   EXPECT_EQ(plan.on_give_up, GiveUpAction::kStopAll);
@@ -62,9 +63,11 @@ robot:
   restart_max_s: 10
   restart_reset_after_s: 30
   on_give_up: keep_running
+  network: lan
   processes:
     - {name: a, program: /bin/true, restart: never}
 )");
+  EXPECT_EQ(plan.network, BusNetwork::kLan);
   EXPECT_EQ(plan.log_directory, "/var/log/slammtt");
   EXPECT_DOUBLE_EQ(plan.stop_grace_s, 2.5);
   EXPECT_EQ(plan.max_restarts, 3);
@@ -91,6 +94,8 @@ TEST(LaunchPlanTest, MistakesAreErrorsNamingTheKey) {
                 .find("{home}"), std::string::npos);
   EXPECT_NE(ErrorOf("robot:\n  on_give_up: panic\n  processes:\n    - {name: a, program: x}\n")
                 .find("on_give_up"), std::string::npos);
+  EXPECT_NE(ErrorOf("robot:\n  network: wifi\n  processes:\n    - {name: a, program: x}\n")
+                .find("network: expected loopback or lan, got 'wifi'"), std::string::npos);
   EXPECT_NE(ErrorOf("robot:\n  stop_grace_s: 0\n  processes:\n    - {name: a, program: x}\n")
                 .find("stop_grace_s"), std::string::npos);
   // A delay the supervisor could not turn into a poll timeout without overflow.

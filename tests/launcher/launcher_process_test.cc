@@ -5,8 +5,13 @@
 #include <signal.h>
 #include <sys/stat.h>
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
+#include <ctime>
+#include <optional>
+#include <tuple>
 #include <fstream>
 #include <string>
 #include <thread>
@@ -290,6 +295,105 @@ TEST_F(LauncherProcessTest, AnUnusableLogDirectoryStopsBeforeAnythingStarts) {
   const std::string all = ReadWholeFile(out_) + ReadWholeFile(err_);
   EXPECT_NE(all.find("cannot create the log directory /proc/no-logs-here"), std::string::npos) << all;
   EXPECT_EQ(all.find("ran"), std::string::npos);
+}
+
+// Before: the launcher only checked that no file of the name existed, so a dangling link
+// planted at the next name was followed by lcm-logger and the log created at its target. Now
+// the launcher creates the log file itself, exclusively: a taken name (file or link) is skipped.
+TEST_F(LauncherProcessTest, APlantedLinkAtTheLogFileNameIsNeverFollowed) {
+  const std::string logs = directory_ + "/logs";
+  ASSERT_EQ(mkdir(logs.c_str(), 0755), 0);
+  const std::string target = directory_ + "/planted-target";
+  const std::string victim = directory_ + "/victim";
+  std::ofstream(victim) << "precious\n";
+  // Links at this second's name and the next few: dangling ones and one onto a file.
+  const std::time_t now = std::time(nullptr);
+  for (int k = 0; k < 4; ++k) {
+    const std::time_t t = now + k;
+    std::tm local = {};
+    localtime_r(&t, &local);
+    char name[64];
+    std::strftime(name, sizeof name, "slammtt-%Y%m%d-%H%M%S.lcm", &local);
+    const std::string link = logs + "/" + name;
+    ASSERT_EQ(symlink((k == 0 ? victim : target).c_str(), link.c_str()), 0);
+  }
+  Launch(WriteConfig(R"(  processes:
+    - name: logger
+      program: sh
+      pass_config: false
+      restart: never
+      args: ["-c", "echo logged > \"$0\"; echo \"wrote $0\"", "{log_file}"]
+)"));
+  ASSERT_EQ(launcher_->Wait(10000), 0);
+  EXPECT_EQ(ReadWholeFile(victim), "precious\n");
+  struct stat info = {};
+  EXPECT_NE(lstat(target.c_str(), &info), 0) << "the log went through a planted link";
+  const std::string out = ReadWholeFile(out_);
+  const size_t at = out.find("wrote ");
+  ASSERT_NE(at, std::string::npos) << out;
+  const std::string written = out.substr(at + 6, out.find('\n', at) - at - 6);
+  ASSERT_EQ(lstat(written.c_str(), &info), 0) << written;
+  EXPECT_TRUE(S_ISREG(info.st_mode)) << written;
+  EXPECT_EQ(ReadWholeFile(written), "logged\n");
+}
+
+TEST_F(LauncherProcessTest, ALogDirectoryOthersMayWriteIsRefused) {
+  const std::string logs = directory_ + "/logs";
+  ASSERT_EQ(mkdir(logs.c_str(), 0755), 0);
+  ASSERT_EQ(chmod(logs.c_str(), 0777), 0);
+  Launch(WriteConfig("  processes:\n"
+                     "    - {name: a, program: sh, pass_config: false, args: ['-c', 'echo ran']}\n"));
+  EXPECT_EQ(launcher_->Wait(10000), 1);
+  const std::string all = ReadWholeFile(out_) + ReadWholeFile(err_);
+  EXPECT_NE(all.find("is writable by other users"), std::string::npos) << all;
+  EXPECT_EQ(all.find("ran"), std::string::npos);
+  ASSERT_EQ(chmod(logs.c_str(), 01777), 0);  // sticky, as /tmp: nobody can swap our files
+  Launch(directory_ + "/robot.yaml");
+  EXPECT_EQ(launcher_->Wait(10000), 0);
+}
+
+// robot.network: loopback (the default) needs a bus that stays on the computer, routed on lo.
+TEST_F(LauncherProcessTest, TheLoopbackSetupRefusesABusTheLanCanReach) {
+  const std::string body =
+      "  processes:\n    - {name: a, program: sh, pass_config: false, args: ['-c', 'echo ran']}\n";
+  const auto launch_with = [&](const std::string& head) {
+    const std::string path = directory_ + "/robot.yaml";
+    std::ofstream(path) << head << "robot:\n  log_directory: " << directory_ << "/logs\n" << body;
+    Launch(path);
+    const std::optional<int> status = launcher_->Wait(10000);
+    return std::make_pair(status.value_or(-1), ReadWholeFile(out_) + ReadWholeFile(err_));
+  };
+  auto [status, all] = launch_with("lcm:\n  url: \"udpm://239.255.76.67:7667?ttl=1\"\n");
+  EXPECT_EQ(status, 1);
+  EXPECT_NE(all.find("robot.network is loopback but the bus 'udpm://239.255.76.67:7667?ttl=1' "
+                     "sends its packets beyond this computer"),
+            std::string::npos)
+      << all;
+  EXPECT_EQ(Count(all, "\n"), 1u) << all;
+  std::tie(status, all) = launch_with("lcm:\n  url: \"udpm://239.255.76.67:7667?tll=0\"\n");
+  EXPECT_EQ(status, 1);
+  EXPECT_NE(all.find("unknown option 'tll'"), std::string::npos) << all;
+
+  // The group routed on another interface (a veth pair in this test's network namespace, as a
+  // robot whose default route points at its LAN): refused, naming the interface.
+  ASSERT_EQ(testing::Shell("ip link add slammtt-lan type veth peer name slammtt-peer && "
+                           "ip addr add 10.78.0.1/24 dev slammtt-lan && ip link set slammtt-lan up "
+                           "&& ip link set slammtt-peer up && "
+                           "ip route replace 224.0.0.0/4 dev slammtt-lan"),
+            0);
+  std::tie(status, all) = launch_with("");
+  EXPECT_EQ(status, 1);
+  EXPECT_NE(all.find("the LCM group 239.255.76.67 is routed on slammtt-lan (10.78.0.1)"),
+            std::string::npos)
+      << all;
+  // The same robot, told its bus is for the LAN: starts.
+  const std::string path = directory_ + "/robot.yaml";
+  std::ofstream(path) << "lcm:\n  url: \"udpm://239.255.76.67:7667?ttl=1\"\n"
+                      << "robot:\n  network: lan\n"
+                      << "  log_directory: " << directory_ << "/logs\n" << body;
+  Launch(path);
+  EXPECT_EQ(launcher_->Wait(10000), 0);
+  EXPECT_NE(ReadWholeFile(out_).find("a | ran"), std::string::npos) << ReadWholeFile(out_);
 }
 
 }  // namespace

@@ -28,6 +28,9 @@ TEST(P3dxDriverOptionsTest, DefaultsAreTheDocumentedOnes) {
   EXPECT_EQ(options.subclass, "");
   EXPECT_TRUE(options.enable_motors);
   EXPECT_DOUBLE_EQ(options.status_period_s, 1.0);
+  EXPECT_EQ(options.command_authentication, P3dxDriverOptions::CommandAuthentication::kSigned);
+  EXPECT_EQ(options.command_key_file, "");
+  EXPECT_DOUBLE_EQ(options.command_max_age_s, 1.0);
 }
 
 TEST(P3dxDriverOptionsTest, ReadsEveryKey) {
@@ -36,7 +39,8 @@ TEST(P3dxDriverOptionsTest, ReadsEveryKey) {
       "  max_angular_radps: 0.7\n  command_timeout_s: 0.25\n  pulse_interval_s: 0.4\n"
       "  sync_reply_timeout_s: 0.3\n  sync_attempts: 3\n  sip_timeout_s: 0.8\n"
       "  reconnect_initial_s: 0.2\n  reconnect_max_s: 4\n  subclass: p3dx-sh\n"
-      "  enable_motors: false\n  status_period_s: 2\n");
+      "  enable_motors: false\n  status_period_s: 2\n  command_authentication: hmac-sha256\n"
+      "  command_key_file: /etc/slammtt/command.key\n  command_max_age_s: 0.5\n");
   const Config section = config.Child("p3dx");
   const P3dxDriverOptions options = ReadP3dxDriverOptions(section);
   EXPECT_NO_THROW(section.CheckUnused());
@@ -54,6 +58,8 @@ TEST(P3dxDriverOptionsTest, ReadsEveryKey) {
   EXPECT_EQ(options.subclass, "p3dx-sh");
   EXPECT_FALSE(options.enable_motors);
   EXPECT_DOUBLE_EQ(options.status_period_s, 2.0);
+  EXPECT_EQ(options.command_key_file, "/etc/slammtt/command.key");
+  EXPECT_DOUBLE_EQ(options.command_max_age_s, 0.5);
 }
 
 void ExpectConfigError(const std::string& yaml, const std::string& needle) {
@@ -86,6 +92,25 @@ TEST(P3dxDriverOptionsTest, MistakesNameTheKey) {
   ExpectConfigError("  pulse_interval_s: 2.5\n", "pulse_interval_s");
   ExpectConfigError("  reconnect_initial_s: 2\n  reconnect_max_s: 1\n", "reconnect_max_s");
   ExpectConfigError("  subclass: p3at\n", "p3at");
+  ExpectConfigError("  command_authentication: hmac\n", "must be hmac-sha256 or none");
+  ExpectConfigError("  command_max_age_s: 0\n", "command_max_age_s");
+  ExpectConfigError("  command_max_age_s: 61\n", "command_max_age_s");
+}
+
+// Unauthenticated commands only on a bus whose packets stay on the computer.
+TEST(P3dxDriverOptionsTest, UnauthenticatedCommandsNeedALocalBus) {
+  P3dxDriverOptions options;
+  EXPECT_NO_THROW(CheckCommandAuthenticationForBus(options, "udpm://239.255.76.67:7667?ttl=1"));
+  options.command_authentication = P3dxDriverOptions::CommandAuthentication::kNone;
+  EXPECT_NO_THROW(CheckCommandAuthenticationForBus(options, "udpm://239.255.76.67:7667?ttl=0"));
+  EXPECT_NO_THROW(CheckCommandAuthenticationForBus(options, "memq://"));
+  EXPECT_THROW(CheckCommandAuthenticationForBus(options, "udpm://239.255.76.67:7667?ttl=1"),
+               std::invalid_argument);
+  EXPECT_THROW(CheckCommandAuthenticationForBus(options, "udpm://239.255.76.67:7667?ttl=abc"),
+               std::invalid_argument);
+  options.command_key_file = "/etc/slammtt/command.key";
+  EXPECT_THROW(CheckCommandAuthenticationForBus(options, "udpm://239.255.76.67:7667?ttl=0"),
+               std::invalid_argument);
 }
 
 }  // namespace

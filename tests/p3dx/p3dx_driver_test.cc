@@ -119,13 +119,15 @@ TEST_F(P3dxDriverTest, HandshakeSyncsOpensEnablesAndStreamsOdometry) {
   RunFor(2.0);
   ASSERT_EQ(driver_->state(), P3dxDriver::State::kRunning);
   const auto received = Received();
-  ASSERT_GE(received.size(), 5u);
-  EXPECT_TRUE(Is(received[0], cmd::kSync0, false));
-  EXPECT_TRUE(Is(received[1], cmd::kSync1, false));
-  EXPECT_TRUE(Is(received[2], cmd::kSync2, false));
-  EXPECT_TRUE(Is(received[3], cmd::kOpen, false));
-  EXPECT_TRUE(Is(received[4], cmd::kEnable, true));
-  EXPECT_EQ(received[4].command.value, 1);
+  ASSERT_GE(received.size(), 6u);
+  EXPECT_TRUE(Is(received[0], cmd::kVel2, false));  // the stop before every SYNC0
+  EXPECT_EQ(received[0].command.value, 0);
+  EXPECT_TRUE(Is(received[1], cmd::kSync0, false));
+  EXPECT_TRUE(Is(received[2], cmd::kSync1, false));
+  EXPECT_TRUE(Is(received[3], cmd::kSync2, false));
+  EXPECT_TRUE(Is(received[4], cmd::kOpen, false));
+  EXPECT_TRUE(Is(received[5], cmd::kEnable, true));
+  EXPECT_EQ(received[5].command.value, 1);
   EXPECT_TRUE(robot_->model().motors_enabled());
   // About one ODOMETRY per SIP (10 Hz) since the session opened.
   EXPECT_GE(sink_.odometry.size(), 18u);
@@ -240,6 +242,105 @@ TEST_F(P3dxDriverTest, NonFiniteCommandsAreSkippedAndCounted) {
   EXPECT_FALSE(driver_->Status().last_error.empty());
 }
 
+// Commands from the bus (ReceiveVelocityCommand): what slammtt-p3dx hands every VELOCITY_COMMAND.
+class P3dxCommandAuthTest : public P3dxDriverTest {
+ protected:
+  static CommandKey Key(uint8_t seed) {
+    CommandKey key{};
+    for (size_t k = 0; k < key.size(); ++k) key[k] = static_cast<uint8_t>(seed * 7 + k);
+    return key;
+  }
+  slammtt_msgs::velocity_command_t Unsigned(double linear_mps) {
+    slammtt_msgs::velocity_command_t command{};
+    command.utime = clock_.NowUtime();
+    command.linear_mps = linear_mps;
+    return command;
+  }
+  slammtt_msgs::velocity_command_t SignedBy(VelocityCommandSigner* signer, double linear_mps,
+                                            int64_t utime_offset_us = 0) {
+    slammtt_msgs::velocity_command_t command = Unsigned(linear_mps);
+    command.utime += utime_offset_us;
+    signer->Sign(&command);
+    return command;
+  }
+  double Speed() const {
+    return 0.5 * (robot_->model().left_wheel_mmps() + robot_->model().right_wheel_mmps());
+  }
+};
+
+TEST_F(P3dxCommandAuthTest, WithoutAKeyNoCommandMovesTheRobot) {
+  Start();
+  RunFor(1.0);
+  VelocityCommandSigner signer(Key(1), "VELOCITY_COMMAND", 11);
+  for (int k = 0; k < 10; ++k) {
+    driver_->ReceiveVelocityCommand(Unsigned(0.4));
+    driver_->ReceiveVelocityCommand(SignedBy(&signer, 0.4));
+    RunFor(0.1);
+    ASSERT_EQ(Speed(), 0.0);
+  }
+  const slammtt_msgs::base_status_t status = driver_->Status();
+  EXPECT_EQ(status.command_auth, "hmac-sha256 without a key: every command refused");
+  EXPECT_EQ(status.commands_unauthenticated, 20);
+  EXPECT_EQ(status.commands_accepted, 0);
+}
+
+TEST_F(P3dxCommandAuthTest, OnlyFreshSignedCommandsWithTheRobotsKeyMoveIt) {
+  Start();
+  driver_->SetCommandKey(Key(1));
+  RunFor(1.0);
+  VelocityCommandSigner base_station(Key(1), "VELOCITY_COMMAND", 11);
+  VelocityCommandSigner stranger(Key(2), "VELOCITY_COMMAND", 12);
+  VelocityCommandSigner other_channel(Key(1), "VELOCITY_COMMAND_2", 13);
+
+  // 40 unsigned commands at 10 Hz (the issue's attack), forged and foreign ones: nothing moves.
+  for (int k = 0; k < 40; ++k) {
+    driver_->ReceiveVelocityCommand(Unsigned(0.4));
+    RunFor(0.1);
+    ASSERT_EQ(Speed(), 0.0);
+  }
+  slammtt_msgs::velocity_command_t forged = SignedBy(&base_station, 0.1);
+  forged.linear_mps = 0.4;
+  driver_->ReceiveVelocityCommand(forged);
+  driver_->ReceiveVelocityCommand(SignedBy(&stranger, 0.4));
+  driver_->ReceiveVelocityCommand(SignedBy(&other_channel, 0.4));
+  // Signed with the key, but 2 s old or 2 s ahead of the robot's clock (window 1 s).
+  driver_->ReceiveVelocityCommand(SignedBy(&base_station, 0.4, -2000000));
+  driver_->ReceiveVelocityCommand(SignedBy(&base_station, 0.4, 2000000));
+  RunFor(0.2);
+  EXPECT_EQ(Speed(), 0.0);
+
+  // The base station drives it.
+  const slammtt_msgs::velocity_command_t good = SignedBy(&base_station, 0.3);
+  driver_->ReceiveVelocityCommand(good);
+  RunFor(0.05);
+  EXPECT_NEAR(Speed(), 300.0, 1e-9);
+  // Played back: refused; the robot stops at the command timeout as if nothing came.
+  for (int k = 0; k < 10; ++k) {
+    driver_->ReceiveVelocityCommand(good);
+    RunFor(0.1);
+  }
+  EXPECT_EQ(Speed(), 0.0);
+
+  const slammtt_msgs::base_status_t status = driver_->Status();
+  EXPECT_EQ(status.command_auth, "hmac-sha256");
+  EXPECT_EQ(status.commands_accepted, 1);
+  EXPECT_EQ(status.commands_unauthenticated, 43);
+  EXPECT_EQ(status.commands_stale, 2);
+  EXPECT_EQ(status.commands_replayed, 10);
+  EXPECT_EQ(driver_->commands_refused(), 55);
+}
+
+TEST_F(P3dxCommandAuthTest, UnauthenticatedSetupTakesEveryCommand) {
+  options_.command_authentication = P3dxDriverOptions::CommandAuthentication::kNone;
+  Start();
+  RunFor(1.0);
+  driver_->ReceiveVelocityCommand(Unsigned(0.2));
+  RunFor(0.05);
+  EXPECT_NEAR(Speed(), 200.0, 1e-9);
+  EXPECT_EQ(driver_->Status().command_auth, "none (local only)");
+  EXPECT_EQ(driver_->Status().commands_accepted, 1);
+}
+
 TEST_F(P3dxDriverTest, StopsWhenCommandsStopArriving) {
   options_.command_timeout_s = 0.5;
   Start();
@@ -308,21 +409,26 @@ TEST_F(P3dxDriverTest, RobotLeftMovingByAnEarlierClientIsStoppedThenClosedThenRe
   RunFor(3.0);
   ASSERT_EQ(driver_->state(), P3dxDriver::State::kRunning);
   const auto received = Received();
-  // SYNC0 (a keep-alive to the open session), then VEL2 0 while it still moved, CLOSE once it
-  // reported stopped, then a fresh handshake.
+  // VEL2 0 ahead of SYNC0 (which the open session takes as a keep-alive) stops it at once, the
+  // driver's VEL2 0 while it still reports moving, CLOSE once it reported stopped, then a
+  // fresh handshake (behind its own VEL2 0).
   size_t i = 0;
+  ASSERT_TRUE(Is(received[i], cmd::kVel2, true));
+  EXPECT_EQ(received[i++].command.value, 0);
   ASSERT_TRUE(Is(received[i++], cmd::kSync0, true));
   while (i < received.size() && Is(received[i], cmd::kVel2, true)) {
     EXPECT_EQ(received[i].command.value, 0);
     ++i;
   }
-  EXPECT_GE(i, 2u);
+  ASSERT_LT(i, received.size());
+  EXPECT_TRUE(Is(received[i], cmd::kClose, true));
   while (i < received.size() && Is(received[i], cmd::kClose, true)) ++i;
-  ASSERT_LT(i + 4, received.size());
-  EXPECT_TRUE(Is(received[i], cmd::kSync0, false));
-  EXPECT_TRUE(Is(received[i + 1], cmd::kSync1, false));
-  EXPECT_TRUE(Is(received[i + 2], cmd::kSync2, false));
-  EXPECT_TRUE(Is(received[i + 3], cmd::kOpen, false));
+  ASSERT_LT(i + 5, received.size());
+  EXPECT_TRUE(Is(received[i], cmd::kVel2, false));
+  EXPECT_TRUE(Is(received[i + 1], cmd::kSync0, false));
+  EXPECT_TRUE(Is(received[i + 2], cmd::kSync1, false));
+  EXPECT_TRUE(Is(received[i + 3], cmd::kSync2, false));
+  EXPECT_TRUE(Is(received[i + 4], cmd::kOpen, false));
   EXPECT_FALSE(robot_->model().moving());
   EXPECT_EQ(robot_->model().watchdog_stops(), 0);
 }
@@ -333,11 +439,13 @@ TEST_F(P3dxDriverTest, StoppedRobotInAnEarlierSessionIsClosedThenResynced) {
   RunFor(3.0);
   ASSERT_EQ(driver_->state(), P3dxDriver::State::kRunning);
   const auto received = Received();
-  ASSERT_GE(received.size(), 6u);
-  EXPECT_TRUE(Is(received[0], cmd::kSync0, true));
-  EXPECT_TRUE(Is(received[1], cmd::kClose, true));
-  EXPECT_TRUE(Is(received[2], cmd::kSync0, false));
-  EXPECT_TRUE(Is(received[5], cmd::kOpen, false));
+  ASSERT_GE(received.size(), 8u);
+  EXPECT_TRUE(Is(received[0], cmd::kVel2, true));
+  EXPECT_TRUE(Is(received[1], cmd::kSync0, true));
+  EXPECT_TRUE(Is(received[2], cmd::kClose, true));
+  EXPECT_TRUE(Is(received[3], cmd::kVel2, false));
+  EXPECT_TRUE(Is(received[4], cmd::kSync0, false));
+  EXPECT_TRUE(Is(received[7], cmd::kOpen, false));
 }
 
 TEST_F(P3dxDriverTest, UnansweredSyncIsResentThenTheLinkIsReopened) {
@@ -479,13 +587,50 @@ TEST_F(P3dxDriverTest, SilentRobotIsReportedAndReconnectedWithTheFullHandshake) 
   EXPECT_EQ(robot_->model().watchdog_stops(), 1);
   bool closed_then_synced = false;
   const auto received = Received();
-  for (size_t i = 0; i + 1 < received.size(); ++i) {
-    if (Is(received[i], cmd::kClose, true) && Is(received[i + 1], cmd::kSync0, false)) {
+  for (size_t i = 0; i + 2 < received.size(); ++i) {
+    // CLOSE, then the stop that precedes every SYNC0, then SYNC0.
+    if (Is(received[i], cmd::kClose, true) && received[i + 1].command.number == cmd::kVel2 &&
+        Is(received[i + 2], cmd::kSync0, false)) {
       closed_then_synced = true;
     }
   }
   EXPECT_TRUE(closed_then_synced);
   ExpectOdometryTracksTheRobot(sink_, *robot_, /*same_frame=*/false);
+}
+
+// A robot that goes quiet but still hears (its transmit line failed): after the SIP timeout the
+// driver resyncs, and a SYNC0 that reaches the still-open session is only a keep-alive to it.
+// Before: those SYNC0 retries fed the watchdog and the robot drove on at its last speed for
+// 6.5 s after it went quiet (2.6 m at 0.4 m/s). Now a stop (VEL2 0) goes out when the link is
+// given up and before every SYNC0.
+TEST_F(P3dxDriverTest, AQuietRobotThatStillHearsIsStoppedBeforeEveryResync) {
+  Start();
+  RunFor(1.0);
+  RunFor(1.0, CommandsAt10Hz(0.4, 0.0));
+  ASSERT_TRUE(robot_->model().moving());
+  const int64_t quiet_from = clock_.now_us;
+  const size_t received_before = Received().size();
+  robot_->model().MuteFor(20000000, clock_.now_us);
+  int64_t stopped_at = -1;
+  // The planner goes on asking for 0.4 m/s: only the driver can know the robot is lost.
+  RunFor(10.0, [&, commands = CommandsAt10Hz(0.4, 0.0)] {
+    commands();
+    if (stopped_at < 0 && !robot_->model().moving()) stopped_at = clock_.now_us;
+  });
+  ASSERT_GE(stopped_at, 0) << "still moving 10 s after the robot went quiet";
+  // The SIP timeout (1 s) and one poll: never a SYNC0 keep-alive first.
+  EXPECT_LE(stopped_at - quiet_from, 1100000);
+  EXPECT_EQ(robot_->model().watchdog_stops(), 0);
+  const auto received = Received();
+  int syncs = 0;
+  for (size_t i = received_before; i < received.size(); ++i) {
+    if (received[i].command.number != cmd::kSync0) continue;
+    ++syncs;
+    ASSERT_GT(i, received_before);
+    EXPECT_EQ(received[i - 1].command.number, cmd::kVel2) << "SYNC0 #" << syncs;
+    EXPECT_EQ(received[i - 1].command.value, 0);
+  }
+  EXPECT_GE(syncs, 8);
 }
 
 TEST_F(P3dxDriverTest, UnpluggedLinkIsReopenedWithBackoff) {

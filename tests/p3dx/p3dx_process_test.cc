@@ -15,6 +15,9 @@
 #include <mutex>
 #include <thread>
 
+#include "drivers/command_auth/command_key.h"
+#include "drivers/command_auth/command_signature.h"
+#include "drivers/common/driver_clock.h"
 #include "drivers/p3dx/p3dx_commands.h"
 #include "drivers/p3dx/p3dx_emulator.h"
 #include "runtime/lcm_io.h"
@@ -38,6 +41,12 @@ class P3dxProcessTest : public ::testing::TestWithParam<Transport> {
  protected:
   void SetUp() override {
     directory_ = testing::MakeTempDirectory("p3dx-process-test");
+    // The robot's command key, and a stack file naming it: only signed commands move the base.
+    const CommandKey key = NewCommandKey();
+    WriteNewCommandKeyFile(directory_ + "/command.key", key);
+    std::ofstream(directory_ + "/stack.yaml")
+        << "p3dx:\n  command_key_file: " << directory_ << "/command.key\n";
+    signer_ = std::make_unique<VelocityCommandSigner>(key, "VELOCITY_COMMAND", NewSenderId());
     lcm_ = OpenLcm(kDefaultLcmUrl);
     lcm_->subscribeFunction("ODOMETRY", &P3dxProcessTest::OnOdometry, this);
     lcm_->subscribeFunction("BASE_STATUS", &P3dxProcessTest::OnStatus, this);
@@ -64,7 +73,8 @@ class P3dxProcessTest : public ::testing::TestWithParam<Transport> {
   }
 
   void StartDriver(std::vector<std::string> extra = {}) {
-    std::vector<std::string> argv = {std::string(SLAMMTT_BIN_DIR) + "/slammtt-p3dx", "--port",
+    std::vector<std::string> argv = {std::string(SLAMMTT_BIN_DIR) + "/slammtt-p3dx", "--config",
+                                     directory_ + "/stack.yaml", "--port",
                                      emulator_->Endpoint()};
     argv.insert(argv.end(), extra.begin(), extra.end());
     driver_ = std::make_unique<ChildProcess>(argv, directory_ + "/driver.log");
@@ -83,8 +93,10 @@ class P3dxProcessTest : public ::testing::TestWithParam<Transport> {
 
   void Command(double linear_mps, double angular_radps) {
     slammtt_msgs::velocity_command_t command{};
+    command.utime = wall_clock_.NowUtime();
     command.linear_mps = linear_mps;
     command.angular_radps = angular_radps;
+    signer_->Sign(&command);
     lcm_->publish("VELOCITY_COMMAND", &command);
     last_command_us_ = P3dxEmulator::NowUs();
   }
@@ -126,6 +138,8 @@ class P3dxProcessTest : public ::testing::TestWithParam<Transport> {
   }
 
   std::string directory_;
+  std::unique_ptr<VelocityCommandSigner> signer_;
+  SystemDriverClock wall_clock_;
   std::unique_ptr<lcm::LCM> lcm_;
   std::unique_ptr<P3dxEmulator> emulator_;
   std::thread emulator_thread_;
@@ -235,6 +249,32 @@ TEST_P(P3dxProcessTest, ReconnectsAfterTheDeviceIsUnplugged) {
   const size_t before = odometry_.size();
   PumpUntil(1.0, [] { return false; });
   EXPECT_GE(odometry_.size() - before, 7u);
+}
+
+// A robot that goes quiet but still hears, while the planner goes on commanding 0.3 m/s: the
+// driver's resync must not keep it driving (SYNC0 is a keep-alive to its open session). Before:
+// it drove on through every SYNC0 retry (issue 15: 3.9 s, 0.84 m).
+TEST_P(P3dxProcessTest, AQuietRobotIsStoppedWhenItsLinkIsGivenUp) {
+  StartEmulator();
+  StartDriver();
+  ASSERT_TRUE(WaitConnected());
+  PumpUntil(1.0, Commanding(0.3, 0.0, {}));
+  ASSERT_TRUE(RobotMoving());
+  const int64_t quiet_from = P3dxEmulator::NowUs();
+  emulator_->WithModel([](P3dxRobotModel& m) {
+    m.MuteFor(15000000, P3dxEmulator::NowUs());
+    return 0;
+  });
+  int64_t stopped_us = 0;
+  PumpUntil(8.0, Commanding(0.3, 0.0, [&] {
+              if (stopped_us == 0 && !RobotMoving()) stopped_us = P3dxEmulator::NowUs();
+              return false;
+            }));
+  ASSERT_NE(stopped_us, 0) << "still moving 8 s after the robot went quiet";
+  // The 1 s SIP timeout plus scheduling slack; the firmware's own watchdog (2 s after the last
+  // byte it heard) never had to act.
+  EXPECT_LE((stopped_us - quiet_from) * 1e-6, 1.6);
+  EXPECT_EQ(emulator_->WithModel([](P3dxRobotModel& m) { return m.watchdog_stops(); }), 0);
 }
 
 TEST_P(P3dxProcessTest, DamagedPacketsNeverBecomeOdometry) {

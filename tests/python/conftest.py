@@ -54,3 +54,12 @@ def shared_real():
 def typestore(ros_version=1):
     from rosbags.typesys import Stores, get_typestore
     return get_typestore(Stores.ROS1_NOETIC if ros_version == 1 else Stores.ROS2_HUMBLE)
+
+
+def odometry(utime, x):
+    """An ODOMETRY message at `utime` [us] with x_m = `x`."""
+    from slammtt_msgs import odometry_t
+    m = odometry_t()
+    m.utime = utime
+    m.x_m = x
+    return m

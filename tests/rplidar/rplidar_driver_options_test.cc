@@ -72,6 +72,9 @@ TEST(RplidarDriverOptionsTest, BadValuesNameTheKey) {
   ExpectConfigError("  status_period_s: 0\n", "rplidar.status_period_s");
   ExpectConfigError("  status_period_s: 1e300\n", "rplidar.status_period_s");  // no overflow
   ExpectConfigError("  baud: 4294967297\n", "rplidar.baud");  // 2^32 + 1: not 1 when narrowed
+  // Before: taken, and every beam angle became what is left of 1e300 - angle in a double.
+  ExpectConfigError("  angle_offset_deg: 1e300\n", "rplidar.angle_offset_deg");
+  ExpectConfigError("  angle_offset_deg: -360.5\n", "rplidar.angle_offset_deg");
 }
 
 TEST(RplidarDriverOptionsTest, MalformedPortIsRefusedBeforeAnyOpen) {

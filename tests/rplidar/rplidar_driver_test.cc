@@ -227,7 +227,7 @@ TEST(RplidarDriverTest, BadChecksumsAndLostSyncBitsAreSkippedAndCounted) {
     RunWithFault(rig, 10, [](RplidarDeviceModel& model) { model.CorruptPackets(1); });
     EXPECT_EQ(rig.model.stats().corrupted_packets, 10);
     if (mode == ScanMode::kExpress) {
-      EXPECT_GE(rig.final_status.checksum_errors, 10);
+      EXPECT_EQ(rig.final_status.checksum_errors, 10);  // the corrupted capsules, no false syncs
     }
     EXPECT_GE(rig.final_status.resyncs, 10) << ScanModeName(mode);
     ExpectScansMatchTheRoom(rig, mode == ScanMode::kExpress ? 300 : 150,
@@ -333,6 +333,83 @@ TEST(RplidarDriverTest, StopEndsTheScanAndStopsTheMotor) {
     EXPECT_EQ(rig.final_status.state, "stopped");
     EXPECT_FALSE(rig.final_status.connected);
   }
+}
+
+// The motor on every exit path (issue 15 item 4). A muted device (transmits nothing, still
+// carries out requests) keeps turning at PWM 660 after the driver lost its data: the driver must
+// stop it however it is interrupted. Before: SIGTERM while the driver waited for a reply, or
+// during the backoff before reopening, left the motor turning (pwm 660 at exit), and a stop
+// early in a later session sent STOP without PWM 0.
+RplidarDeviceOptions WithAccessoryBoard() {
+  RplidarDeviceOptions device;
+  device.accessory_board = true;
+  return device;
+}
+
+TEST(RplidarDriverTest, StopWhileWaitingForAReplyStopsTheMotorAtOnce) {
+  Rig rig(WithAccessoryBoard());
+  int64_t stop_at = -1;
+  int64_t stopped_at = -1;
+  rig.Run(
+      [&] {
+        if (stop_at >= 0 && rig.clock.now_us_ >= stop_at) {
+          if (stopped_at < 0) stopped_at = rig.clock.now_us_;
+          return true;
+        }
+        return false;
+      },
+      [&] {
+        if (stop_at < 0 && rig.sink.scan_count() >= 3) {
+          rig.model.Mute(60000000, rig.clock.now_us_);
+          // 1 s without data, 200 ms backoff, reopen, STOP, 20 ms, GET_INFO: 0.3 s into its
+          // 1 s reply wait.
+          stop_at = rig.clock.now_us_ + 1000000 + 200000 + 20000 + 300000;
+        }
+      });
+  const RplidarDeviceStats& stats = rig.model.stats();
+  EXPECT_EQ(rig.open_times_us.size(), 2u);
+  EXPECT_FALSE(stats.motor_running);
+  EXPECT_EQ(stats.pwm, 0);
+  EXPECT_EQ(stats.last_request, kSetMotorPwm);
+  // The stop was noticed within one read slice of the reply wait (50 ms), not at its end.
+  EXPECT_LE(rig.clock.now_us_ - stop_at, 100000);
+  EXPECT_EQ(rig.final_status.state, "stopped");
+}
+
+TEST(RplidarDriverTest, StopDuringTheReconnectBackoffStopsTheMotor) {
+  Rig rig(WithAccessoryBoard());
+  bool muted = false;
+  rig.Run(
+      [&] {
+        const auto status = rig.sink.last_status();
+        return muted && status && status->state == "reconnecting";
+      },
+      [&] {
+        if (!muted && rig.sink.scan_count() >= 3) {
+          rig.model.Mute(60000000, rig.clock.now_us_);
+          muted = true;
+        }
+      });
+  const RplidarDeviceStats& stats = rig.model.stats();
+  EXPECT_FALSE(stats.motor_running);
+  EXPECT_EQ(stats.pwm, 0);
+  EXPECT_EQ(rig.final_status.state, "stopped");
+}
+
+TEST(RplidarDriverTest, AStopEarlyInALaterSessionStillSendsPwmZero) {
+  Rig rig(WithAccessoryBoard());
+  bool muted = false;
+  rig.Run([&] { return rig.open_times_us.size() >= 2; },  // the second session just opened
+          [&] {
+            if (!muted && rig.sink.scan_count() >= 3) {
+              rig.model.Mute(1100000, rig.clock.now_us_);
+              muted = true;
+            }
+          });
+  const RplidarDeviceStats& stats = rig.model.stats();
+  EXPECT_FALSE(stats.motor_running);
+  EXPECT_EQ(stats.pwm, 0);
+  EXPECT_EQ(stats.requests.at(kSetMotorPwm), 2);  // 660 in the first session, 0 at the end
 }
 
 TEST(RplidarDriverTest, AnUnexpectedErrorStillStopsTheScanAndTheMotor) {

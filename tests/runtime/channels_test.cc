@@ -28,6 +28,27 @@ TEST(ChannelsTest, UnknownKeysAreErrors) {
   EXPECT_THROW(channels.ApplyOverrides({"features="}), UsageError);
 }
 
+// Before: a 64-byte name was taken, and LCM drops every message on such a channel.
+TEST(ChannelsTest, NamesLcmCannotCarryAreErrors) {
+  Channels channels;
+  const std::string longest(63, 'F');
+  channels.ApplyOverrides({"features=" + longest});
+  EXPECT_EQ(channels.Get("features"), longest);
+  const std::string too_long(64, 'F');
+  try {
+    channels.ApplyOverrides({"features=" + too_long});
+    ADD_FAILURE() << "accepted";
+  } catch (const UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("channel name of 64 bytes; LCM carries at most 63"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(channels.ApplyConfig(Config::FromString("pose: " + too_long + "\n", "c.yaml")),
+               ConfigError);
+  EXPECT_THROW(channels.ApplyOverrides({"pose=PO\tSE"}), UsageError);
+  EXPECT_THROW(channels.ApplyConfig(Config::FromString("pose: ''\n", "c.yaml")), ConfigError);
+}
+
 TEST(LcmUrlTest, PrecedenceIsCommandLineConfigEnvironmentDefault) {
   unsetenv("LCM_DEFAULT_URL");
   EXPECT_EQ(ResolveLcmUrl(std::nullopt, std::nullopt), kDefaultLcmUrl);

@@ -1,6 +1,10 @@
 #include "runtime/config.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cstdio>
 
 namespace slammtt {
 namespace {
@@ -78,6 +82,39 @@ TEST(ConfigTest, BadYamlAndMissingFile) {
   EXPECT_THROW(Config::FromString("- 1\n- 2\n", "list.yaml"), ConfigError);
   EXPECT_THROW(Config::LoadFile("/nonexistent/slammtt.yaml"), ConfigError);
   EXPECT_NO_THROW(Config::FromString("", "empty.yaml"));
+}
+
+// Before: a directory read as an empty configuration (every default, silently), and /dev/zero
+// was read until memory ran out (21.7 GB after 87 s in slammtt-segmenter --config /dev/zero).
+TEST(ConfigTest, AFileThatIsNoConfigurationIsOneLineAndReadsNothing) {
+  char directory[] = "/tmp/config-test-XXXXXX";
+  ASSERT_NE(mkdtemp(directory), nullptr);
+  const std::string fifo = std::string(directory) + "/fifo";
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  const std::string big = std::string(directory) + "/big.yaml";
+  std::fclose(std::fopen(big.c_str(), "w"));
+  ASSERT_EQ(truncate(big.c_str(), 17 << 20), 0);  // sparse: 17 MiB of zeros
+  const struct {
+    std::string path;
+    const char* says;
+  } cases[] = {{directory, "not a regular file"},
+               {"/dev/zero", "not a regular file"},
+               {fifo, "not a regular file"},
+               {big, "17825792 bytes is not a configuration (at most 16777216)"}};
+  for (const auto& c : cases) {
+    try {
+      Config::LoadFile(c.path);
+      ADD_FAILURE() << c.path << " accepted";
+    } catch (const ConfigError& e) {
+      const std::string what = e.what();
+      EXPECT_EQ(what.rfind(c.path + ": ", 0), 0u) << what;
+      EXPECT_NE(what.find(c.says), std::string::npos) << what;
+      EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+    }
+  }
+  unlink(big.c_str());
+  unlink(fifo.c_str());
+  rmdir(directory);
 }
 
 TEST(ConfigTest, NonTextKeyIsAConfigErrorNamingTheFile) {

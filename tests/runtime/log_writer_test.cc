@@ -3,6 +3,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
+#include <utility>
 #include <vector>
 
 #include "runtime/lcm_io.h"
@@ -16,6 +18,13 @@ std::string TempPath(const std::string& name) {
 }
 
 bool Exists(const std::string& path) { return access(path.c_str(), F_OK) == 0; }
+
+std::string ReadAll(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
 
 // Files in the directory of `path` whose names start with the name of `path`.
 std::vector<std::string> FilesStartingWith(const std::string& path) {
@@ -39,7 +48,8 @@ TEST(LogWriterTest, CommittedLogReadsBackInOrder) {
       writer.WriteMessage(cmd.utime, "VELOCITY_COMMAND", cmd);
     }
     EXPECT_FALSE(Exists(path));  // not in place before Commit()
-    EXPECT_EQ(FilesStartingWith(path).size(), 1u);  // the partial file
+    // An unnamed file (O_TMPFILE), or one exclusively created partial file.
+    EXPECT_EQ(FilesStartingWith(path).size(), writer.partial_path().empty() ? 0u : 1u);
     writer.Commit();
   }
   ASSERT_TRUE(Exists(path));
@@ -67,6 +77,66 @@ TEST(LogWriterTest, UncommittedLogLeavesNothingBehind) {
     writer.Write(1, "X", bytes, 4);
   }
   EXPECT_TRUE(FilesStartingWith(path).empty());
+}
+
+// The log's bytes are those LCM's own writer gives (lcm::LogFile, what lcm-logger uses).
+TEST(LogWriterTest, WritesTheBytesLcmsOwnWriterWrites) {
+  const std::string ours = TempPath("ours");
+  const std::string lcms = TempPath("lcms");
+  {
+    LogWriter writer(ours);
+    lcm::LogFile reference(lcms, "w");
+    ASSERT_TRUE(reference.good());
+    const std::vector<std::pair<std::string, std::vector<uint8_t>>> events = {
+        {"ODOMETRY", {1, 2, 3}}, {"X", {}}, {std::string(63, 'C'), std::vector<uint8_t>(70000, 7)}};
+    int64_t t = -5;
+    for (const auto& [channel, data] : events) {
+      writer.Write(t, channel, data.data(), static_cast<int>(data.size()));
+      lcm::LogEvent event;
+      event.eventnum = 0;
+      event.timestamp = t;
+      event.channel = channel;
+      event.datalen = static_cast<int32_t>(data.size());
+      event.data = const_cast<uint8_t*>(data.data());
+      ASSERT_EQ(reference.writeEvent(&event), 0);
+      t += 1700000000000000;
+    }
+    writer.Commit();
+  }
+  const std::string bytes_ours = ReadAll(ours);
+  const std::string bytes_lcms = ReadAll(lcms);
+  EXPECT_EQ(bytes_ours.size(), 3u * 28 + 8 + 1 + 63 + 3 + 70000);
+  EXPECT_TRUE(bytes_ours == bytes_lcms);
+  std::remove(ours.c_str());
+  std::remove(lcms.c_str());
+}
+
+// Before: LogWriter wrote "<path>.partial.<pid>" with fopen("w"): a link planted at that name
+// was followed and its target overwritten (a whole replay's output went into it). Now nothing
+// planted beside the output, nor at the output's own name, is written through.
+TEST(LogWriterTest, PlantedLinksAreNeverWrittenThrough) {
+  const std::string directory = testing::TempDir() + "/planted_" + std::to_string(getpid());
+  std::filesystem::create_directories(directory);
+  const std::string victim = directory + "/victim";
+  std::ofstream(victim) << "precious\n";
+  const std::string path = directory + "/out.lcm";
+  ASSERT_EQ(symlink(victim.c_str(), (path + ".partial." + std::to_string(getpid())).c_str()), 0);
+  for (int n = 0; n < 4; ++n) {
+    const std::string link =
+        path + ".partial." + std::to_string(getpid()) + "." + std::to_string(n);
+    ASSERT_EQ(symlink(victim.c_str(), link.c_str()), 0);
+  }
+  std::filesystem::create_symlink(victim, path);  // the output's own name, too
+  {
+    LogWriter writer(path);
+    const char bytes[4] = {1, 2, 3, 4};
+    writer.Write(1, "X", bytes, 4);
+    writer.Commit();
+  }
+  EXPECT_EQ(ReadAll(victim), "precious\n");
+  EXPECT_FALSE(std::filesystem::is_symlink(path));  // the link was replaced, not followed
+  EXPECT_EQ(std::filesystem::file_size(path), 28u + 1 + 4);
+  std::filesystem::remove_all(directory);
 }
 
 TEST(LogWriterTest, UnwritableDirectoryIsAnError) {

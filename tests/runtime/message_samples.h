@@ -377,6 +377,11 @@ struct Sample<slammtt_msgs::base_status_t> {
     m.short_packets = 1;
     m.reconnects = 0;
     m.last_error = "";
+    m.command_auth = "hmac-sha256";
+    m.commands_accepted = 120;
+    m.commands_unauthenticated = 40;
+    m.commands_stale = 2;
+    m.commands_replayed = 1;
     return m;
   }
   static std::vector<CountField> Counts(const slammtt_msgs::base_status_t& m) {
@@ -390,6 +395,7 @@ struct Sample<slammtt_msgs::base_status_t> {
     // battery_v, two stalls, bumpers, motors_enabled, command_timeout_stop, four counters
     at += 8 + 2 * 1 + 4 + 2 * 1 + 4 * 8;
     AddString(&fields, "last_error", m.last_error, &at);
+    AddString(&fields, "command_auth", m.command_auth, &at);
     return fields;
   }
   static bool ArraysMatchCounts(const slammtt_msgs::base_status_t&) { return true; }

@@ -99,7 +99,8 @@ TEST(EvaluationTest, HandBuiltLogGivesHandComputedFigures) {
   EXPECT_NEAR(*r.tracking->identity.idf1, 14.0 / 18.0, 1e-12);
 
   // The JSON carries exactly the top-level keys the issues list (written out here, not taken
-  // from the code under test: issue 5's, plus IDF1 and HOTA of issue 16) plus the detail.
+  // from the code under test: issue 5's, plus IDF1 and HOTA of issue 16) plus the detail and
+  // the warnings (issue 15: what withholds a headline figure).
   const nlohmann::json j = ReportToJson(input, r);
   std::vector<std::string> keys;
   for (auto it = j.begin(); it != j.end(); ++it) keys.push_back(it.key());
@@ -107,11 +108,12 @@ TEST(EvaluationTest, HandBuiltLogGivesHandComputedFigures) {
       "ate_rmse_m",     "odometry_ate_rmse_m",  "ospa_mean_m",    "gospa_mean_m",
       "mota",           "motp_m",               "id_switches",    "fragmentations",
       "movers_in_static_map", "landmark_rmse_m", "static_recall", "classification_accuracy",
-      "idf1",           "hota",                 "detail"};
+      "idf1",           "hota",                 "detail",         "warnings"};
   std::sort(expected.begin(), expected.end());
   EXPECT_EQ(keys, expected);  // nlohmann::json iterates objects in key order
   std::vector<std::string> listed = TopLevelMetricKeys();
   listed.push_back("detail");
+  listed.push_back("warnings");
   std::sort(listed.begin(), listed.end());
   EXPECT_EQ(listed, expected);
   EXPECT_NEAR(j["ate_rmse_m"].get<double>(), std::sqrt(0.09 / 5), 1e-9);

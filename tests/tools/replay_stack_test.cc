@@ -2,13 +2,21 @@
 // runs (logs with scans, with point features, with both), a stage skipped when its input is
 // absent, replaying a replay changes nothing, progress lines, and slammtt-timing and slammtt-eval
 // run on what it writes.
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <signal.h>
+#include <unistd.h>
 
 #include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <system_error>
 #include <string>
 #include <vector>
 
+#include "tests/support/child_process.h"
 #include "tests/tools/log_test_util.h"
 
 namespace slammtt {
@@ -74,6 +82,88 @@ TEST_F(ReplayStackTest, TwoRunsAreByteIdenticalAndToolsReadTheOutput) {
   EXPECT_TRUE(j["ate_rmse_m"].is_number()) << out;
   EXPECT_TRUE(j["ospa_mean_m"].is_number()) << out;
   EXPECT_TRUE(testing::FileExists(dir_.File("plots/trajectory.svg")));
+}
+
+// slammtt-replay stopped by a signal in the middle of a log. Before: it ignored SIGTERM and
+// SIGINT (ran to the end, exit 0, output written) and SIGKILL left its 63 MB
+// out.lcm.partial.<pid> behind. The replay is held (SIGSTOP) once its output is open, so the
+// signal surely arrives mid-replay, then continued.
+class ReplaySignalTest : public ReplayStackTest {
+ protected:
+  // The files of the test directory whose names start with "out".
+  std::vector<std::string> Outputs() const {
+    std::vector<std::string> names;
+    for (const auto& entry : std::filesystem::directory_iterator(dir_.path())) {
+      const std::string name = entry.path().filename().string();
+      if (name.rfind("out", 0) == 0) names.push_back(name);
+    }
+    return names;
+  }
+  // Whether `pid` has its output open in the test directory (named or not).
+  bool WritesIntoTheDirectory(pid_t pid) const {
+    const std::string fds = "/proc/" + std::to_string(pid) + "/fd";
+    std::error_code error;
+    for (const auto& entry : std::filesystem::directory_iterator(fds, error)) {
+      const std::string target = std::filesystem::read_symlink(entry.path(), error).string();
+      // The output: out.lcm.partial.*, or an unnamed file ("DIR/#NNN (deleted)").
+      if (target.rfind(dir_.path() + "/", 0) == 0 &&
+          (target.find("out.lcm") != std::string::npos ||
+           target.find("(deleted)") != std::string::npos)) {
+        return true;
+      }
+    }
+    return false;
+  }
+  std::unique_ptr<testing::ChildProcess> StartReplayAndHoldIt() {
+    auto replay = std::make_unique<testing::ChildProcess>(
+        std::vector<std::string>{Bin("slammtt-replay"), dir_.File("world.lcm"), "-o",
+                                 dir_.File("out.lcm")},
+        dir_.File("replay-out.txt"), dir_.File("replay-err.txt"));
+    for (int k = 0; k < 20000 && !WritesIntoTheDirectory(replay->pid()); ++k) usleep(100);
+    EXPECT_TRUE(WritesIntoTheDirectory(replay->pid()));
+    replay->Signal(SIGSTOP);
+    return replay;
+  }
+};
+
+TEST_F(ReplaySignalTest, SigtermAndSigintStopItWithNoOutputLeft) {
+  std::string out;
+  ASSERT_EQ(Shell(Bin("slammtt-world") + " --quiet --scenario s2-lobby --seed 2 --duration 300 " +
+                      "--output scans --log " + dir_.File("world.lcm"),
+                  &out),
+            0)
+      << out;
+  for (const int signal_number : {SIGTERM, SIGINT}) {
+    const auto replay = StartReplayAndHoldIt();
+    replay->Signal(signal_number);
+    replay->Signal(SIGCONT);
+    EXPECT_EQ(replay->Wait(30000), std::optional<int>(1));
+    const std::string err = testing::FileBytes(dir_.File("replay-err.txt"));
+    EXPECT_NE(err.find("slammtt-replay: error: stopped after "), std::string::npos) << err;
+    EXPECT_NE(err.find(" events (signal " + std::to_string(signal_number) +
+                       "); no output written\n"),
+              std::string::npos)
+        << err;
+    EXPECT_TRUE(Outputs().empty()) << Outputs().front();
+  }
+}
+
+TEST_F(ReplaySignalTest, SigkillLeavesNoPartialOutput) {
+  const int probe = open(dir_.path().c_str(), O_TMPFILE | O_WRONLY, 0600);
+  if (probe < 0) {
+    GTEST_SKIP() << dir_.path() << " has no O_TMPFILE: a killed replay leaves its partial file";
+  }
+  close(probe);
+  std::string out;
+  ASSERT_EQ(Shell(Bin("slammtt-world") + " --quiet --scenario s2-lobby --seed 2 --duration 300 " +
+                      "--output scans --log " + dir_.File("world.lcm"),
+                  &out),
+            0)
+      << out;
+  const auto replay = StartReplayAndHoldIt();
+  replay->Signal(SIGKILL);
+  EXPECT_EQ(replay->Wait(30000), std::optional<int>(128 + SIGKILL));
+  EXPECT_TRUE(Outputs().empty()) << Outputs().front();
 }
 
 TEST_F(ReplayStackTest, ReplayingAReplayChangesNothing) {

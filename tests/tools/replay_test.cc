@@ -1,7 +1,9 @@
 #include "tools/replay/log_replay.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
+#include <filesystem>
 #include <limits>
 #include <map>
 #include <stdexcept>
@@ -339,6 +341,42 @@ TEST(ReplayTest, AnEmptyOrForeignFile) {
   EXPECT_THROW(ReplayLogFile(dir.File("missing.lcm"), dir.File("out3.lcm"), FakeStack(),
                              Options(dir)),
                std::runtime_error);
+}
+
+// Before: a directory replayed as an empty log (exit 0, empty output) and /dev/zero never ended
+// (LCM's reader looks for a sync word forever; the probe was killed after 5 s).
+TEST(ReplayTest, ALogThatIsNoFileIsAnErrorNamingIt) {
+  TempDir dir;
+  const std::string fifo = dir.File("fifo.lcm");
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  for (const std::string& input : {dir.path(), std::string("/dev/zero"), fifo}) {
+    try {
+      ReplayLogFile(input, dir.File("out.lcm"), FakeStack(), Options(dir));
+      ADD_FAILURE() << input << " accepted";
+    } catch (const std::runtime_error& e) {
+      EXPECT_EQ(std::string(e.what()), input + ": not a log file (not a regular file)");
+    }
+    EXPECT_FALSE(FileExists(dir.File("out.lcm")));
+    EXPECT_FALSE(FileExists(dir.File("out.timing.lcm")));
+  }
+}
+
+TEST(ReplayTest, AStopRequestEndsTheReplayAndLeavesNoOutput) {
+  TempDir dir;
+  WriteLog(dir.File("in.lcm"), LiveLikeLog());
+  ReplayFileOptions options = Options(dir);
+  int checks = 0;
+  options.should_stop = [&] { return ++checks > 3; };
+  const ReplayFileResult r =
+      ReplayLogFile(dir.File("in.lcm"), dir.File("out.lcm"), FakeStack(), options);
+  EXPECT_EQ(r.error, "stopped after 3 of 9 events");
+  EXPECT_EQ(r.events_read, 3);
+  EXPECT_FALSE(FileExists(dir.File("out.lcm")));
+  EXPECT_FALSE(FileExists(dir.File("out.timing.lcm")));
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path())) {
+    EXPECT_EQ(entry.path().filename().string().rfind("out", 0), std::string::npos)
+        << entry.path();
+  }
 }
 
 TEST(ReplayTest, AThrowingStageIsCountedAndTheReplayGoesOn) {

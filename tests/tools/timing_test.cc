@@ -3,8 +3,11 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdio>
+#include <limits>
 #include <string>
+#include <vector>
 
 #include "slammtt_msgs/stage_timing_t.hpp"
 #include "tests/tools/log_test_util.h"
@@ -15,6 +18,15 @@ namespace slammtt {
 namespace {
 
 using testing::RunCommand;
+
+// slammtt-timing --json on `log`, stderr into `err_path`; the parsed JSON (exit status 0 asserted).
+nlohmann::json TimingProgramJson(const std::string& log, const std::string& err_path) {
+  int status = 0;
+  const std::string out = RunCommand(
+      std::string(SLAMMTT_BIN_DIR) + "/slammtt-timing --json " + log + " 2>" + err_path, &status);
+  EXPECT_EQ(status, 0) << out;
+  return status == 0 ? nlohmann::json::parse(out) : nlohmann::json();
+}
 
 TEST(TimingTableTest, NearestRankPercentiles) {
   std::vector<int64_t> values;
@@ -110,6 +122,98 @@ TEST(TimingReportTest, JsonHasNullWhereThereIsNoPeriod) {
   EXPECT_TRUE(j["stages"][0]["load"].is_null());
 }
 
+// Before: one STAGE_TIMING with a non-UTF-8 byte in its stage name made slammtt-timing --json
+// fail ("[json.exception.type_error.316] invalid UTF-8 byte at index 3: 0xFF", exit 1).
+TEST(TimingReportTest, JsonTextSurvivesANameThatIsNoUtf8) {
+  const std::string name = "bad\xff\xfename";
+  const std::string text = TimingJsonText(
+      TimingJson(SummariseTiming({{5, name, 10, {{name, 4}}, {}}}), "t\xff.lcm", "STAGE_TIMING",
+                 1, 0));
+  const nlohmann::json j = nlohmann::json::parse(text);
+  EXPECT_EQ(j["stages"][0]["stage"], "bad\xEF\xBF\xBD\xEF\xBF\xBDname");  // U+FFFD each
+  EXPECT_EQ(j["stages"][0]["substages"][0]["name"], j["stages"][0]["stage"]);
+  EXPECT_EQ(text.back(), '\n');
+}
+
+// Before: 10 records of total_ns = INT64_MAX gave a load of -8.9e-09 and a mean of -1 (the sum
+// overflowed); durations beyond an hour are no measurement and are now skipped and counted.
+TEST(TimingTableTest, HugeDurationsNeverOverflowTheSums) {
+  const int64_t huge = std::numeric_limits<int64_t>::max() / 4;
+  const DurationStats stats = ComputeStats({huge, huge, huge, huge, huge, huge});
+  EXPECT_EQ(stats.sum, std::numeric_limits<int64_t>::max());  // saturated
+  EXPECT_DOUBLE_EQ(stats.mean, static_cast<double>(huge));
+  std::vector<TimingRecord> records;
+  for (int k = 0; k < 10; ++k) records.push_back({1000000 + 125000 * k, "estimator", huge, {}, {}});
+  const StageTimingSummary summary = SummariseTiming(records)[0];
+  ASSERT_TRUE(summary.load.has_value());
+  EXPECT_GT(*summary.load, 0.0);
+}
+
+TEST(TimingLogTest, DurationsBeyondAnHourAreSkippedAndCounted) {
+  testing::TempDir dir;
+  LogWriter writer(dir.File("timing.lcm"));
+  for (int k = 0; k < 10; ++k) {
+    slammtt_msgs::stage_timing_t msg{};
+    msg.utime = 1000000 + 125000 * k;
+    msg.stage = "estimator";
+    msg.total_ns = k < 7 ? 100000 : std::numeric_limits<int64_t>::max();
+    writer.WriteMessage(msg.utime, "STAGE_TIMING", msg);
+  }
+  slammtt_msgs::stage_timing_t sub{};
+  sub.utime = 3000000;
+  sub.stage = "estimator";
+  sub.total_ns = 1000;
+  sub.num_substages = 1;
+  sub.substage = {"ransac"};
+  sub.substage_ns = {int64_t{3600} * 1000000000 + 1};
+  writer.WriteMessage(sub.utime, "STAGE_TIMING", sub);
+  writer.Commit();
+  const TimingLog log = ReadTimingLog(dir.File("timing.lcm"), "STAGE_TIMING");
+  EXPECT_EQ(log.records.size(), 7u);
+  EXPECT_EQ(log.implausible, 4);
+  const nlohmann::json j = TimingProgramJson(dir.File("timing.lcm"), dir.File("err.txt"));
+  ASSERT_FALSE(j.is_null());
+  EXPECT_EQ(j["messages"], 7);
+  EXPECT_EQ(j["skipped_messages"], 4);
+  EXPECT_GT(j["stages"][0]["load"].get<double>(), 0.0);
+  EXPECT_NE(testing::FileBytes(dir.File("err.txt")).find("skipped 4 STAGE_TIMING messages with "
+                                                         "a duration beyond an hour"),
+            std::string::npos)
+      << testing::FileBytes(dir.File("err.txt"));
+}
+
+// The probe through the program: one STAGE_TIMING whose stage, sub-stage and counter
+// names hold bytes that are no UTF-8, among good ones. Before: exit 1 and no JSON.
+TEST(TimingProgramTest, JsonOfANameThatIsNoUtf8) {
+  testing::TempDir dir;
+  LogWriter writer(dir.File("timing.lcm"));
+  for (int k = 0; k < 5; ++k) {
+    slammtt_msgs::stage_timing_t msg{};
+    msg.utime = 1000000 + k * 125000;
+    msg.stage = k == 2 ? "seg\xffmenter" : "segmenter";
+    msg.total_ns = 1000;
+    msg.num_substages = 1;
+    msg.substage = {k == 2 ? "so\xc3rt" : "sort"};
+    msg.substage_ns = {300};
+    msg.num_counters = 1;
+    msg.counter_name = {k == 2 ? "\x80" "beams" : "beams"};
+    msg.counter_value = {400};
+    writer.WriteMessage(msg.utime, "STAGE_TIMING", msg);
+  }
+  writer.Commit();
+  const nlohmann::json j = TimingProgramJson(dir.File("timing.lcm"), dir.File("err.txt"));
+  ASSERT_FALSE(j.is_null()) << testing::FileBytes(dir.File("err.txt"));
+  EXPECT_EQ(j["messages"], 5);
+  ASSERT_EQ(j["stages"].size(), 2u);
+  std::vector<std::string> stages;
+  for (const auto& stage : j["stages"]) stages.push_back(stage["stage"]);
+  std::sort(stages.begin(), stages.end());
+  EXPECT_EQ(stages, (std::vector<std::string>{"segmenter", "seg\xEF\xBF\xBDmenter"}));
+  const std::string text = j.dump();
+  EXPECT_NE(text.find("so\xEF\xBF\xBDrt"), std::string::npos) << text;
+  EXPECT_NE(text.find("\xEF\xBF\xBD" "beams"), std::string::npos) << text;
+}
+
 TEST(TimingLogTest, SkipsAndCountsBadMessages) {
   testing::TempDir dir;
   LogWriter writer(dir.File("timing.lcm"));
@@ -165,12 +269,8 @@ TEST(TimingProgramTest, PrintsJsonFromATimingLog) {
   writer.Write(5000001, "OTHER", junk.data(), static_cast<int>(junk.size()));
   writer.Commit();
 
-  int status = 0;
-  const std::string out = RunCommand(std::string(SLAMMTT_BIN_DIR) + "/slammtt-timing --json " +
-                                         dir.File("timing.lcm") + " 2>" + dir.File("err.txt"),
-                                     &status);
-  ASSERT_EQ(status, 0) << out;
-  const nlohmann::json j = nlohmann::json::parse(out);
+  const nlohmann::json j = TimingProgramJson(dir.File("timing.lcm"), dir.File("err.txt"));
+  ASSERT_FALSE(j.is_null());
   EXPECT_EQ(j["messages"], 20);
   EXPECT_EQ(j["skipped_messages"], 1);
   ASSERT_EQ(j["stages"].size(), 1u);
@@ -188,6 +288,7 @@ TEST(TimingProgramTest, PrintsJsonFromATimingLog) {
             std::string::npos);
 
   // The text table names every sub-stage.
+  int status = 0;
   const std::string table =
       RunCommand(std::string(SLAMMTT_BIN_DIR) + "/slammtt-timing " + dir.File("timing.lcm") +
                      " 2>/dev/null",

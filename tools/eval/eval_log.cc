@@ -12,6 +12,7 @@
 #include <system_error>
 
 #include "runtime/lcm_io.h"
+#include "runtime/output_file.h"
 #include "slammtt_msgs/features_t.hpp"
 #include "slammtt_msgs/ground_truth_t.hpp"
 #include "slammtt_msgs/laser_scan_t.hpp"
@@ -365,18 +366,11 @@ void ApplyEvalCommandLine(const CommandLine& command_line, EvalOptions* options)
 }
 
 void WriteFileAtomically(const std::string& path, const std::string& text) {
-  const std::string partial = path + ".partial";
-  std::FILE* f = std::fopen(partial.c_str(), "wb");
-  if (f == nullptr) throw std::runtime_error(path + ": cannot create");
-  const bool written = std::fwrite(text.data(), 1, text.size(), f) == text.size();
-  if (std::fclose(f) != 0 || !written) {
-    std::remove(partial.c_str());
+  OutputFile file(path);
+  if (std::fwrite(text.data(), 1, text.size(), file.stream()) != text.size()) {
     throw std::runtime_error(path + ": write failed");
   }
-  if (std::rename(partial.c_str(), path.c_str()) != 0) {
-    std::remove(partial.c_str());
-    throw std::runtime_error(path + ": cannot move the file into place");
-  }
+  file.Commit();
 }
 
 std::vector<std::string> WriteTextFiles(

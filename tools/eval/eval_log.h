@@ -46,8 +46,9 @@ void AddEvalCommandLineOptions(CommandLine* command_line);
 // Applies them to `options`; UsageError naming the option for a value out of range.
 void ApplyEvalCommandLine(const CommandLine& command_line, EvalOptions* options);
 
-// Writes `text` to "<path>.partial" and renames it to `path`: a failure never leaves a half
-// file under the final name. Throws std::runtime_error naming the path.
+// Writes `text` as an OutputFile (runtime/output_file.h): it appears under `path` only when
+// whole, and never through a link planted beside it or at its name. Throws std::runtime_error
+// naming the path.
 void WriteFileAtomically(const std::string& path, const std::string& text);
 
 // Writes each (file name, text) into `directory` (created if missing) with

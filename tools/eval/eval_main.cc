@@ -1,12 +1,16 @@
 // slammtt-eval LOG.lcm --json REPORT.json [--plots DIR]: scores a run against the ground truth
 // in the same log (definitions in evaluation.h and docs/evaluation.md), prints a summary and,
-// with --plots, draws the pictures (tools/plots/eval_plots.h).
+// with --plots, draws the pictures (tools/plots/eval_plots.h). Exit status: 0 scored; 1 with one
+// line and no report when nothing can be (a corrupt log, no GROUND_TRUTH, an empty file); 2 for a
+// bad command line or configuration; 3 when the report is written but a headline figure is
+// withheld (report_json.h, ReportWarning).
 #include <iostream>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "runtime/command_line.h"
+#include "runtime/config.h"
 #include "runtime/log.h"
 #include "runtime/process.h"
 #include "tools/eval/eval_log.h"
@@ -30,8 +34,15 @@ int Run(int argc, char** argv) {
   AddEvalCommandLineOptions(&cl);
   if (!cl.Parse(argc, argv)) return 0;
   const std::string path = *cl.Positional("LOG.lcm");
-  const ProcessSettings settings = LoadProcessSettings(cl);
-  EvalOptions options = ReadStackEvalOptions(settings.config);
+  // A configuration mistake is a usage error (exit 2), as a command-line one is.
+  ProcessSettings settings;
+  EvalOptions options;
+  try {
+    settings = LoadProcessSettings(cl);
+    options = ReadStackEvalOptions(settings.config);
+  } catch (const ConfigError& e) {
+    throw UsageError(e.what());
+  }
   ApplyEvalCommandLine(cl, &options);
 
   LogReadResult read;
@@ -41,11 +52,17 @@ int Run(int argc, char** argv) {
     return 1;
   }
   if (!read.problem.empty()) LogWarning() << read.problem << "; ignored";
-  const EvaluationReport report = Evaluate(input, options);
-  if (const auto json_path = cl.Value("json")) {
-    WriteFileAtomically(*json_path, ReportToJson(input, report).dump(2) + "\n");
+  if (input.truth.empty()) {
+    LogError() << path << ": no " << settings.channels.Get("ground_truth")
+               << ": nothing can be scored; no report written";
+    return 1;
   }
-  std::cout << ReportSummaryText(report);
+  const EvaluationReport report = Evaluate(input, options);
+  const std::vector<ReportWarning> warnings = ReportWarnings(report, read.problem);
+  if (const auto json_path = cl.Value("json")) {
+    WriteFileAtomically(*json_path, ReportJsonText(ReportToJson(input, report, warnings)));
+  }
+  std::cout << ReportSummaryText(report, warnings);
   if (const auto json_path = cl.Value("json")) std::cout << "report: " << *json_path << "\n";
   if (const auto dir = cl.Value("plots")) {
     const std::vector<std::pair<std::string, std::string>> files = EvaluationPlots(report);
@@ -53,6 +70,10 @@ int Run(int argc, char** argv) {
     std::cout << "pictures: " << *dir << " (";
     for (size_t k = 0; k < files.size(); ++k) std::cout << (k > 0 ? ", " : "") << files[k].first;
     std::cout << ")\n";
+  }
+  // 3: the report is written, but a headline figure is withheld (its warning says why).
+  for (const ReportWarning& w : warnings) {
+    if (w.withholds) return 3;
   }
   return 0;
 }

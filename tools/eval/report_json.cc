@@ -78,7 +78,42 @@ const std::vector<std::string>& TopLevelMetricKeys() {
   return keys;
 }
 
-json ReportToJson(const EvalInput& input, const EvaluationReport& report) {
+std::vector<ReportWarning> ReportWarnings(const EvaluationReport& report,
+                                          const std::string& log_problem) {
+  std::vector<ReportWarning> warnings;
+  if (!log_problem.empty()) warnings.push_back({"log_truncated", log_problem, false});
+  const auto too_few = [](int64_t scored, int64_t of) {
+    return of > 0 && static_cast<double>(scored) < kMinScoredFraction * static_cast<double>(of);
+  };
+  if (report.robot && too_few(report.robot->error.count, report.truth_scans)) {
+    warnings.push_back(
+        {"pose_coverage",
+         "the ATE is computed from " + std::to_string(report.robot->error.count) + " of " +
+             std::to_string(report.truth_scans) +
+             " ground-truth scans (a POSE of the same utime; fewer than half): not a headline",
+         true});
+  }
+  if (report.tracking) {
+    const int64_t scans = static_cast<int64_t>(report.tracking->scans.size());
+    const int64_t with_tracks = scans - report.tracking->scans_without_tracks;
+    if (too_few(with_tracks, scans)) {
+      warnings.push_back({"tracks_coverage",
+                          "only " + std::to_string(with_tracks) + " of " +
+                              std::to_string(scans) +
+                              " scored ground-truth scans have a TRACKS of the same utime "
+                              "(fewer than half): tracking figures are not a headline",
+                          true});
+    }
+  }
+  return warnings;
+}
+
+std::string ReportJsonText(const nlohmann::json& report) {
+  return report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+}
+
+json ReportToJson(const EvalInput& input, const EvaluationReport& report,
+                  const std::vector<ReportWarning>& warnings) {
   json j;
   j["ate_rmse_m"] = report.robot ? json(report.robot->error.rmse_m) : json(nullptr);
   j["odometry_ate_rmse_m"] = report.odometry ? json(report.odometry->error.rmse_m) : json(nullptr);
@@ -255,10 +290,24 @@ json ReportToJson(const EvalInput& input, const EvaluationReport& report) {
   }
   detail["notes"] = report.notes;
   j["detail"] = detail;
+  json listed = json::array();
+  for (const ReportWarning& w : warnings) {
+    listed.push_back({{"code", w.code}, {"message", w.message}});
+    if (!w.withholds) continue;
+    if (w.code == "pose_coverage") j["ate_rmse_m"] = nullptr;
+    if (w.code == "tracks_coverage") {
+      for (const char* key : {"ospa_mean_m", "gospa_mean_m", "mota", "motp_m", "id_switches",
+                              "fragmentations", "idf1", "hota"}) {
+        j[key] = nullptr;
+      }
+    }
+  }
+  j["warnings"] = listed;
   return j;
 }
 
-std::string ReportSummaryText(const EvaluationReport& report) {
+std::string ReportSummaryText(const EvaluationReport& report,
+                              const std::vector<ReportWarning>& warnings) {
   std::ostringstream out;
   const double span_s = SecondsBetween(report.last_utime, report.first_utime);
   out << "evaluation of " << report.source << ": " << report.truth_scans
@@ -323,6 +372,7 @@ std::string ReportSummaryText(const EvaluationReport& report) {
   }
   out << "\n";
   for (const std::string& note : report.notes) out << "  note: " << note << "\n";
+  for (const ReportWarning& w : warnings) out << "  warning: " << w.message << "\n";
   return out.str();
 }
 

@@ -19,6 +19,9 @@ namespace {
 // publishes, directly or through others); the message is dropped and counted as an error.
 constexpr int kMaxCascadeDepth = 16;
 
+// Thrown from the event callback when the replay is asked to stop.
+struct StopRequested {};
+
 // a - b, saturated to the int64 range (a damaged log may hold any timestamp).
 int64_t SaturatingDifference(int64_t a, int64_t b) {
   int64_t difference = 0;
@@ -214,7 +217,8 @@ ReplayFileResult ReplayLogFile(const std::string& input_path, const std::string&
   int64_t reported_event_steps = 0;
   int64_t reported_time_steps = 0;
   LogEvent event;
-  const LogReadResult read = ForEachLogEvent(input_path, result.input, [&](const LogEventView& e) {
+  const auto handle_event = [&](const LogEventView& e) {
+    if (options.should_stop && options.should_stop()) throw StopRequested{};
     event.eventnum = e.eventnum;
     event.timestamp_us = e.timestamp_us;
     event.channel = e.channel;
@@ -233,7 +237,16 @@ ReplayFileResult ReplayLogFile(const std::string& input_path, const std::string&
       reported_event_steps = event_steps;
       reported_time_steps = std::max(reported_time_steps, time_steps);
     }
-  });
+  };
+  LogReadResult read;
+  try {
+    read = ForEachLogEvent(input_path, result.input, handle_event);
+  } catch (const StopRequested&) {
+    result.stages = replay.stats();
+    result.error = "stopped after " + std::to_string(result.events_read) + " of " +
+                   std::to_string(result.input.complete_events) + " events";
+    return result;  // the writers' destructors discard the unfinished files
+  }
   result.stages = replay.stats();
 
   std::string problem;

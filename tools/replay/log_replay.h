@@ -98,6 +98,9 @@ struct ReplayFileOptions {
   int64_t progress_every_events = 20000;
   double progress_every_log_s = 30.0;
   std::function<void(const ReplayProgress&)> on_progress;
+  // Checked before every event: true stops the replay (a SIGINT or SIGTERM), with `error`
+  // saying so and no output left behind.
+  std::function<bool()> should_stop;
 };
 
 struct ReplayFileResult {
@@ -116,8 +119,9 @@ struct ReplayFileResult {
 // Replays `input_path` into `output_path` (and the timing log when asked). On success both logs
 // are in place; on damaged input (corrupt, or a truncated tail when that is an error) `error`
 // says why in one line, every readable event has been processed, and no output file is left
-// behind. Throws std::runtime_error (and leaves no output either) when a file cannot be opened
-// or created, on a write error, and when the output would overwrite the input.
+// behind; the same when options.should_stop() asks the replay to stop. Throws
+// std::runtime_error (and leaves no output either) when a file cannot be opened or created or is
+// not a regular file, on a write error, and when the output would overwrite the input.
 ReplayFileResult ReplayLogFile(const std::string& input_path, const std::string& output_path,
                                std::vector<ReplayStage> stages,
                                const ReplayFileOptions& options);

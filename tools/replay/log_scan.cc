@@ -1,6 +1,12 @@
 #include "tools/replay/log_scan.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <array>
 #include <cstdio>
 #include <memory>
@@ -50,8 +56,23 @@ int64_t FindNextEventHeader(std::FILE* file, int64_t from, int64_t file_size) {
 }  // namespace
 
 LogScan ScanLogFile(const std::string& path) {
-  std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
-  if (!file) throw std::runtime_error(path + ": cannot open log file");
+  // A log is a regular file: a directory reads as an empty log (exit 0 with nothing done), and
+  // LCM's reader spins forever on /dev/zero looking for a sync word. O_NONBLOCK keeps the open
+  // of a FIFO from waiting for a writer.
+  const int fd = open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY | O_NONBLOCK);
+  if (fd < 0) {
+    throw std::runtime_error(path + ": cannot open log file: " + std::strerror(errno));
+  }
+  struct stat info {};
+  if (fstat(fd, &info) != 0 || !S_ISREG(info.st_mode)) {
+    close(fd);
+    throw std::runtime_error(path + ": not a log file (not a regular file)");
+  }
+  std::unique_ptr<std::FILE, FileCloser> file(fdopen(fd, "rb"));
+  if (!file) {
+    close(fd);
+    throw std::runtime_error(path + ": cannot open log file");
+  }
   LogScan scan;
   if (std::fseek(file.get(), 0, SEEK_END) != 0) throw std::runtime_error(path + ": cannot seek");
   scan.file_size = static_cast<int64_t>(std::ftell(file.get()));

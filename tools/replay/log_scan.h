@@ -43,7 +43,8 @@ struct LogScan {
   std::string damage_description;
 };
 
-// Scans `path`. Throws std::runtime_error "<path>: cannot open log file" when it cannot be read.
+// Scans `path`. Throws std::runtime_error, one line naming the path, when it cannot be opened
+// or is not a regular file (a directory, /dev/zero, a FIFO).
 LogScan ScanLogFile(const std::string& path);
 
 }  // namespace slammtt

@@ -8,6 +8,7 @@
 #include "runtime/command_line.h"
 #include "runtime/log.h"
 #include "runtime/process.h"
+#include "runtime/shutdown.h"
 #include "tools/replay/log_replay.h"
 #include "tools/replay/replay_config.h"
 #include "tools/replay/stack_stages.h"
@@ -60,6 +61,8 @@ int Run(int argc, char** argv) {
               << "x real time";
   };
 
+  // SIGINT/SIGTERM (ProcessMain's handlers): stop at the next event, leave no output.
+  options.should_stop = [] { return ShutdownRequested(); };
   std::vector<ReplayStage> stages = CreateStackStages(settings, enabled);
   const ReplayFileResult result = ReplayLogFile(input, *output, std::move(stages), options);
   for (const StageReplayStats& s : result.stages) {
@@ -73,7 +76,10 @@ int Run(int argc, char** argv) {
   }
   if (!result.warning.empty()) LogWarning() << result.warning;
   if (!result.error.empty()) {
-    LogError() << result.error << "; no output written";
+    LogError() << result.error
+               << (ShutdownRequested() ? " (signal " + std::to_string(ShutdownSignal()) + ")"
+                                       : std::string())
+               << "; no output written";
     return 1;
   }
   const double wall_s =

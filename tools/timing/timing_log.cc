@@ -22,6 +22,12 @@ TimingLog ReadTimingLog(const std::string& path, const std::string& channel) {
       ++log.negative;
       return;
     }
+    bool implausible = msg.total_ns > kMaxPlausibleDurationNs;
+    for (int64_t ns : msg.substage_ns) implausible = implausible || ns > kMaxPlausibleDurationNs;
+    if (implausible) {
+      ++log.implausible;
+      return;
+    }
     TimingRecord r;
     r.utime = msg.utime;
     r.stage = std::move(msg.stage);

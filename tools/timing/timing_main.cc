@@ -35,12 +35,15 @@ int Run(int argc, char** argv) {
     LogWarning() << "skipped " << log.negative << " " << channel
                  << " messages with negative durations";
   }
+  if (log.implausible > 0) {
+    LogWarning() << "skipped " << log.implausible << " " << channel
+                 << " messages with a duration beyond an hour";
+  }
   const std::vector<StageTimingSummary> summaries = SummariseTiming(log.records);
   if (cl.Flag("json")) {
-    std::cout << TimingJson(summaries, path, channel, static_cast<int64_t>(log.records.size()),
-                            log.undecodable + log.negative)
-                     .dump(2)
-              << "\n";
+    std::cout << TimingJsonText(TimingJson(summaries, path, channel,
+                                           static_cast<int64_t>(log.records.size()),
+                                           log.undecodable + log.negative + log.implausible));
   } else if (summaries.empty()) {
     std::cout << "no " << channel << " messages in " << path << "\n";
   } else {

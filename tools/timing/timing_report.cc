@@ -97,4 +97,10 @@ nlohmann::json TimingJson(const std::vector<StageTimingSummary>& summaries,
           {"stages", stages}};
 }
 
+std::string TimingJsonText(const nlohmann::json& report) {
+  // Stage and sub-stage names come from the bus: a byte that is no UTF-8 becomes U+FFFD
+  // instead of failing the whole report (nlohmann's default throws type_error 316).
+  return report.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+}
+
 }  // namespace slammtt

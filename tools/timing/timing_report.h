@@ -24,4 +24,8 @@ nlohmann::json TimingJson(const std::vector<StageTimingSummary>& summaries,
                           const std::string& log_path, const std::string& channel,
                           int64_t messages, int64_t skipped_messages);
 
+// The JSON as slammtt-timing prints it: indented by 2, a newline at the end; a name with bytes
+// that are no UTF-8 (stage names come from the bus) has each replaced by U+FFFD.
+std::string TimingJsonText(const nlohmann::json& report);
+
 }  // namespace slammtt

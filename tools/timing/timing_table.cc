@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
+
+#include "common/utime.h"
 
 namespace slammtt {
 namespace {
@@ -49,8 +52,16 @@ DurationStats ComputeStats(std::vector<int64_t> values) {
   stats.p95 = NearestRank(values, 0.95);
   stats.p99 = NearestRank(values, 0.99);
   stats.max = values.back();
-  for (int64_t v : values) stats.sum += v;
-  stats.mean = static_cast<double>(stats.sum) / static_cast<double>(stats.count);
+  // The sum saturates at the ends of int64 (slammtt-timing skips durations beyond an hour, but
+  // this function takes any values); the mean is summed in double, which cannot overflow here.
+  double total = 0.0;
+  for (int64_t v : values) {
+    total += static_cast<double>(v);
+    if (__builtin_add_overflow(stats.sum, v, &stats.sum)) {
+      stats.sum = v > 0 ? std::numeric_limits<int64_t>::max() : std::numeric_limits<int64_t>::min();
+    }
+  }
+  stats.mean = total / static_cast<double>(stats.count);
   return stats;
 }
 
@@ -84,11 +95,17 @@ std::vector<StageTimingSummary> SummariseTiming(const std::vector<TimingRecord>&
     utimes.erase(std::unique(utimes.begin(), utimes.end()), utimes.end());
     if (utimes.size() >= 2) {
       std::vector<int64_t> intervals;
-      for (size_t k = 1; k < utimes.size(); ++k) intervals.push_back(utimes[k] - utimes[k - 1]);
+      for (size_t k = 1; k < utimes.size(); ++k) {
+        int64_t interval = 0;  // utimes from a damaged log may lie further apart than int64
+        if (__builtin_sub_overflow(utimes[k], utimes[k - 1], &interval)) {
+          interval = std::numeric_limits<int64_t>::max();
+        }
+        intervals.push_back(interval);
+      }
       summary.period_median_us = ComputeStats(intervals).median;
       summary.share_of_period = static_cast<double>(summary.total_ns.median) /
                                 (static_cast<double>(*summary.period_median_us) * 1e3);
-      const double span_ns = static_cast<double>(utimes.back() - utimes.front()) * 1e3;
+      const double span_ns = MicrosecondsBetween(utimes.back(), utimes.front()) * 1e3;
       summary.load = static_cast<double>(summary.total_ns.sum) / span_ns;
     }
     summaries.push_back(summary);

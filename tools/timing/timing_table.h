@@ -35,7 +35,7 @@ struct DurationStats {
   int64_t p99 = 0;
   int64_t max = 0;
   double mean = 0.0;
-  int64_t sum = 0;
+  int64_t sum = 0;  // saturated at the ends of int64
 };
 
 struct NamedStats {

@@ -18,6 +18,7 @@ from slammtt.importer import breezyslam, laser, odometry, rosbag
 from slammtt.importer.geometry import wrap_angles
 from slammtt.importer.mount import Mount
 from slammtt.importer.output import Stream, write_log
+from slammtt.output_file import write_text_atomically
 
 PROGRAM = "slammtt-import"
 CHANNEL_DEFAULTS = {"laser_scan": "LASER_SCAN", "odometry": "ODOMETRY",
@@ -290,18 +291,11 @@ def run(argv):
     header = [f"Laser mount of {source}: {mount.describe()}.",
               f"Written by {PROGRAM} {slammtt.__version__}; "
               "slammtt-replay LOG --config THIS_FILE takes it as it is."]
-    _write_atomically(mount_path, mount.yaml(header, args.rotate_to_base))
+    write_text_atomically(mount_path, mount.yaml(header, args.rotate_to_base))
     report.info(f"mount: {mount.describe()} -> {mount_path}")
     span = (last - first) * 1e-6 if events else 0.0
     report.info(f"wrote {output}: {events} events, {span:.1f} s")
     return 0
-
-
-def _write_atomically(path, text):
-    partial = path + ".partial"
-    with open(partial, "w", encoding="utf-8") as f:
-        f.write(text)
-    os.replace(partial, path)
 
 
 def main(argv=None):

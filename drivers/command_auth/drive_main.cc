@@ -1,0 +1,77 @@
+// slammtt-drive: a minimal teleop for a base station or a test. Publishes signed
+// VELOCITY_COMMAND (command_signature.h) at a fixed rate for a while, then a stop.
+#include <lcm/lcm-cpp.hpp>
+
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include "drivers/command_auth/command_key.h"
+#include "drivers/command_auth/command_signature.h"
+#include "drivers/common/driver_clock.h"
+#include "runtime/command_line.h"
+#include "runtime/lcm_io.h"
+#include "runtime/log.h"
+#include "runtime/process.h"
+#include "runtime/shutdown.h"
+
+namespace slammtt {
+namespace {
+
+int Run(int argc, char** argv) {
+  CommandLine cl("slammtt-drive", "--key FILE [--linear-mps V] [--angular-radps W] [options]",
+                 "Drives the base: signed VELOCITY_COMMAND at --rate-hz for --duration-s, then "
+                 "one stop command. The key is the robot's (p3dx.command_key_file).");
+  AddStandardOptions(&cl);
+  cl.AddOption("key", "FILE", "the command key shared with the robot (required)");
+  cl.AddOption("linear-mps", "V", "forward speed (default 0)");
+  cl.AddOption("angular-radps", "W", "turn rate, CCW positive (default 0)");
+  cl.AddOption("duration-s", "S", "how long to send (default 1, at most 3600)");
+  cl.AddOption("rate-hz", "HZ", "commands per second (default 10, 1 to 100)");
+  if (!cl.Parse(argc, argv)) return 0;
+  const ProcessSettings settings = LoadProcessSettings(cl);
+  const auto key_path = cl.Value("key");
+  if (!key_path) throw UsageError("--key FILE is required");
+  const double linear = cl.DoubleValue("linear-mps").value_or(0.0);
+  const double angular = cl.DoubleValue("angular-radps").value_or(0.0);
+  const double duration_s = cl.DoubleValue("duration-s").value_or(1.0);
+  const double rate_hz = cl.DoubleValue("rate-hz").value_or(10.0);
+  if (!(duration_s >= 0.0 && duration_s <= 3600.0)) {
+    throw UsageError("--duration-s must be in [0, 3600]");
+  }
+  if (!(rate_hz >= 1.0 && rate_hz <= 100.0)) throw UsageError("--rate-hz must be in [1, 100]");
+
+  const CommandKey key = LoadCommandKeyFile(*key_path);
+  const std::string channel = settings.channels.Get("velocity_command");
+  VelocityCommandSigner signer(key, channel, NewSenderId());
+  std::unique_ptr<lcm::LCM> lcm = OpenLcm(settings.lcm_url);
+  SystemDriverClock clock;
+  const auto send = [&](double v, double w) {
+    slammtt_msgs::velocity_command_t command{};
+    command.utime = clock.NowUtime();
+    command.linear_mps = v;
+    command.angular_radps = w;
+    signer.Sign(&command);
+    if (lcm->publish(channel, &command) != 0) throw std::runtime_error("LCM publish failed");
+  };
+  const int64_t period_us = static_cast<int64_t>(std::llround(1e6 / rate_hz));
+  const int64_t start_us = clock.NowMonotonicUs();
+  const int64_t end_us = start_us + static_cast<int64_t>(std::llround(duration_s * 1e6));
+  for (int64_t next_us = start_us; next_us < end_us && !ShutdownRequested(); next_us += period_us) {
+    const int64_t wait_us = next_us - clock.NowMonotonicUs();
+    if (wait_us > 0) clock.SleepUs(wait_us);
+    if (ShutdownRequested()) break;
+    send(linear, angular);
+  }
+  send(0.0, 0.0);
+  LogInfo() << "sent " << signer.last_counter() << " signed commands on " << channel
+            << " (the last one a stop)";
+  return 0;
+}
+
+}  // namespace
+}  // namespace slammtt
+
+int main(int argc, char** argv) {
+  return slammtt::ProcessMain(argc, argv, "slammtt-drive", slammtt::Run);
+}
