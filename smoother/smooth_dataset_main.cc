@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "common/number_text.h"
+#include "runtime/output_file.h"
 #include "smoother/pose_landmark_dataset.h"
 #include "smoother/smoother.h"
 
@@ -198,15 +199,24 @@ int main(int argc, char** argv) {
       Percentile(step_seconds, 0.99), Percentile(step_seconds, 1.0), polished_chi_square,
       polish_seconds, usage.ru_maxrss);
   if (!solution_path.empty()) {
-    std::ofstream out(solution_path);
-    out.precision(17);
-    for (const slammtt::PoseId id : smoother.PoseIds()) {
-      const Eigen::Vector3d pose = *smoother.PoseEstimate(id);
-      out << "POSE " << id << " " << pose(0) << " " << pose(1) << " " << pose(2) << "\n";
-    }
-    for (const slammtt::LandmarkId id : smoother.LandmarkIds()) {
-      const Eigen::Vector2d point = *smoother.LandmarkEstimate(id);
-      out << "POINT " << id << " " << point(0) << " " << point(1) << "\n";
+    // Written like every tool output (runtime/output_file.h): complete or absent, never
+    // through a link planted at its name.
+    try {
+      slammtt::OutputFile out(solution_path);
+      for (const slammtt::PoseId id : smoother.PoseIds()) {
+        const Eigen::Vector3d pose = *smoother.PoseEstimate(id);
+        std::fprintf(out.stream(), "POSE %lld %.17g %.17g %.17g\n", static_cast<long long>(id), pose(0),
+                     pose(1), pose(2));
+      }
+      for (const slammtt::LandmarkId id : smoother.LandmarkIds()) {
+        const Eigen::Vector2d point = *smoother.LandmarkEstimate(id);
+        std::fprintf(out.stream(), "POINT %lld %.17g %.17g\n", static_cast<long long>(id), point(0),
+                     point(1));
+      }
+      out.Commit();
+    } catch (const std::exception& error) {
+      std::fprintf(stderr, "slammtt-smooth-dataset: %s\n", error.what());
+      return 1;
     }
   }
   return 0;
