@@ -48,8 +48,9 @@ mkdir -p out && mv s1-crossing-seed7-replay.lcm out/
 "$bin/slammtt-world" --quiet --scenario office --seed 1 --log office-seed1.lcm
 "$bin/slammtt-replay" --quiet --no-timing office-seed1.lcm -o out/office-seed1-replay.lcm \
   --config "$root/estimator/config/office.yaml"
-"$bin/slammtt-eval" --quiet out/office-seed1-replay.lcm --config "$root/estimator/config/office.yaml" \
-  --json office-report.json --plots office-pictures > /dev/null
+"$bin/slammtt-eval" --quiet out/office-seed1-replay.lcm \
+  --config "$root/estimator/config/office.yaml" --json office-report.json \
+  --plots office-pictures > /dev/null
 
 mkdir -p made
 for picture in trajectory map tracks identities errors; do

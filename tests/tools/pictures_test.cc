@@ -86,6 +86,14 @@ EvalInput FullFrameRun() {
   return input;
 }
 
+// The report of the hand-built log of eval_test.cc (1 identity switch, 1 fragmentation).
+EvaluationReport HandBuiltReport() {
+  testing::TempDir dir;
+  testing::WriteHandBuiltLog(dir.File("run.lcm"), true);
+  LogReadResult read;
+  return Evaluate(ReadEvalInput(dir.File("run.lcm"), Channels(), &read), EvalOptions());
+}
+
 void ExpectNoLegendOnData(const std::string& name, const std::string& svg) {
   const std::vector<PixelBox> legends = LegendBoxes(svg);
   const std::vector<PixelBox> data = DataBoxes(svg);
@@ -102,11 +110,7 @@ void ExpectNoLegendOnData(const std::string& name, const std::string& svg) {
 
 TEST(PicturesTest, NoLegendCoversDataInAnyPicture) {
   const EvaluationReport full = Evaluate(FullFrameRun(), EvalOptions());
-  testing::TempDir dir;
-  testing::WriteHandBuiltLog(dir.File("run.lcm"), true);
-  LogReadResult read;
-  const EvaluationReport hand =
-      Evaluate(ReadEvalInput(dir.File("run.lcm"), Channels(), &read), EvalOptions());
+  const EvaluationReport hand = HandBuiltReport();
   for (const EvaluationReport* report : {&full, &hand}) {
     int legends = 0;
     for (const auto& [name, svg] : EvaluationPlots(*report)) {
@@ -163,11 +167,7 @@ TEST(PicturesTest, TimelineMarksEveryIdentitySwitchAndFragmentationTheReportCoun
   ASSERT_TRUE(full.tracking.has_value());
   EXPECT_EQ(full.tracking->clear_mot.num_id_switches, 1);
   EXPECT_EQ(full.tracking->clear_mot.num_fragmentations, 1);
-  testing::TempDir dir;
-  testing::WriteHandBuiltLog(dir.File("run.lcm"), true);
-  LogReadResult read;
-  const EvaluationReport hand =
-      Evaluate(ReadEvalInput(dir.File("run.lcm"), Channels(), &read), EvalOptions());
+  const EvaluationReport hand = HandBuiltReport();
   for (const EvaluationReport* r : {&full, &hand}) {
     const std::string svg = IdentityTimelineSvg(*r);
     EXPECT_EQ(CountRole(svg, "id-switch"), r->tracking->clear_mot.num_id_switches) << r->source;
