@@ -155,6 +155,8 @@ struct LogOnlyScene {
   std::vector<TimedPose> estimate;
   std::vector<TimedPose> odometry;
   bool odometry_anchored_to_estimate = false;
+  bool has_map = false;     // a MAP was accepted (it may hold no landmark)
+  bool has_tracks = false;  // a TRACKS was accepted (it may hold no moving track)
 };
 
 // One scan as perception saw it (EvalInput::snapshot), with the truth of that moment.

@@ -29,6 +29,8 @@ void FillLogOnlyScene(const EvalInput& input, EvaluationReport* report) {
   scene.estimate = input.estimate;
   const std::optional<Pose2> anchor = OdometryAnchor(input.estimate, input.odometry);
   scene.odometry_anchored_to_estimate = anchor.has_value();
+  scene.has_map = input.final_map.has_value();
+  scene.has_tracks = !input.tracks.empty();
   for (const TimedPose& o : input.odometry) {
     scene.odometry.push_back({o.utime, anchor ? Compose(*anchor, o.pose) : o.pose});
   }

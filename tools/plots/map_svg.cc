@@ -85,7 +85,7 @@ std::string MapSvg(const EvaluationReport& report) {
               {"robot path (estimate)", kRobotPath}};
   }
   legend.insert(legend.end(), segment_legend.begin(), segment_legend.end());
-  const bool has_map = report.map || (report.log_only && !report.landmarks.empty());
+  const bool has_map = report.map || (report.log_only && report.log_only->has_map);
   if (!has_map) panel.Message("no MAP in the log");
   std::string caption = Subtitle(report);
   if (report.map) {

@@ -36,6 +36,18 @@ std::string LegendMarkElement(const LegendEntry& e, double x, double cy) {
     return "<circle cx=\"" + FormatNumber(x + 11, 1) + "\" cy=\"" + FormatNumber(cy, 1) +
            "\" r=\"3.5\" fill=\"" + style.colour + "\"/>";
   }
+  if (e.mark == LegendMark::kTriangle) {
+    return "<path d=\"M" + FormatNumber(x + 6.5, 1) + " " + FormatNumber(cy - 4.5, 1) + "L" +
+           FormatNumber(x + 15.5, 1) + " " + FormatNumber(cy - 4.5, 1) + "L" +
+           FormatNumber(x + 11, 1) + " " + FormatNumber(cy + 4.5, 1) + "Z\" fill=\"" +
+           style.colour + "\" stroke=\"none\"/>";
+  }
+  if (e.mark == LegendMark::kDiamond) {
+    return "<path d=\"M" + FormatNumber(x + 11, 1) + " " + FormatNumber(cy - 4.5, 1) + "L" +
+           FormatNumber(x + 15.5, 1) + " " + FormatNumber(cy, 1) + "L" + FormatNumber(x + 11, 1) +
+           " " + FormatNumber(cy + 4.5, 1) + "L" + FormatNumber(x + 6.5, 1) + " " +
+           FormatNumber(cy, 1) + "Z\" fill=\"" + style.colour + "\" stroke=\"none\"/>";
+  }
   if (e.mark == LegendMark::kCross) {
     return "<path d=\"M" + FormatNumber(x + 6, 1) + " " + FormatNumber(cy, 1) + "H" +
            FormatNumber(x + 16, 1) + "M" + FormatNumber(x + 11, 1) + " " +

@@ -1,7 +1,7 @@
 // A small SVG builder for the evaluation's pictures (text only; writing files is the caller's): a
 // document of fixed pixel width holding plot panels, each mapping data coordinates (metres,
 // seconds) to pixels with axes, ticks and a grid, and legends laid out outside every panel's data
-// area (LegendBlock), so that a legend never covers data. Every data element is clipped to its
+// area (DrawLegendBlock, AppendLegendAndCaption), so that a legend never covers data. Every data element is clipped to its
 // panel's inner box and carries that clip-path attribute; legends are <g class="legend"> groups
 // framed by one rect. Numbers are written with a fixed number of decimals, so the same data gives
 // the same bytes, and long polylines are decimated to keep files small (never across a gap).
@@ -31,8 +31,9 @@ struct LineStyle {
   std::string role;
 };
 
-// How a legend entry shows its style: as the line, the dot or the cross drawn in the panel.
-enum class LegendMark { kLine, kDot, kCross };
+// How a legend entry shows its style: as the line, the dot, the cross, the triangle or the
+// diamond drawn in the panel.
+enum class LegendMark { kLine, kDot, kCross, kTriangle, kDiamond };
 
 struct LegendEntry {
   std::string label;

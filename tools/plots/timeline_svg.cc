@@ -1,6 +1,7 @@
 #include "tools/plots/timeline_svg.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <set>
 #include <vector>
@@ -73,7 +74,9 @@ std::string IdentityTimelineSvg(const EvaluationReport& report) {
                  static_cast<double>(rows) - 0.5, false);
   std::map<int64_t, double> row_y;  // the first mover at the top
   std::vector<std::pair<double, std::string>> row_labels;
-  const size_t label_every = std::max<size_t>(1, static_cast<size_t>(12.0 / RowPx(rows)));
+  // Row labels of 11 px, every row while they fit, else every few rows.
+  const size_t label_every =
+      std::max<size_t>(1, static_cast<size_t>(std::ceil(13.0 / RowPx(rows))));
   size_t r = 0;
   for (const auto& [id, unused] : states) {
     row_y[id] = static_cast<double>(rows - 1 - r);
@@ -128,9 +131,9 @@ std::string IdentityTimelineSvg(const EvaluationReport& report) {
        LineStyle{"#1f77b4", 6.0}},
       {"in the truth set, untracked (a miss)", LineStyle{kMissStyle.colour, 6.0}},
       {"identity switch, above the bar (" + std::to_string(switches.size()) + ")", kSwitchStyle,
-       LegendMark::kDot},
+       LegendMark::kTriangle},
       {"fragmentation, below the bar: tracked again (" + std::to_string(fragments.size()) + ")",
-       kFragmentStyle, LegendMark::kDot}};
+       kFragmentStyle, LegendMark::kDiamond}};
   AppendLegendAndCaption(&doc, panel, legend,
                          Subtitle(report) + ": " + std::to_string(states.size()) +
                              " true movers; blank: not in the truth set (invisible or standing)");

@@ -41,7 +41,7 @@ std::string TracksSvg(const EvaluationReport& report) {
                     LineStyle{"#1f77b4", 1.4}});
   legend.push_back({"where a track ends", LineStyle{"#1f77b4"}, LegendMark::kDot});
   legend.insert(legend.end(), segment_legend.begin(), segment_legend.end());
-  const bool has_tracks = report.tracking || (report.log_only && !report.track_paths.empty());
+  const bool has_tracks = report.tracking || (report.log_only && report.log_only->has_tracks);
   if (!has_tracks) panel.Message("no TRACKS in the log");
   std::string caption = Subtitle(report);
   if (report.tracking) {
