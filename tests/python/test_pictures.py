@@ -33,7 +33,7 @@ def draw(tmp_path):
         done = subprocess.run([EVAL, out, "--json", report, "--plots", pictures],
                               capture_output=True, text=True, timeout=300)
         assert done.returncode == 1, done.stderr
-        assert "no GROUND_TRUTH in the log: nothing can be scored; no report written" in done.stderr
+        assert f"{out}: no GROUND_TRUTH: nothing can be scored; no report written" in done.stderr
         assert f"pictures of what the log holds, nothing scored: {pictures}" in done.stdout
         assert not report.exists()
         svg = {name: (pictures / name).read_text() for name in PICTURES}

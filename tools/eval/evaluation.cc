@@ -87,11 +87,6 @@ std::string Count(int64_t n, const std::string& what) {
 
 }  // namespace
 
-bool AnythingScored(const EvaluationReport& report) {
-  return report.robot || report.odometry || report.map || report.tracking ||
-         report.classification;
-}
-
 EvaluationReport Evaluate(const EvalInput& input, const EvalOptions& options) {
   CheckOptions(options);
   EvaluationReport report;

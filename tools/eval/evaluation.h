@@ -203,10 +203,6 @@ struct EvaluationReport {
   std::optional<LogOnlyScene> log_only;
 };
 
-// True when some top-level figure of the report has a value (a trajectory, the map, tracking or
-// classification was scored): slammtt-eval writes no report and exits 1 otherwise.
-bool AnythingScored(const EvaluationReport& report);
-
 // Scores `input`. Throws std::invalid_argument for options out of range (thresholds not
 // positive, order < 1, alpha outside (0, 2], min_beams outside [1, kMaxMinBeams],
 // min_moving_speed_mps outside [0, kMaxMinMovingSpeedMps]).
