@@ -129,6 +129,19 @@ TEST(PicturesTest, NoLegendCoversDataInAnyPicture) {
   EXPECT_GT(lowest, legend[0].top - 80);
 }
 
+// The README's pictures (docs/images, scripts/make-readme-pictures.sh): real runs, the office
+// scan among them.
+TEST(PicturesTest, NoLegendCoversDataInTheReadmePictures) {
+  for (const char* name : {"s1-crossing-trajectory.svg", "s1-crossing-map.svg",
+                           "s1-crossing-tracks.svg", "s1-crossing-identities.svg",
+                           "s1-crossing-errors.svg", "office-scan.svg"}) {
+    const std::string svg =
+        testing::FileBytes(std::string(SLAMMTT_SOURCE_DIR) + "/docs/images/" + name);
+    EXPECT_FALSE(LegendBoxes(svg).empty()) << name;
+    ExpectNoLegendOnData(name, svg);
+  }
+}
+
 TEST(PicturesTest, OspaAndGospaHaveGapsWhereNothingIsThereToTrack) {
   const EvaluationReport r = Evaluate(FullFrameRun(), EvalOptions());
   ASSERT_TRUE(r.tracking.has_value());
