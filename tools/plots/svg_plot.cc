@@ -344,33 +344,30 @@ void PlotPanel::Crosses(const std::vector<Eigen::Vector2d>& points, double half_
   }
 }
 
-void PlotPanel::Triangles(const std::vector<Eigen::Vector2d>& points, double half_size_px,
-                          const LineStyle& style) {
+void PlotPanel::FilledMarkers(const std::vector<Eigen::Vector2d>& points,
+                              const std::vector<Eigen::Vector2d>& corners, double half_size_px,
+                              const LineStyle& style) {
   for (const Eigen::Vector2d& point : points) {
     if (!point.allFinite()) continue;
     const Eigen::Vector2d p = ToPixel(point);
-    const double h = half_size_px;
-    document_->Add("<path d=\"M" + FormatNumber(p.x() - h, 1) + " " + FormatNumber(p.y() - h, 1) +
-                   "L" + FormatNumber(p.x() + h, 1) + " " + FormatNumber(p.y() - h, 1) + "L" +
-                   FormatNumber(p.x(), 1) + " " + FormatNumber(p.y() + h, 1) + "Z\" fill=\"" +
-                   style.colour + "\" stroke=\"none\"" + RoleAttribute(style) + " " +
-                   clip_attribute_ + "/>");
+    std::string path;
+    for (const Eigen::Vector2d& c : corners) {
+      const Eigen::Vector2d q = p + half_size_px * c;
+      path += (path.empty() ? "M" : "L") + FormatNumber(q.x(), 1) + " " + FormatNumber(q.y(), 1);
+    }
+    document_->Add("<path d=\"" + path + "Z\" fill=\"" + style.colour + "\" stroke=\"none\"" +
+                   RoleAttribute(style) + " " + clip_attribute_ + "/>");
   }
+}
+
+void PlotPanel::Triangles(const std::vector<Eigen::Vector2d>& points, double half_size_px,
+                          const LineStyle& style) {
+  FilledMarkers(points, {{-1, -1}, {1, -1}, {0, 1}}, half_size_px, style);
 }
 
 void PlotPanel::Diamonds(const std::vector<Eigen::Vector2d>& points, double half_size_px,
                          const LineStyle& style) {
-  for (const Eigen::Vector2d& point : points) {
-    if (!point.allFinite()) continue;
-    const Eigen::Vector2d p = ToPixel(point);
-    const double h = half_size_px;
-    document_->Add("<path d=\"M" + FormatNumber(p.x(), 1) + " " + FormatNumber(p.y() - h, 1) +
-                   "L" + FormatNumber(p.x() + h, 1) + " " + FormatNumber(p.y(), 1) + "L" +
-                   FormatNumber(p.x(), 1) + " " + FormatNumber(p.y() + h, 1) + "L" +
-                   FormatNumber(p.x() - h, 1) + " " + FormatNumber(p.y(), 1) + "Z\" fill=\"" +
-                   style.colour + "\" stroke=\"none\"" + RoleAttribute(style) + " " +
-                   clip_attribute_ + "/>");
-  }
+  FilledMarkers(points, {{0, -1}, {1, 0}, {0, 1}, {-1, 0}}, half_size_px, style);
 }
 
 void PlotPanel::Box(const Eigen::Vector2d& corner_a, const Eigen::Vector2d& corner_b,

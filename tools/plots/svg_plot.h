@@ -1,9 +1,9 @@
 // A small SVG builder for the evaluation's pictures (text only; writing files is the caller's): a
 // document of fixed pixel width holding plot panels, each mapping data coordinates (metres,
 // seconds) to pixels with axes, ticks and a grid, and legends laid out outside every panel's data
-// area (DrawLegendBlock, AppendLegendAndCaption), so that a legend never covers data. Every data element is clipped to its
-// panel's inner box and carries that clip-path attribute; legends are <g class="legend"> groups
-// framed by one rect. Numbers are written with a fixed number of decimals, so the same data gives
+// area (DrawLegendBlock, AppendLegendAndCaption), so that a legend never covers data. Every
+// data element is clipped to its panel's inner box and carries that clip-path attribute; legends
+// are <g class="legend"> groups framed by one rect. Numbers are written with a fixed number of decimals, so the same data gives
 // the same bytes, and long polylines are decimated to keep files small (never across a gap).
 // Only the SVG 1.1 basics every browser and image viewer renders (path, circle, ellipse, line,
 // rect, text, g).
@@ -136,6 +136,11 @@ class PlotPanel {
   double y_max_ = 1.0;
   std::string clip_attribute_;  // clip-path="url(#...)" of the inner box
   std::vector<std::pair<double, std::string>> y_tick_labels_;
+
+  // A filled polygon with the corners `corners` (in units of half_size_px, y down) at each point.
+  void FilledMarkers(const std::vector<Eigen::Vector2d>& points,
+                     const std::vector<Eigen::Vector2d>& corners, double half_size_px,
+                     const LineStyle& style);
 };
 
 // A legend outside the data area: its entries in rows of as many equal columns as the longest
