@@ -12,7 +12,8 @@
 #     slammtt-segmenter -> slammtt-estimator), recorded by lcm-logger, evaluated and drawn.
 #     It runs in a private network namespace (tests/support/netns-run), so it works on a
 #     machine without a network and never disturbs a robot stack on the same host.
-# Everything lands in out/.
+# Everything lands in out/. The README's pictures (docs/images) come from steps 2 and 3, made
+# by scripts/make-readme-pictures.sh.
 set -eu
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh

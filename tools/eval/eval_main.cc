@@ -3,7 +3,8 @@
 // with --plots, draws the pictures (tools/plots/eval_plots.h). Exit status: 0 scored; 1 with one
 // line and no report when nothing can be (a corrupt log, no GROUND_TRUTH, an empty file); 2 for a
 // bad command line or configuration; 3 when the report is written but a headline figure is
-// withheld (report_json.h, ReportWarning).
+// withheld (report_json.h, ReportWarning). Without GROUND_TRUTH (a robot run, an imported
+// recording) --plots still draws what the log holds, and a second line says so.
 #include <iostream>
 #include <string>
 #include <utility>
@@ -28,9 +29,12 @@ int Run(int argc, char** argv) {
                  "CLEAR-MOT tracking, static/moving classification.");
   AddStandardOptions(&cl);
   cl.AddPositional("LOG.lcm",
-                   "a log with GROUND_TRUTH (slammtt-world, or slammtt-replay's output)");
+                   "a log with GROUND_TRUTH (slammtt-world, or slammtt-replay's output); "
+                   "without it only --plots does anything (exit status 1)");
   cl.AddOption("json", "REPORT.json", "write the full report as JSON");
-  cl.AddOption("plots", "DIR", "write trajectory.svg, map.svg, tracks.svg, errors.svg into DIR");
+  cl.AddOption("plots", "DIR",
+               "write trajectory.svg, map.svg, tracks.svg, identities.svg, errors.svg, scan.svg "
+               "into DIR (also for a log without GROUND_TRUTH: what the log holds)");
   AddEvalCommandLineOptions(&cl);
   if (!cl.Parse(argc, argv)) return 0;
   const std::string path = *cl.Positional("LOG.lcm");
@@ -55,6 +59,13 @@ int Run(int argc, char** argv) {
   if (input.truth.empty()) {
     LogError() << path << ": no " << settings.channels.Get("ground_truth")
                << ": nothing can be scored; no report written";
+    if (const auto dir = cl.Value("plots")) {
+      // What the log holds, drawn from the log alone (tools/eval/log_only_scene.h).
+      const std::vector<std::string> written =
+          WriteTextFiles(*dir, EvaluationPlots(Evaluate(input, options)));
+      std::cout << "pictures of what the log holds, nothing scored: " << *dir << " ("
+                << written.size() << " files)\n";
+    }
     return 1;
   }
   const EvaluationReport report = Evaluate(input, options);

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "tools/eval/log_only_scene.h"
 #include "tools/metrics/set_distance.h"
 
 namespace slammtt {
@@ -115,6 +116,7 @@ EvaluationReport Evaluate(const EvalInput& input, const EvalOptions& options) {
   }
   if (input.truth.empty()) {
     report.notes.push_back("no GROUND_TRUTH in the log: nothing can be scored");
+    FillLogOnlyScene(input, &report);
     return report;
   }
   report.static_segments = input.static_segments;
@@ -276,6 +278,8 @@ EvaluationReport Evaluate(const EvalInput& input, const EvalOptions& options) {
       }
     }
     const ClearMotFrame frame = clear_mot.AddFrame(truth_movers, hypotheses, dont_care);
+    for (const IdentifiedPoint& p : truth_movers) row.truth_ids.push_back(p.id);
+    row.matches = frame.matches;
     classification.AddScan(scan.utime, truth_objects, labelled);
     for (const IdentitySwitch& e : frame.id_switches) {
       tracking.identity_switches.push_back({scan.utime, e});

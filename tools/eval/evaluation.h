@@ -23,12 +23,15 @@
 //   of OSPA/GOSPA. Every identity switch and fragmentation is listed with its time.
 // - Classification: visible objects of both classes against every confirmed track
 //   (classification_score.h), over the same window; standing scans of movers are not judged.
-// Missing inputs leave the affected results empty, with a one-line note each.
+// Missing inputs leave the affected results empty, with a one-line note each. Without
+// GROUND_TRUTH nothing is scored, but what the log holds is still prepared for the pictures
+// (EvaluationReport::log_only).
 #pragma once
 
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "tools/eval/eval_input.h"
@@ -78,6 +81,10 @@ struct TrajectoryResult {
 
 struct TrackingScan {
   int64_t utime = 0;
+  // The truth set of this scan (ids of the visible movers in motion) and the CLEAR-MOT matches
+  // (truth id, track id) made in it: the identity timeline's rows and colours.
+  std::vector<int64_t> truth_ids;
+  std::vector<std::pair<int64_t, int64_t>> matches;
   int num_truth = 0;
   int num_tracks = 0;  // confirmed MOVING tracks, don't-cares included
   int num_matches = 0;
@@ -136,7 +143,20 @@ struct AnchoredLandmark {
   int64_t id = 0;
   Eigen::Vector2d position_m = Eigen::Vector2d::Zero();
   Eigen::Matrix2d covariance = Eigen::Matrix2d::Zero();
-  enum class Kind { kStatic, kMover, kUnexplained } kind = Kind::kUnexplained;
+  // kUnjudged: a log without ground truth (nothing to judge it by).
+  enum class Kind { kStatic, kMover, kUnexplained, kUnjudged } kind = Kind::kUnexplained;
+};
+
+// What the pictures of a log without GROUND_TRUTH draw of the robot (log_only_scene.h), in the
+// estimator's map frame: every POSE, and the ODOMETRY anchored to the estimate at the first POSE
+// (interpolated at its utime; a rigid transform, as the anchoring to the truth), or in its own
+// frame when there is no POSE inside the odometry's time span.
+struct LogOnlyScene {
+  std::vector<TimedPose> estimate;
+  std::vector<TimedPose> odometry;
+  bool odometry_anchored_to_estimate = false;
+  bool has_map = false;     // a MAP was accepted (it may hold no landmark)
+  bool has_tracks = false;  // a TRACKS was accepted (it may hold no moving track)
 };
 
 // One scan as perception saw it (EvalInput::snapshot), with the truth of that moment.
@@ -177,6 +197,10 @@ struct EvaluationReport {
   std::vector<AnchoredLandmark> landmarks;                // final map
   std::vector<TrackPath> track_paths;
   std::optional<ScanPicture> scan_picture;
+  // Set when the log has no GROUND_TRUTH: then landmarks (kind kUnjudged), track_paths (every
+  // confirmed MOVING track of every TRACKS message) and this are in the estimator's map frame,
+  // and first_utime / last_utime span the log's POSE, ODOMETRY, TRACKS and MAP.
+  std::optional<LogOnlyScene> log_only;
 };
 
 // Scores `input`. Throws std::invalid_argument for options out of range (thresholds not

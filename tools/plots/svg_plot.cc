@@ -16,12 +16,64 @@ constexpr double kAxisBottomPx = 42.0;
 constexpr double kTitlePx = 26.0;
 constexpr double kRightPx = 14.0;
 
+std::string RoleAttribute(const LineStyle& style) {
+  return style.role.empty() ? "" : " class=\"" + style.role + "\"";
+}
+
 std::string StrokeAttributes(const LineStyle& style) {
   std::string s = "stroke=\"" + style.colour + "\" stroke-width=\"" +
                   FormatNumber(style.width_px, 2) + "\"";
   if (!style.dash.empty()) s += " stroke-dasharray=\"" + style.dash + "\"";
   if (style.opacity < 1.0) s += " stroke-opacity=\"" + FormatNumber(style.opacity, 2) + "\"";
-  return s;
+  return s + RoleAttribute(style);
+}
+
+// The legend mark of one entry, centred vertically on `cy`, from x to x + 22.
+std::string LegendMarkElement(const LegendEntry& e, double x, double cy) {
+  LineStyle style = e.style;
+  style.role.clear();  // a legend mark is not data of its role
+  if (e.mark == LegendMark::kDot) {
+    return "<circle cx=\"" + FormatNumber(x + 11, 1) + "\" cy=\"" + FormatNumber(cy, 1) +
+           "\" r=\"3.5\" fill=\"" + style.colour + "\"/>";
+  }
+  if (e.mark == LegendMark::kTriangle) {
+    return "<path d=\"M" + FormatNumber(x + 6.5, 1) + " " + FormatNumber(cy - 4.5, 1) + "L" +
+           FormatNumber(x + 15.5, 1) + " " + FormatNumber(cy - 4.5, 1) + "L" +
+           FormatNumber(x + 11, 1) + " " + FormatNumber(cy + 4.5, 1) + "Z\" fill=\"" +
+           style.colour + "\" stroke=\"none\"/>";
+  }
+  if (e.mark == LegendMark::kDiamond) {
+    return "<path d=\"M" + FormatNumber(x + 11, 1) + " " + FormatNumber(cy - 4.5, 1) + "L" +
+           FormatNumber(x + 15.5, 1) + " " + FormatNumber(cy, 1) + "L" + FormatNumber(x + 11, 1) +
+           " " + FormatNumber(cy + 4.5, 1) + "L" + FormatNumber(x + 6.5, 1) + " " +
+           FormatNumber(cy, 1) + "Z\" fill=\"" + style.colour + "\" stroke=\"none\"/>";
+  }
+  if (e.mark == LegendMark::kCross) {
+    return "<path d=\"M" + FormatNumber(x + 6, 1) + " " + FormatNumber(cy, 1) + "H" +
+           FormatNumber(x + 16, 1) + "M" + FormatNumber(x + 11, 1) + " " +
+           FormatNumber(cy - 5, 1) + "V" + FormatNumber(cy + 5, 1) + "\" " +
+           StrokeAttributes(style) + "/>";
+  }
+  return "<line x1=\"" + FormatNumber(x, 1) + "\" y1=\"" + FormatNumber(cy, 1) + "\" x2=\"" +
+         FormatNumber(x + 22, 1) + "\" y2=\"" + FormatNumber(cy, 1) + "\" " +
+         StrokeAttributes(style) + "/>";
+}
+
+constexpr double kLegendRowPx = 16.0;
+constexpr double kLegendPaddingPx = 6.0;
+constexpr double kLegendLeftPx = 58.0;  // under the panel's inner box, as the axis
+constexpr int kLegendTextPx = 11;
+
+double LegendColumnWidthPx(const std::vector<LegendEntry>& entries) {
+  double widest = 0.0;
+  for (const LegendEntry& e : entries) widest = std::max(widest, TextWidthPx(e.label, 11));
+  return 28.0 + widest + 16.0;
+}
+
+int LegendColumns(const std::vector<LegendEntry>& entries, double width_px) {
+  const double usable = width_px - kLegendLeftPx - 14.0;
+  const int fit = static_cast<int>(std::floor(usable / LegendColumnWidthPx(entries)));
+  return std::max(1, std::min(fit, static_cast<int>(entries.size())));
 }
 
 }  // namespace
@@ -202,13 +254,17 @@ void PlotPanel::DrawAxes(const std::string& title, const std::string& x_label,
           "\" stroke=\"#e4e4e4\" stroke-width=\"1\"/>");
     d.Text(x, bottom + 15, FormatNumber(t, TickDecimals(x_ticks)), 11, "middle");
   }
-  const std::vector<double> y_ticks = NiceTicks(y_min_, y_max_, 6);
-  for (double t : y_ticks) {
+  std::vector<std::pair<double, std::string>> y_labels = y_tick_labels_;
+  if (y_labels.empty()) {
+    const std::vector<double> y_ticks = NiceTicks(y_min_, y_max_, 6);
+    for (double t : y_ticks) y_labels.emplace_back(t, FormatNumber(t, TickDecimals(y_ticks)));
+  }
+  for (const auto& [t, text] : y_labels) {
     const double y = ToPixel(Eigen::Vector2d(x_min_, t)).y();
     d.Add("<line x1=\"" + FormatNumber(inner_left_px_, 1) + "\" y1=\"" + FormatNumber(y, 1) +
           "\" x2=\"" + FormatNumber(right, 1) + "\" y2=\"" + FormatNumber(y, 1) +
           "\" stroke=\"#e4e4e4\" stroke-width=\"1\"/>");
-    d.Text(inner_left_px_ - 6, y + 4, FormatNumber(t, TickDecimals(y_ticks)), 11, "end");
+    d.Text(inner_left_px_ - 6, y + 4, text, 11, "end");
   }
   d.Add("<rect x=\"" + FormatNumber(inner_left_px_, 1) + "\" y=\"" +
         FormatNumber(inner_top_px_, 1) + "\" width=\"" + FormatNumber(inner_width_px_, 1) +
@@ -224,23 +280,37 @@ void PlotPanel::DrawAxes(const std::string& title, const std::string& x_label,
 
 void PlotPanel::Polyline(const std::vector<Eigen::Vector2d>& points, const LineStyle& style,
                          size_t max_points) {
-  if (points.size() < 2) return;
-  const size_t step = std::max<size_t>(1, (points.size() + max_points - 1) / max_points);
+  const size_t step = std::max<size_t>(1, (points.size() + max_points - 1) /
+                                              std::max<size_t>(1, max_points));
   std::string path;
-  bool pen_down = false;
-  for (size_t k = 0; k < points.size(); k += step) {
-    const size_t index = (k + step >= points.size()) ? points.size() - 1 : k;
-    if (!points[index].allFinite()) {
-      pen_down = false;
+  std::vector<Eigen::Vector2d> lone_points;
+  // Each run of finite points is one subpath, decimated to every step-th point plus its last.
+  size_t k = 0;
+  while (k < points.size()) {
+    if (!points[k].allFinite()) {
+      ++k;
       continue;
     }
-    const Eigen::Vector2d p = ToPixel(points[index]);
-    path += (pen_down ? "L" : "M") + FormatNumber(p.x(), 1) + " " + FormatNumber(p.y(), 1);
-    pen_down = true;
-    if (index == points.size() - 1) break;
+    size_t end = k;
+    while (end < points.size() && points[end].allFinite()) ++end;
+    if (end - k == 1) {
+      lone_points.push_back(points[k]);
+    } else {
+      for (size_t i = k;; i = std::min(i + step, end - 1)) {
+        const Eigen::Vector2d p = ToPixel(points[i]);
+        path += (i == k ? "M" : "L") + FormatNumber(p.x(), 1) + " " + FormatNumber(p.y(), 1);
+        if (i == end - 1) break;
+      }
+    }
+    k = end;
   }
-  document_->Add("<path d=\"" + path + "\" fill=\"none\" " + StrokeAttributes(style) +
-                 " stroke-linejoin=\"round\" " + clip_attribute_ + "/>");
+  if (!path.empty()) {
+    document_->Add("<path d=\"" + path + "\" fill=\"none\" " + StrokeAttributes(style) +
+                   " stroke-linejoin=\"round\" " + clip_attribute_ + "/>");
+  }
+  if (!lone_points.empty() && points.size() > 1) {
+    Dots(lone_points, std::max(1.0, style.width_px), style);
+  }
 }
 
 void PlotPanel::Dots(const std::vector<Eigen::Vector2d>& points, double radius_px,
@@ -255,7 +325,7 @@ void PlotPanel::Dots(const std::vector<Eigen::Vector2d>& points, double radius_p
                    (style.opacity < 1.0 && filled
                         ? " fill-opacity=\"" + FormatNumber(style.opacity, 2) + "\""
                         : "") +
-                   " " + clip_attribute_ + "/>");
+                   (filled ? RoleAttribute(style) : "") + " " + clip_attribute_ + "/>");
   }
 }
 
@@ -272,6 +342,45 @@ void PlotPanel::Crosses(const std::vector<Eigen::Vector2d>& points, double half_
                    FormatNumber(p.x(), 1) + " " + y0 + "V" + y1 + "\" " +
                    StrokeAttributes(style) + " " + clip_attribute_ + "/>");
   }
+}
+
+void PlotPanel::FilledMarkers(const std::vector<Eigen::Vector2d>& points,
+                              const std::vector<Eigen::Vector2d>& corners, double half_size_px,
+                              const LineStyle& style) {
+  for (const Eigen::Vector2d& point : points) {
+    if (!point.allFinite()) continue;
+    const Eigen::Vector2d p = ToPixel(point);
+    std::string path;
+    for (const Eigen::Vector2d& c : corners) {
+      const Eigen::Vector2d q = p + half_size_px * c;
+      path += (path.empty() ? "M" : "L") + FormatNumber(q.x(), 1) + " " + FormatNumber(q.y(), 1);
+    }
+    document_->Add("<path d=\"" + path + "Z\" fill=\"" + style.colour + "\" stroke=\"none\"" +
+                   RoleAttribute(style) + " " + clip_attribute_ + "/>");
+  }
+}
+
+void PlotPanel::Triangles(const std::vector<Eigen::Vector2d>& points, double half_size_px,
+                          const LineStyle& style) {
+  FilledMarkers(points, {{-1, -1}, {1, -1}, {0, 1}}, half_size_px, style);
+}
+
+void PlotPanel::Diamonds(const std::vector<Eigen::Vector2d>& points, double half_size_px,
+                         const LineStyle& style) {
+  FilledMarkers(points, {{0, -1}, {1, 0}, {0, 1}, {-1, 0}}, half_size_px, style);
+}
+
+void PlotPanel::Box(const Eigen::Vector2d& corner_a, const Eigen::Vector2d& corner_b,
+                    const LineStyle& style) {
+  if (!corner_a.allFinite() || !corner_b.allFinite()) return;
+  const Eigen::Vector2d a = ToPixel(corner_a);
+  const Eigen::Vector2d b = ToPixel(corner_b);
+  const Eigen::Vector2d low = a.cwiseMin(b);
+  const Eigen::Vector2d size = (a - b).cwiseAbs();
+  document_->Add("<rect x=\"" + FormatNumber(low.x(), 1) + "\" y=\"" + FormatNumber(low.y(), 1) +
+                 "\" width=\"" + FormatNumber(std::max(size.x(), 0.5), 1) + "\" height=\"" +
+                 FormatNumber(std::max(size.y(), 0.5), 1) + "\" fill=\"" + style.colour +
+                 "\" stroke=\"none\"" + RoleAttribute(style) + " " + clip_attribute_ + "/>");
 }
 
 void PlotPanel::CovarianceEllipse(const Eigen::Vector2d& centre, const Eigen::Matrix2d& covariance,
@@ -296,37 +405,6 @@ void PlotPanel::CovarianceEllipse(const Eigen::Vector2d& centre, const Eigen::Ma
                  StrokeAttributes(style) + " " + clip_attribute_ + "/>");
 }
 
-void PlotPanel::Legend(const std::vector<LegendEntry>& entries) {
-  if (entries.empty()) return;
-  const double x = inner_left_px_ + 10;
-  double y = inner_top_px_ + 10;
-  size_t longest = 0;
-  for (const LegendEntry& e : entries) longest = std::max(longest, e.label.size());
-  const double box_width = 40.0 + 6.6 * static_cast<double>(longest);
-  document_->Add("<rect x=\"" + FormatNumber(x - 4, 1) + "\" y=\"" + FormatNumber(y - 4, 1) +
-                 "\" width=\"" + FormatNumber(box_width, 1) + "\" height=\"" +
-                 FormatNumber(16.0 * static_cast<double>(entries.size()) + 6, 1) +
-                 "\" fill=\"#ffffff\" fill-opacity=\"0.85\" stroke=\"#bbbbbb\"/>");
-  for (const LegendEntry& e : entries) {
-    const double cy = y + 7;
-    if (e.mark == LegendMark::kDot) {
-      document_->Add("<circle cx=\"" + FormatNumber(x + 11, 1) + "\" cy=\"" +
-                     FormatNumber(cy, 1) + "\" r=\"3.5\" fill=\"" + e.style.colour + "\"/>");
-    } else if (e.mark == LegendMark::kCross) {
-      document_->Add("<path d=\"M" + FormatNumber(x + 6, 1) + " " + FormatNumber(cy, 1) + "H" +
-                     FormatNumber(x + 16, 1) + "M" + FormatNumber(x + 11, 1) + " " +
-                     FormatNumber(cy - 5, 1) + "V" + FormatNumber(cy + 5, 1) + "\" " +
-                     StrokeAttributes(e.style) + "/>");
-    } else {
-      document_->Add("<line x1=\"" + FormatNumber(x, 1) + "\" y1=\"" + FormatNumber(cy, 1) +
-                     "\" x2=\"" + FormatNumber(x + 22, 1) + "\" y2=\"" + FormatNumber(cy, 1) +
-                     "\" " + StrokeAttributes(e.style) + "/>");
-    }
-    document_->Text(x + 28, cy + 4, e.label, 11);
-    y += 16;
-  }
-}
-
 void PlotPanel::Label(const Eigen::Vector2d& at, const std::string& text,
                       const std::string& colour) {
   if (!at.allFinite()) return;
@@ -335,9 +413,64 @@ void PlotPanel::Label(const Eigen::Vector2d& at, const std::string& text,
                   "fill=\"" + colour + "\" " + clip_attribute_);
 }
 
+void PlotPanel::LabelAtPixel(const Eigen::Vector2d& corner_px, const std::string& text,
+                             int size_px, const std::string& colour) {
+  document_->Text(corner_px.x(), corner_px.y(), text, size_px, "start",
+                  "fill=\"" + colour + "\" " + clip_attribute_);
+}
+
 void PlotPanel::Message(const std::string& text) {
   document_->Text(inner_left_px_ + 0.5 * inner_width_px_, inner_top_px_ + 0.5 * inner_height_px_,
                   text, 13, "middle", "fill=\"#888888\"");
+}
+
+double TextWidthPx(const std::string& text, int size_px) {
+  return 0.62 * size_px * static_cast<double>(text.size());
+}
+
+double LegendBlockHeightPx(const std::vector<LegendEntry>& entries, double width_px) {
+  if (entries.empty()) return 0.0;
+  const int columns = LegendColumns(entries, width_px);
+  const size_t rows = (entries.size() + columns - 1) / columns;
+  return kLegendRowPx * static_cast<double>(rows) + 2 * kLegendPaddingPx + 4.0;
+}
+
+void DrawLegendBlock(SvgDocument* document, const std::vector<LegendEntry>& entries,
+                     double left_px, double top_px, double width_px) {
+  if (entries.empty()) return;
+  const int columns = LegendColumns(entries, width_px);
+  const double column_width = LegendColumnWidthPx(entries);
+  const size_t rows = (entries.size() + columns - 1) / columns;
+  const double x0 = left_px + kLegendLeftPx;
+  const double y0 = top_px + 4.0;
+  document->Add("<g class=\"legend\">");
+  document->Add("<rect x=\"" + FormatNumber(x0 - 4, 1) + "\" y=\"" + FormatNumber(y0, 1) +
+                "\" width=\"" + FormatNumber(column_width * columns, 1) + "\" height=\"" +
+                FormatNumber(kLegendRowPx * static_cast<double>(rows) + 2 * kLegendPaddingPx, 1) +
+                "\" fill=\"#ffffff\" stroke=\"#bbbbbb\"/>");
+  for (size_t k = 0; k < entries.size(); ++k) {
+    // Filled row by row, left to right.
+    const double x = x0 + column_width * static_cast<double>(k % columns);
+    const double cy = y0 + kLegendPaddingPx + kLegendRowPx * static_cast<double>(k / columns) + 7;
+    document->Add(LegendMarkElement(entries[k], x, cy));
+    document->Text(x + 28, cy + 4, entries[k].label, kLegendTextPx);
+  }
+  document->Add("</g>");
+}
+
+double AppendLegendAndCaption(SvgDocument* document, const PlotPanel& panel,
+                              const std::vector<LegendEntry>& entries,
+                              const std::string& caption) {
+  double y = panel.bottom_px();
+  DrawLegendBlock(document, entries, panel.left_px(), y, panel.width_px());
+  y += LegendBlockHeightPx(entries, panel.width_px());
+  if (!caption.empty()) {
+    document->Text(panel.left_px() + 0.5 * panel.width_px(), y + 14, caption, 10, "middle",
+                   "fill=\"#777777\"");
+    y += 20;
+  }
+  document->set_height_px(static_cast<int>(std::ceil(y)));
+  return document->height_px();
 }
 
 }  // namespace slammtt

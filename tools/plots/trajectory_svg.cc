@@ -1,0 +1,52 @@
+#include "tools/plots/trajectory_svg.h"
+
+#include <vector>
+
+#include "tools/plots/picture_style.h"
+
+namespace slammtt {
+
+std::string TrajectorySvg(const EvaluationReport& report) {
+  SvgDocument doc(kPictureWidthPx, kMapPanelHeightPx);
+  PlotPanel panel(&doc, 0, 0, kPictureWidthPx, kMapPanelHeightPx);
+  const auto truth = Positions(report.truth_trajectory);
+  const auto odometry = OdometryPath(report);
+  const auto estimate = EstimatedPath(report);
+  panel.FitRange({truth, odometry, estimate}, true);
+  panel.DrawAxes("Robot trajectory (" + PictureFrame(report) + ")", "x [m]", "y [m]");
+  panel.Polyline(truth, TruthStyle());
+  panel.Polyline(odometry, OdometryStyle());
+  panel.Polyline(estimate, EstimateStyle());
+  const LineStyle start{"#2ca02c"};
+  for (const auto* path : {&truth, &estimate, &odometry}) {
+    if (path->empty()) continue;
+    panel.Dots({path->front()}, 5, start);
+    break;
+  }
+  std::vector<LegendEntry> legend;
+  if (!truth.empty()) legend.push_back({"truth", TruthStyle()});
+  if (report.odometry) {
+    legend.push_back({"odometry (ATE RMSE " + FormatNumber(report.odometry->error.rmse_m, 3) +
+                          " m)",
+                      OdometryStyle()});
+  } else if (!odometry.empty()) {
+    legend.push_back({report.log_only->odometry_anchored_to_estimate
+                          ? "odometry (anchored to the estimate at its first pose)"
+                          : "odometry (in its own frame: no POSE in its time span)",
+                      OdometryStyle()});
+  }
+  if (report.robot) {
+    legend.push_back({"estimate (ATE RMSE " + FormatNumber(report.robot->error.rmse_m, 3) + " m)",
+                      EstimateStyle()});
+  } else if (!estimate.empty()) {
+    legend.push_back({"estimate (POSE)", EstimateStyle()});
+  }
+  legend.push_back({"start", start, LegendMark::kDot});
+  if (truth.empty() && estimate.empty() && odometry.empty()) {
+    panel.Message("no ground truth, POSE or ODOMETRY in the log");
+  }
+  AppendLegendAndCaption(&doc, panel, legend, Subtitle(report));
+  return doc.ToString();
+}
+
+}  // namespace slammtt
