@@ -24,7 +24,7 @@ struct StepCounts {
   int became_static = 0;
   int started_moving = 0;
   int updates_failed = 0;
-  int static_updates_skipped = 0;  // associated landmarks left out by the per-scan budget
+  int static_updates_skipped = 0;  // associated objects left out by the per-scan budgets K, M
   int state_recovered = 0;      // 1: the scan ended non-finite and was recovered
   int features_over_cap = 0;    // beyond max_features_per_scan, dropped (the farthest)
   int64_t ransac_pair_tests = 0;  // hypotheses x evaluation pairs (ml_ransac.h)
