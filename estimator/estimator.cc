@@ -19,6 +19,7 @@
 #include "estimator/ransac_level.h"
 #include "estimator/reacquisition.h"
 #include "estimator/scan_gating.h"
+#include "estimator/state_recovery.h"
 #include "estimator/track_management.h"
 #include "estimator/update_budget.h"
 
@@ -61,41 +62,90 @@ const char* SubstageName(Substage substage) {
 }
 
 Estimator::Estimator(const EstimatorOptions& options)
-    : options_(Checked(options)), state_(InitialState(options)) {}
+    : options_(Checked(options)),
+      state_(InitialState(options)),
+      last_finite_pose_(state_.robot_pose()) {}
 
-bool Estimator::RestartOnJumpBack(const char* what, int64_t utime,
-                                  const std::optional<int64_t>& newest_utime) {
-  if (!newest_utime) return false;
-  const double back_s = SecondsBetween(*newest_utime, utime);
-  if (!(back_s > options_.time_jump_back_restart_s)) return false;
-  ++counters_.restarts;
-  std::ostringstream text;
-  text << what << " at utime " << utime << " is " << back_s << " s older than the newest ("
-       << *newest_utime << "): a new time base, estimation started over";
-  Event(text.str());
+TimeJumpLimits Estimator::time_jump_limits() const {
+  return TimeJumpLimits{options_.time_jump_back_restart_s, options_.time_jump_forward_s,
+                        options_.time_jump_confirm_messages};
+}
+
+void Estimator::StartOver() {
   state_ = InitialState(options_);
   last_scan_utime_.reset();
-  last_odometry_utime_.reset();
+  scan_clock_.Reset();
+  odometry_clock_.Reset();
+  odometry_check_.Reset();
   odometry_.Clear();
-  return true;
+  last_finite_pose_ = state_.robot_pose();
+  last_finite_pose_covariance_ = state_.robot_covariance();
+}
+
+bool Estimator::AcceptTime(const char* what, int64_t utime, StreamClock* clock) {
+  const std::optional<int64_t> newest = clock->newest();
+  const TimeVerdict verdict = clock->Judge(utime, time_jump_limits());
+  std::ostringstream text;
+  text << what << " at utime " << utime;
+  switch (verdict) {
+    case TimeVerdict::kAccept:
+      return true;
+    case TimeVerdict::kLate:
+      ++counters_.messages_out_of_order;
+      text << " dropped: not newer than the last one (" << *newest << ")";
+      Event(text.str());
+      return false;
+    case TimeVerdict::kJumpHeld:
+      ++counters_.time_jumps_rejected;
+      text << " dropped: " << SecondsBetween(utime, *newest) << " s from the newest ("
+           << *newest << "), a jump (" << clock->jumped_in_a_row() << " in a row, "
+           << options_.time_jump_confirm_messages << " make a new time base)";
+      Event(text.str());
+      return false;
+    case TimeVerdict::kNewTimeBaseBack:
+      ++counters_.restarts;
+      text << ": " << options_.time_jump_confirm_messages << " messages in a row "
+           << SecondsBetween(*newest, utime) << " s older than the newest (" << *newest
+           << "), a new time base: estimation started over";
+      StartOver();
+      clock->Judge(utime, time_jump_limits());  // the first message of the new base
+      Event(text.str());
+      return true;
+    case TimeVerdict::kNewTimeBaseAhead:
+      text << ": " << options_.time_jump_confirm_messages << " messages in a row "
+           << SecondsBetween(utime, *newest) << " s ahead of the newest (" << *newest
+           << "), a new time base, taken as a time gap";
+      Event(text.str());
+      return true;
+  }
+  return false;
 }
 
 bool Estimator::AddOdometry(const OdometryReading& reading) {
-  if (!reading.pose.allFinite() || !std::isfinite(reading.linear_mps) ||
-      !std::isfinite(reading.angular_radps)) {
+  std::string problem = OdometryReadingProblem(reading, options_.odometry_check);
+  if (!problem.empty()) {
     ++counters_.odometry_rejected;
-    Event("odometry at utime " + std::to_string(reading.utime) + " rejected: not finite");
+    Event("odometry at utime " + std::to_string(reading.utime) + " rejected: " + problem);
     return false;
   }
-  RestartOnJumpBack("odometry", reading.utime, last_odometry_utime_);
-  if (last_odometry_utime_ && reading.utime <= *last_odometry_utime_) {
-    ++counters_.messages_out_of_order;
-    Event("odometry at utime " + std::to_string(reading.utime) +
-          " dropped: not newer than the last one (" + std::to_string(*last_odometry_utime_) + ")");
+  if (!AcceptTime("odometry", reading.utime, &odometry_clock_)) return false;
+  const OdometryVerdict verdict = odometry_check_.Judge(
+      reading, options_.odometry_check, options_.time_jump_confirm_messages, &problem);
+  if (verdict == OdometryVerdict::kImplausible) {
+    ++counters_.odometry_rejected;
+    Event("odometry at utime " + std::to_string(reading.utime) + " rejected: " + problem);
     return false;
   }
-  last_odometry_utime_ = reading.utime;
   ++counters_.odometry_processed;
+  if (verdict == OdometryVerdict::kNewFrame) {
+    ++counters_.odometry_frame_jumps;
+    Event("odometry at utime " + std::to_string(reading.utime) + ": " +
+          std::to_string(options_.time_jump_confirm_messages) +
+          " consistent readings in a row away from the last accepted one, a new odometry "
+          "frame (motion across the jump extrapolated)");
+    odometry_.AddInNewFrame(reading);
+    return true;
+  }
   odometry_.Add(reading);
   return true;
 }
@@ -122,7 +172,8 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
   const ScanGating gating = GateScan(features.measurements, predicted.At(state_), options_);
   lap(Substage::kGating);
   const std::vector<uint8_t> may_update =
-      ObjectsThatMayUpdate(state_, gating.gated, options_.max_static_updates_per_scan);
+      ObjectsThatMayUpdate(state_, gating.gated, options_.max_static_updates_per_scan,
+                           options_.max_mover_updates_per_scan);
   const ScanAssociation association{features.measurements, may_update, scan.utime};
   Assignment assignment(static_cast<int>(features.measurements.size()), state_.num_objects());
 
@@ -143,7 +194,15 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
                    : RunRansacLevel(ambiguous, association, options_, &predicted, state_,
                                     assignment, rng);
   counts.hypotheses = ransac.hypotheses;
+  counts.ransac_pair_tests = ransac.pair_tests;
   counters_.hypotheses_generated += ransac.hypotheses;
+  if (ransac.budget_cut) {
+    counts.ransac_budget_cut = 1;
+    ++counters_.ransac_budget_cuts;
+    Event("scan at utime " + std::to_string(scan.utime) + ": RANSAC stopped after " +
+          std::to_string(ransac.hypotheses) + " hypotheses at ransac_max_pair_tests (" +
+          std::to_string(options_.ransac.max_pair_tests) + " pair tests)");
+  }
   lap(Substage::kRansac);
   counts.level2_updates = ApplyPairs(ransac.consensus, options_.gate_d1_chi2, association,
                                      options_, &predicted, &state_, &assignment, &counts);
@@ -175,6 +234,7 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
                 &state_, &counts);
   ReportScanProblems(scan.utime, counts);
   counts.observation_predictions = predicted.computations();
+  EnsureFiniteState(scan.utime, &counts);
   lap(Substage::kTrackManagement);
   ++counters_.scans_processed;
   ReportEstimate(scan.utime, &result);
@@ -182,15 +242,27 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
 }
 
 bool Estimator::AcceptScanTime(int64_t utime) {
-  RestartOnJumpBack("scan", utime, last_scan_utime_);
-  if (last_scan_utime_ && utime <= *last_scan_utime_) {
-    ++counters_.messages_out_of_order;
-    Event("scan at utime " + std::to_string(utime) +
-          " dropped: not newer than the last processed scan (" +
-          std::to_string(*last_scan_utime_) + ")");
-    return false;
+  return AcceptTime("scan", utime, &scan_clock_);
+}
+
+void Estimator::EnsureFiniteState(int64_t utime, StepCounts* counts) {
+  if (!PublishedStateIsFinite(state_)) {
+    const double drift_sigma = options_.heading_drift_sigma_rad_per_m;
+    const RecoveryOutcome recovery = RecoverFiniteState(
+        last_finite_pose_, last_finite_pose_covariance_, drift_sigma * drift_sigma, &state_);
+    ++counters_.state_recoveries;
+    counts->state_recovered = 1;
+    std::ostringstream text;
+    text << "scan at utime " << utime << ": the state was not finite; ";
+    if (recovery.robot_reset) {
+      text << "started over from the last finite pose (map cleared)";
+    } else {
+      text << recovery.objects_removed << " object(s) with non-finite states removed";
+    }
+    Event(text.str());
   }
-  return true;
+  last_finite_pose_ = state_.robot_pose();
+  last_finite_pose_covariance_ = state_.robot_covariance();
 }
 
 ScanInterval Estimator::IntervalTo(int64_t utime) const {
@@ -207,6 +279,12 @@ ValidatedFeatures Estimator::TakeFeatures(const std::vector<FeatureReading>& fea
                                           StepCounts* counts) {
   ValidatedFeatures validated = ValidateFeatures(features, options_);
   counts->features_at_edge_of_view = validated.at_edge_of_view;
+  if (validated.over_cap > 0) {
+    counts->features_over_cap = validated.over_cap;
+    counters_.features_over_cap += validated.over_cap;
+    Event(std::to_string(validated.over_cap) + " feature(s) beyond max_features_per_scan (" +
+          std::to_string(options_.max_features_per_scan) + ") dropped, the nearest kept");
+  }
   if (validated.rejected > 0) {
     counts->features_rejected = validated.rejected;
     counters_.features_rejected += validated.rejected;

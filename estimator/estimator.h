@@ -39,11 +39,15 @@
 //                and judged on every pair, with no compatibility matrix and no first level.
 //
 // Bad input never breaks it, and every case is counted (EstimatorCounters) and described
-// (last_event()): non-finite or out-of-range features are rejected; odometry or scans older
-// than the last processed one are dropped; a time gap above max_time_gap_s inflates the robot
-// and mover uncertainty instead of trusting a long prediction; a scan with no odometry since
-// the previous one predicts with the last known velocities and inflated noise; an empty scan
-// is a valid scan; max_objects caps the number of objects.
+// (last_event()): non-finite or out-of-range features are rejected, and a scan's features
+// beyond max_features_per_scan are dropped (the nearest are kept); odometry that no P3-DX can
+// produce (odometry_plausibility.h) is rejected; odometry or scans older than the last
+// processed one are dropped; one utime that jumps is dropped, and only several in a row make a
+// new time base (time_base.h); a time gap above max_time_gap_s inflates the robot and mover
+// uncertainty instead of trusting a long prediction; a scan with no odometry since the
+// previous one predicts with the last known velocities and inflated noise; an empty scan is a
+// valid scan; max_objects caps the number of objects. Should the state still become
+// non-finite, it is recovered before anything is published (state_recovery.h).
 #pragma once
 
 #include <Eigen/Core>
@@ -56,9 +60,11 @@
 #include "estimator/estimator_options.h"
 #include "estimator/feature_validation.h"
 #include "estimator/odometry_buffer.h"
+#include "estimator/odometry_plausibility.h"
 #include "estimator/scan_prediction.h"
 #include "estimator/slam_state.h"
 #include "estimator/step_counts.h"
+#include "estimator/time_base.h"
 
 namespace slammtt {
 
@@ -104,7 +110,7 @@ struct ScanResult {
 struct EstimatorCounters {
   int64_t scans_processed = 0;
   int64_t odometry_processed = 0;
-  int64_t odometry_rejected = 0;       // non-finite odometry
+  int64_t odometry_rejected = 0;       // non-finite or physically implausible odometry
   int64_t features_rejected = 0;
   int64_t messages_out_of_order = 0;
   int64_t time_gaps = 0;
@@ -113,7 +119,12 @@ struct EstimatorCounters {
   int64_t hypotheses_generated = 0;
   int64_t updates_failed = 0;
   int64_t static_updates_skipped = 0;
-  int64_t restarts = 0;                // time_jump_back_restart_s: starts over on a new time base
+  int64_t restarts = 0;                // new time bases back (time_base.h): started over
+  int64_t time_jumps_rejected = 0;     // messages whose utime jumped, not (yet) a new time base
+  int64_t odometry_frame_jumps = 0;    // odometry re-anchored in a new frame
+  int64_t state_recoveries = 0;        // scans that ended non-finite and were recovered
+  int64_t features_over_cap = 0;       // beyond max_features_per_scan, dropped
+  int64_t ransac_budget_cuts = 0;      // scans whose RANSAC stopped at ransac_max_pair_tests
 };
 
 class Estimator {
@@ -139,9 +150,17 @@ class Estimator {
   int NumTentative() const;
 
  private:
-  // False (and the scan counted and described) when the scan is older than the last processed
-  // one; a jump back by more than time_jump_back_restart_s starts the estimation over first.
+  // False (and the scan counted and described) when the scan's utime is late or a jump; a
+  // confirmed new time base back starts the estimation over first.
   bool AcceptScanTime(int64_t utime);
+  // The verdict of `clock` on a message of `what` at `utime`, counted and described; true when
+  // the message is to be used (after a restart for a new time base back).
+  bool AcceptTime(const char* what, int64_t utime, StreamClock* clock);
+  // Starts the estimation over: the state at the initial pose, both streams forgotten.
+  void StartOver();
+  // The end of every scan: a non-finite state is recovered (state_recovery.h), counted and
+  // described.
+  void EnsureFiniteState(int64_t utime, StepCounts* counts);
   ScanInterval IntervalTo(int64_t utime) const;
   // The scan's features validated (feature_validation.h); rejections counted and described.
   ValidatedFeatures TakeFeatures(const std::vector<FeatureReading>& features, StepCounts* counts);
@@ -152,18 +171,19 @@ class Estimator {
   // The pose and every object as the scan leaves them.
   void ReportEstimate(int64_t utime, ScanResult* result) const;
   void Event(const std::string& text) { last_event_ = text; }
-  // True (and the estimator started over, counted and described) when `utime` lies more than
-  // time_jump_back_restart_s before `newest_utime` of its stream.
-  bool RestartOnJumpBack(const char* what, int64_t utime,
-                         const std::optional<int64_t>& newest_utime);
+  TimeJumpLimits time_jump_limits() const;
 
   EstimatorOptions options_;
   SlamState state_;
   EstimatorCounters counters_;
   std::string last_event_;
-  std::optional<int64_t> last_scan_utime_;
-  std::optional<int64_t> last_odometry_utime_;
+  std::optional<int64_t> last_scan_utime_;  // of the last processed scan
+  StreamClock scan_clock_;
+  StreamClock odometry_clock_;
+  OdometryPlausibility odometry_check_;
   OdometryBuffer odometry_;
+  Eigen::Vector3d last_finite_pose_;
+  Eigen::Matrix3d last_finite_pose_covariance_ = Eigen::Matrix3d::Zero();
   int64_t next_id_ = 1;
 };
 

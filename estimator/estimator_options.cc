@@ -74,7 +74,14 @@ void VisitRobustnessOptions(OptionVisitor* v, EstimatorOptions* o) {
   v->Double("max_prediction_s", &o->max_prediction_s, R::Above(0),
             "the longest interval one prediction covers (>= max_time_gap_s)");
   v->Double("time_jump_back_restart_s", &o->time_jump_back_restart_s, R::Above(0),
-            "a message older than its stream's newest by more: estimation starts over");
+            "a message older than its stream's newest by more is a jump (confirmed: start over)");
+  v->Double("time_jump_forward_s", &o->time_jump_forward_s, R::Above(0),
+            "a message newer than its stream's newest by more is a jump (confirmed: a gap)");
+  v->Int("time_jump_confirm_messages", &o->time_jump_confirm_messages, R::Between(1, 100),
+         "jumped messages in a row that make a new time base (1: every jump at once)");
+  v->BeginGroup("odometry_check");
+  VisitOdometryPlausibilityOptions(v, &o->odometry_check);
+  v->EndGroup();
   v->Double("gap_robot_position_sigma_mps", &o->gap_robot_position_sigma_mps, R::AtLeast(0),
             "robot position sigma added per second of a time gap");
   v->Double("gap_robot_heading_sigma_radps", &o->gap_robot_heading_sigma_radps, R::AtLeast(0),
@@ -87,6 +94,8 @@ void VisitRobustnessOptions(OptionVisitor* v, EstimatorOptions* o) {
             "turn noise of motion extrapolated past the last odometry, per second", deg);
   v->Int("max_objects", &o->max_objects, R::Between(1, 100000),
          "the most objects held; new ones beyond are refused and counted");
+  v->Int("max_features_per_scan", &o->max_features_per_scan, R::Between(1, 1000000),
+         "the most features of a scan used (the nearest); the rest dropped and counted");
 }
 
 // Algorithm 2: gates, RANSAC, updates, track management, classification.
@@ -106,6 +115,8 @@ void VisitAssociationOptions(OptionVisitor* v, EstimatorOptions* o) {
          "observations per batch update");
   v->Int("max_static_updates_per_scan", &o->max_static_updates_per_scan, R::Between(0, 100000),
          "budget K of static-landmark updates per scan (0: none)");
+  v->Int("max_mover_updates_per_scan", &o->max_mover_updates_per_scan, R::Between(0, 100000),
+         "budget M of updates of objects with velocity per scan (0: none)");
   v->BeginGroup("tracks");
   VisitTrackManagementOptions(v, &o->tracks);
   v->EndGroup();

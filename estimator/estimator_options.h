@@ -10,6 +10,7 @@
 #include "common/options_schema.h"
 #include "estimator/ml_ransac.h"
 #include "estimator/motion_classifier.h"
+#include "estimator/odometry_plausibility.h"
 #include "estimator/range_bearing_model.h"
 #include "estimator/robot_motion_model.h"
 #include "estimator/track_management.h"
@@ -87,15 +88,24 @@ struct EstimatorOptions {
   // rad/s, 1 m/s per mover, each times the gap) drives the covariance's condition number past
   // what double precision updates stay positive semi-definite at (a 2e4 s gap did).
   double max_prediction_s = 30.0;
-  // A message older than the newest of its stream by more than this is not a late message but
-  // a new time base: a log played again or another log (lcm-logplayer), a restarted simulator,
-  // the robot's clock stepped back, or the return to normal after one corrupted far-future
-  // utime. The estimator starts over from the initial pose with an empty map (track ids keep
-  // counting up, the counters keep counting) instead of dropping everything until the clock
-  // passes its newest utime. Shorter steps back are out-of-order messages and are dropped: 2 s
-  // is far beyond any delivery delay (LCM delivers within milliseconds; a scan's FEATURES come
-  // within its processing time) and shorter than any log worth replaying.
+  // The time base of each input stream (time_base.h). A message older than the newest of its
+  // stream by at most time_jump_back_restart_s is late and dropped: 2 s is far beyond any
+  // delivery delay (LCM delivers within milliseconds; a scan's FEATURES come within its
+  // processing time) and shorter than any log worth replaying. Older by more, or newer by more
+  // than time_jump_forward_s, it is a jump: dropped and counted, unless
+  // time_jump_confirm_messages jumped messages in a row go on consistently in the new time
+  // (each within time_jump_forward_s of the one before). That is a new time base: back, the
+  // estimation starts over from the initial pose with an empty map (a log played again, a
+  // restarted simulator, the clock stepped back; track ids keep counting up, the counters keep
+  // counting); ahead, the last of them is processed as after a time gap. One corrupted utime
+  // (utime -1, a stamp years ahead) is never a new time base. The forward limit is the backward
+  // one: a stream that pauses longer loses time_jump_confirm_messages - 1 more messages.
   double time_jump_back_restart_s = 2.0;
+  double time_jump_forward_s = 2.0;
+  int time_jump_confirm_messages = 3;
+  // Physical plausibility of ODOMETRY (odometry_plausibility.h): speeds, turn rates, jumps and
+  // coordinates beyond what a P3-DX can do are rejected and counted (odometry_rejected).
+  OdometryPlausibilityOptions odometry_check;
   double gap_robot_position_sigma_mps = 0.5;     // added robot std per second of gap
   double gap_robot_heading_sigma_radps = 0.2;
   double gap_mover_velocity_sigma_mps = 1.0;     // added to every mover's velocity std
@@ -105,6 +115,12 @@ struct EstimatorOptions {
   // the outputs of every shipped run stay the same (scripts/check-outputs-identical.py).
   double extrapolation_turn_sigma_radps = 0.3 * 180.0 / M_PI * M_PI / 180.0;
   int max_objects = 500;
+  // The most features of one scan that are used: beyond, the nearest are kept (ties: input
+  // order) and the others dropped and counted (features_over_cap). With max_objects this
+  // bounds the pairs a scan judges (gating, levels, RANSAC). 512 is above every real scene we
+  // measure (at most 21 per scan on the shipped scenarios, 330 in bench_estimator's crowded
+  // one); a hostile FEATURES message of a million features costs its decoding and one pass.
+  int max_features_per_scan = 512;
 
   // Association (Algorithm 2). Gates are NIS thresholds (chi-square, 2 dof).
   double gate_d1_chi2 = 9.21;                    // 99 %
@@ -123,6 +139,10 @@ struct EstimatorOptions {
   // observation, so this bounds the cost of a scan that sees hundreds of landmarks
   // (docs/estimator.md, "Speed").
   int max_static_updates_per_scan = 32;
+  // The same for objects with velocity states (update_budget.h): 64, twice the most movers any
+  // scene we measure shows at once (30 in bench_estimator's crowded scene, at most 21 features
+  // per scan on the shipped scenarios). 0: no limit.
+  int max_mover_updates_per_scan = 64;
 
   TrackManagementOptions tracks;
   MotionClassifierOptions classifier;

@@ -228,6 +228,10 @@ void EstimatorStage::HandleFeatures(const void* data, int size, MessageSink& out
                              result.counts.level3_updates);
   timer.Count("updates_skipped", result.counts.static_updates_skipped);
   timer.Count("lines_unused", message.num_lines);
+  timer.Count("features_over_cap", result.counts.features_over_cap);
+  timer.Count("ransac_pair_tests", result.counts.ransac_pair_tests);
+  timer.Count("ransac_budget_cut", result.counts.ransac_budget_cut);
+  timer.Count("state_recovered", result.counts.state_recovered);
   const slammtt_msgs::stage_timing_t timing = timer.Finish();
 
   slammtt_msgs::pose_t pose;
@@ -300,6 +304,11 @@ void EstimatorStage::PublishStatus(int64_t utime, MessageSink& out) {
   status.messages_undecodable = counters_.messages_undecodable;
   status.updates_failed = c.updates_failed;
   status.restarts = c.restarts;
+  status.time_jumps_rejected = c.time_jumps_rejected;
+  status.odometry_frame_jumps = c.odometry_frame_jumps;
+  status.state_recoveries = c.state_recoveries;
+  status.features_over_cap = c.features_over_cap;
+  status.ransac_budget_cuts = c.ransac_budget_cuts;
   const SlamState& state = estimator_.state();
   status.heading_drift_rad_per_m = state.heading_drift_rad_per_m();
   status.heading_drift_sigma_rad_per_m = std::sqrt(std::max(0.0, state.heading_drift_variance()));

@@ -72,6 +72,34 @@ bool InflateAtEdgeOfView(double width_m, const EstimatorOptions& options, PointM
   return true;
 }
 
+// At most `cap` measurements: the nearest (ties: earlier), kept in their order.
+void KeepNearest(size_t cap, ValidatedFeatures* validated) {
+  const size_t n = validated->measurements.size();
+  if (n <= cap) return;
+  std::vector<size_t> order(n);
+  for (size_t k = 0; k < n; ++k) order[k] = k;
+  const auto nearer = [&](size_t a, size_t b) {
+    const double ra = validated->measurements[a].range_bearing(0);
+    const double rb = validated->measurements[b].range_bearing(0);
+    return ra < rb || (ra == rb && a < b);
+  };
+  std::nth_element(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(cap), order.end(),
+                   nearer);
+  order.resize(cap);
+  std::sort(order.begin(), order.end());
+  std::vector<PointMeasurement> measurements;
+  std::vector<double> widths;
+  measurements.reserve(cap);
+  widths.reserve(cap);
+  for (size_t k : order) {
+    measurements.push_back(validated->measurements[k]);
+    widths.push_back(validated->widths_m[k]);
+  }
+  validated->measurements.swap(measurements);
+  validated->widths_m.swap(widths);
+  validated->over_cap = static_cast<int>(n - cap);
+}
+
 }  // namespace
 
 ValidatedFeatures ValidateFeatures(const std::vector<FeatureReading>& features,
@@ -91,6 +119,7 @@ ValidatedFeatures ValidateFeatures(const std::vector<FeatureReading>& features,
     validated.measurements.push_back(m);
     validated.widths_m.push_back(width);
   }
+  KeepNearest(static_cast<size_t>(options.max_features_per_scan), &validated);
   return validated;
 }
 

@@ -12,6 +12,8 @@
 //    range) either side of its bearing, within kEdgeOfViewMargin_rad of the edge) gets
 //    edge_of_view_sigma_m^2 added to its range variance and min(s / range, pi)^2 to its bearing
 //    variance (estimator_options.h).
+//  - Of the accepted features, at most max_features_per_scan are kept: the nearest (ties:
+//    input order), in their input order; the others are counted (over_cap).
 #pragma once
 
 #include <string>
@@ -38,6 +40,7 @@ struct ValidatedFeatures {
   int rejected = 0;
   std::string first_rejection;                 // why the first rejected feature was rejected
   int at_edge_of_view = 0;                     // accepted features whose R was inflated
+  int over_cap = 0;                            // accepted, but beyond max_features_per_scan
 };
 
 ValidatedFeatures ValidateFeatures(const std::vector<FeatureReading>& features,

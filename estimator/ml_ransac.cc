@@ -245,8 +245,14 @@ RansacOutcome RunOnePointRansac(const SlamState& state,
   for (int k = 0; k < space; ++k) order[static_cast<size_t>(k)] = k;
   double needed = static_cast<double>(options.max_hypotheses);
   Hypothesis best;
+  const int64_t tests_per_hypothesis = static_cast<int64_t>(evaluation.size());
   for (int k = 0; k < space && k < options.max_hypotheses && static_cast<double>(k) < needed;
        ++k) {
+    if (k > 0 && outcome.pair_tests + tests_per_hypothesis > options.max_pair_tests) {
+      outcome.budget_cut = true;
+      break;
+    }
+    outcome.pair_tests += tests_per_hypothesis;
     const int pick = k + static_cast<int>(UniformIndex(rng, static_cast<uint64_t>(space - k)));
     std::swap(order[static_cast<size_t>(k)], order[static_cast<size_t>(pick)]);
     Hypothesis hypothesis = judge.Judge(order[static_cast<size_t>(k)]);
@@ -271,6 +277,8 @@ void VisitRansacOptions(OptionVisitor* v, RansacOptions* r) {
             "p of eq. 16 (paper: 0.99)");
   v->Int("max_hypotheses", &r->max_hypotheses, R::Between(1, 1000000),
          "cap N of the hypotheses per scan (paper: 1000)");
+  v->Int("max_pair_tests", &r->max_pair_tests, R::Between(1, 1e12),
+         "cap of hypotheses x evaluation pairs per scan (work of one scan's RANSAC)");
   v->Double("inlier_chi2", &r->inlier_chi2, R::Above(0),
             "consensus threshold on the conditioned NIS (5.99: 95 %)");
 }

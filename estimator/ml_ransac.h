@@ -21,7 +21,11 @@
 // at most |sample space| are generated. Their number adapts by eq. 16 with m = 1:
 // n_hyp = log(1 - p) / log(eps), eps = 1 - N_in / N_IC, where N_in is the best consensus and
 // N_IC the number of individually compatible pairs in the sample space (line 7.c.vi.2-3), and
-// never exceeds the cap N (line 7.b).
+// never exceeds the cap N (line 7.b). The work of a scan is bounded too: a hypothesis tests
+// every pair of the evaluation set, and no hypothesis starts once the tests so far and its own
+// would exceed max_pair_tests (the first always runs); the outcome says so (budget_cut).
+// Without it, the cap N alone let one hostile scan take 121 s (1 000 hypotheses over millions
+// of pairs).
 //
 // The same routine is the plain-RANSAC baseline (b) when the sample space is every pair.
 #pragma once
@@ -42,6 +46,9 @@ struct RansacOptions {
   double success_probability = 0.99;  // p of eq. 16 (paper: 0.99)
   int max_hypotheses = 1000;          // N (paper: "for example 1000")
   double inlier_chi2 = 5.99;          // consensus threshold on the conditioned NIS (95 %, 2 dof)
+  // Pair tests per scan (hypotheses x evaluation pairs): 1e6 is about 50 ms on this machine,
+  // 50 times the most any shipped scenario needs (docs/estimator.md, "Hostile sizes").
+  int64_t max_pair_tests = 1000000;
 };
 
 // The schema of these options (common/options_schema.h; keys in EstimatorOptions' group
@@ -52,6 +59,8 @@ struct RansacOutcome {
   std::vector<Candidate> consensus;  // pairs of the best hypothesis, its own pair first
   int hypotheses = 0;                // hypotheses generated
   int best_pair = -1;                // index of the winning pair in the sample space
+  int64_t pair_tests = 0;            // evaluation pairs tested, over every hypothesis
+  bool budget_cut = false;           // max_pair_tests stopped it before eq. 16 or N did
 };
 
 // `sample_space`: the pairs hypotheses are drawn from. `evaluation`: the pairs whose

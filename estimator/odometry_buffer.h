@@ -49,6 +49,12 @@ class OdometryBuffer {
   // The heading is wrapped to (-pi, pi].
   void Add(const OdometryReading& reading);
 
+  // Takes a reading in a new odometry frame (the base's integrated pose began again: the
+  // plausibility check confirmed the jump, odometry_plausibility.h). The motion from the
+  // previous reading to it is unknown: it is extrapolated with the last velocities and
+  // extrapolation noise, as with no reading; increments are measured from it on.
+  void AddInNewFrame(const OdometryReading& reading);
+
   // Whether any reading has arrived (since construction or Clear()).
   bool anchored() const { return cursor_.has_value(); }
 
@@ -70,8 +76,18 @@ class OdometryBuffer {
     double angular_radps = 0.0;
   };
 
+  struct Stored {
+    OdometryReading reading;
+    bool new_frame = false;  // no increment from the reading before it
+  };
+  // The motion extrapolated from `from` over tau seconds (at most extrapolation.max_s).
+  static void AddExtrapolated(const Cursor& from, double tau_s, const OdometryNoiseOptions& noise,
+                              const ExtrapolationNoise& extrapolation,
+                              RobotMotionAccumulator* motion, OdometryIncrement* part);
+  void Store(const OdometryReading& reading, bool new_frame);
+
   std::optional<Cursor> cursor_;
-  std::deque<OdometryReading> readings_;  // newer than the cursor, oldest first
+  std::deque<Stored> readings_;  // newer than the cursor, oldest first
 };
 
 }  // namespace slammtt

@@ -2,6 +2,8 @@
 // Algorithm 2 adds its own counts.
 #pragma once
 
+#include <cstdint>
+
 namespace slammtt {
 
 // What one scan did.
@@ -22,7 +24,11 @@ struct StepCounts {
   int became_static = 0;
   int started_moving = 0;
   int updates_failed = 0;
-  int static_updates_skipped = 0;  // associated landmarks left out by the per-scan budget
+  int static_updates_skipped = 0;  // associated objects left out by the per-scan budgets K, M
+  int state_recovered = 0;      // 1: the scan ended non-finite and was recovered
+  int features_over_cap = 0;    // beyond max_features_per_scan, dropped (the farthest)
+  int64_t ransac_pair_tests = 0;  // hypotheses x evaluation pairs (ml_ransac.h)
+  int ransac_budget_cut = 0;    // 1: RANSAC stopped at ransac_max_pair_tests
   int observation_predictions = 0;  // times every object's observation was predicted (once
                                     // per state the scan passed through)
 };

@@ -184,8 +184,12 @@ void Segmenter::CollectBeams(const ScanView& scan) {
   if (std::isfinite(scan.range_max_m) && scan.range_max_m > 0.0 && scan.range_max_m < hi) {
     hi = scan.range_max_m;
   }
-  if (beams_.capacity() < n) beams_.reserve(n);
-  for (size_t i = 0; i < n; ++i) {
+  // Beyond the cap, every k-th beam (segmenter.h, step 0).
+  const size_t cap = static_cast<size_t>(options_.max_beams_per_scan);
+  const size_t stride = n > cap ? (n + cap - 1) / cap : 1;
+  stats_.beams_over_cap = static_cast<int64_t>(n - (n + stride - 1) / stride);
+  if (beams_.capacity() < std::min(n, cap)) beams_.reserve(std::min(n, cap));
+  for (size_t i = 0; i < n; i += stride) {
     const double angle = scan.angle_rad[i];
     const double range = scan.range_m[i];
     const int32_t index = static_cast<int32_t>(i);

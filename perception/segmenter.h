@@ -2,6 +2,8 @@
 // Algorithm 1 (section 3) made safe for real scans.
 //
 // Per scan:
+//  0. A scan with more than max_beams_per_scan beams keeps every k-th, k = ceil(beams / cap);
+//     the others are counted (beams_over_cap).
 //  1. Beams are dropped, and counted, when flagged invalid (RPLIDAR reports distance 0 for no
 //     return), when the angle or the range is NaN or infinite, or when the range is outside
 //     [max(min_range_m, scan min), min(max_range_m, scan max)]. A dropped beam whose angle is
@@ -88,6 +90,7 @@ namespace slammtt {
 // What happened to one scan's beams and clusters (the stage reports these as counters).
 struct SegmentationStats {
   int64_t beams = 0;                   // beams in the scan
+  int64_t beams_over_cap = 0;          // left out: beyond max_beams_per_scan (every k-th kept)
   int64_t beams_used = 0;              // beams that took part in the clustering
   int64_t beams_flagged_invalid = 0;   // valid == 0
   int64_t beams_non_finite = 0;        // flagged valid, but NaN or infinite angle or range

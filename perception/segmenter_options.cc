@@ -58,6 +58,9 @@ std::string CheckSegmenterOptions(const SegmenterOptions& o) {
     return Bad("max_range_m", "greater than min_range_m", o.max_range_m);
   }
   if (o.min_points < 1) return Bad("min_points", "at least 1", o.min_points);
+  if (o.max_beams_per_scan < 16) {
+    return Bad("max_beams_per_scan", "at least 16", o.max_beams_per_scan);
+  }
   if (!(o.max_width_m > 0.0) || !std::isfinite(o.max_width_m)) {
     return Bad("max_width_m", "positive and finite", o.max_width_m);
   }

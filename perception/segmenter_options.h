@@ -61,6 +61,15 @@ struct SegmenterOptions {
   // spacing (RPLIDAR quantises angles to 1/64 degree), above float rounding near 2 pi.
   double duplicate_angle_tolerance_rad = 0.001 * M_PI / 180.0;
 
+  // The most beams of one scan that are segmented. A scan with more keeps every k-th beam in
+  // input order, k = ceil(num_beams / max_beams_per_scan) (the whole view at a coarser
+  // resolution, not a cut-off sector), and the others are counted (beams_over_cap) and
+  // reported. Bounds the cost of a hostile scan: a million beams made one scan take 11.9 s, the
+  // leg pairing alone being quadratic in the clusters. 8192 is above every laser the stack
+  // takes: RPLIDAR A2 at most 8000 samples/s at 5 Hz (1600), Hokuyo UTM-30LX 1081, SICK LMS
+  // 0.1667 degrees 2161 (docs/perception.md, "Hostile sizes").
+  int max_beams_per_scan = 8192;
+
   // Range limits, applied together with the scan's own range_min_m / range_max_m (the tighter
   // limit wins). Beams outside are dropped and counted.
   double min_range_m = 0.0;

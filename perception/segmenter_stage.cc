@@ -58,6 +58,11 @@ SegmenterOptions ReadSegmenterOptions(const Config& section) {
   o.sigma_r_m = PositiveDouble(section, "sigma_r_m", o.sigma_r_m);
   o.max_beam_gap_rad =
       PositiveDouble(section, "max_beam_gap_deg", o.max_beam_gap_rad / kDegToRad) * kDegToRad;
+  const int64_t max_beams = section.GetInt("max_beams_per_scan", o.max_beams_per_scan);
+  if (max_beams < 16 || max_beams > 10000000) {
+    section.FailKey("max_beams_per_scan", "must be between 16 and 10000000");
+  }
+  o.max_beams_per_scan = static_cast<int>(max_beams);
   const int64_t max_dropped = section.GetInt("max_dropped_beams", o.max_dropped_beams);
   if (max_dropped < 0 || max_dropped > 100000) {
     section.FailKey("max_dropped_beams", "must be between 0 and 100000");
@@ -245,6 +250,7 @@ void SegmenterStage::Handle(const std::string& channel, const void* data, int si
       stats.beams_flagged_invalid + stats.beams_non_finite + stats.beams_out_of_range;
   timer.Count("beams", stats.beams);
   timer.Count("beams_used", stats.beams_used);
+  timer.Count("beams_over_cap", stats.beams_over_cap);
   timer.Count("beams_dropped", dropped);
   timer.Count("beams_duplicate", stats.beams_duplicate);
   timer.Count("clusters", stats.clusters);
@@ -267,6 +273,15 @@ void SegmenterStage::Handle(const std::string& channel, const void* data, int si
   ++counters_.scans_handled;
   counters_.features_published += stats.features;
   counters_.beams_dropped += dropped;
+  if (stats.beams_over_cap > 0) {
+    const int64_t n = ++counters_.scans_over_beam_cap;
+    if (IsReportable(n)) {
+      LogWarning() << "segmenter: scan at utime " << scan.utime << " has " << stats.beams
+                   << " beams, more than max_beams_per_scan ("
+                   << segmenter_.options().max_beams_per_scan << "): " << stats.beams_over_cap
+                   << " left out, every k-th kept (" << n << " such scans so far)";
+    }
+  }
   out.PublishMessage(stage_timing_channel_, timer.Finish());
 }
 

@@ -10,7 +10,9 @@
 //  - stage_timing_t on the `stage_timing` channel: stage "segmenter", substages "decode",
 //    "sort" (filter, order, duplicates), "cluster" (eq. 15), "lines", "features" (centres,
 //    covariance, leg-likeness), "people", "publish"; counters "beams", "beams_used",
-//    "beams_dropped" (invalid, non-finite, out of range), "beams_duplicate", "clusters",
+//    "beams_over_cap" (beyond max_beams_per_scan, left out; also on stderr, 1st, 10th, ...
+//    such scan), "beams_dropped" (invalid, non-finite, out of range), "beams_duplicate",
+//    "clusters",
 //    "features", "circle_fit_fallbacks", "beams_mixed_pixel", "beams_isolated", "depth_edges",
 //    "lines", "beams_on_lines", "clusters_on_lines", "clusters_round",
 //    "clusters_structure_pieces", "leg_candidates", "provisional_legs_used", "people",
@@ -36,7 +38,8 @@ namespace slammtt {
 
 // Reads the `segmenter:` section of the stack configuration; absent keys keep the defaults of
 // SegmenterOptions. Keys (units in the names):
-//   lambda_deg (20), sigma_r_m (0.03), max_dropped_beams (1), max_beam_gap_deg (5),
+//   lambda_deg (20), sigma_r_m (0.03), max_beams_per_scan (8192), max_dropped_beams (1),
+//   max_beam_gap_deg (5),
 //   duplicate_angle_tolerance_deg (0.001), min_range_m (0), max_range_m (no limit),
 //   min_points (3), max_width_m (1.5),
 //   centre_rule (circle_fit | radius_corrected | middle_point), max_object_radius_m (1.0),
@@ -57,6 +60,7 @@ struct SegmenterStageCounters {
   int64_t scans_rejected = 0;  // undecodable or inconsistent messages
   int64_t features_published = 0;
   int64_t beams_dropped = 0;   // invalid, non-finite or out of range, over all scans
+  int64_t scans_over_beam_cap = 0;  // scans with more than max_beams_per_scan beams
 };
 
 class SegmenterStage : public Stage {

@@ -180,7 +180,9 @@ bool PlausibleEstimatorStatus(const void* data, int size) {
   w.String();  // last_event
   w.Fixed(3 * kInt64);  // odometry_rejected, messages_undecodable, updates_failed
   w.Fixed(2 * kDouble);  // heading_drift_rad_per_m, heading_drift_sigma_rad_per_m
-  w.Fixed(kInt64);       // restarts
+  // restarts, time_jumps_rejected, odometry_frame_jumps, state_recoveries, features_over_cap,
+  // ransac_budget_cuts
+  w.Fixed(6 * kInt64);
   return w.End();
 }
 

@@ -122,6 +122,9 @@ TEST_F(BadInputTest, EmptyScanIsAValidScan) {
 TEST_F(BadInputTest, TimeGapInflatesInsteadOfTrustingTheLongPrediction) {
   EstimatorOptions options;
   options.max_time_gap_s = 1.0;
+  // A 3 s pause of both streams, taken at once: this test is about the inflation, not about
+  // how many messages confirm a jump ahead (the next tests).
+  options.time_jump_forward_s = 10.0;
   options.classifier.still_hold_s = 100.0;  // keep the objects' velocity states for the check
   auto run = [&](int64_t gap_us) {
     Estimator estimator(options);
@@ -157,9 +160,11 @@ TEST_F(BadInputTest, TimeGapInflatesInsteadOfTrustingTheLongPrediction) {
   ExpectHealthy(gap);
 }
 
-// A gap of any length, up to a corrupted utime years ahead, is one inflated prediction of a
+// A gap of any length, up to a new time base years ahead, is one inflated prediction of a
 // bounded length: the covariance stays positive semi-definite and the estimator goes on. Five
-// posts all around, still odometry, 20 scans, the gap, 40 scans.
+// posts all around, still odometry, 20 scans, the gap, 40 scans. A gap beyond
+// time_jump_forward_s (2 s) is a jump: its first two scans and odometry readings are dropped,
+// the third of each confirms the new time base (time_base.h).
 TEST_F(BadInputTest, GapsOfAnyLengthKeepTheCovarianceHealthy) {
   const std::vector<FeatureReading> posts = {Feature(5.0, 0.1), Feature(7.0, -0.5),
                                              Feature(4.0, 1.0), Feature(9.0, 2.0),
@@ -183,12 +188,15 @@ TEST_F(BadInputTest, GapsOfAnyLengthKeepTheCovarianceHealthy) {
     }
     if (HasFailure()) return;  // one gap's messages are enough
     EXPECT_EQ(estimator.counters().time_gaps, 1);
-    EXPECT_EQ(estimator.counters().scans_processed, 61);
+    EXPECT_EQ(estimator.counters().time_jumps_rejected, 4);
+    EXPECT_EQ(estimator.counters().restarts, 0);
+    EXPECT_EQ(estimator.counters().scans_processed, 59);
   }
 }
 
 // utimes at the ends of int64: differences are taken without overflow, so a reading at the
-// far past and then ordinary ones give one (huge) gap, counted, not a wrapped negative time.
+// far past and then ordinary ones give one (huge) gap, counted, not a wrapped negative time
+// (after the two messages of each stream that the jump ahead needs to be believed).
 TEST_F(BadInputTest, UtimesAtTheEndsOfTheRangeDoNotWrap) {
   Estimator estimator{EstimatorOptions{}};
   std::mt19937_64 rng(1);
@@ -202,27 +210,29 @@ TEST_F(BadInputTest, UtimesAtTheEndsOfTheRangeDoNotWrap) {
     if (HasFailure()) return;
   }
   EXPECT_EQ(estimator.counters().time_gaps, 1);
-  EXPECT_EQ(estimator.counters().scans_processed, 21);
+  EXPECT_EQ(estimator.counters().time_jumps_rejected, 4);
+  EXPECT_EQ(estimator.counters().scans_processed, 19);
 }
 
-// The same log played twice into a running estimator (lcm-logplayer): the second run's first
-// message lies 3 s before the newest, beyond time_jump_back_restart_s (set to 1 s here), so
-// the estimator starts over instead of dropping the whole second run as out of order. A step
-// back shorter than that is still a late message, dropped.
+// The same log played twice into a running estimator (lcm-logplayer): the second run's
+// messages lie 3 s before the newest, beyond time_jump_back_restart_s (set to 1 s here). The
+// first two of each stream are held as jumps; the third odometry reading confirms the new time
+// base and the estimator starts over, instead of dropping the whole second run as out of
+// order. A step back shorter than the limit is still a late message, dropped.
 TEST_F(BadInputTest, ALogPlayedAgainStartsTheEstimationOver) {
   EstimatorOptions options;
   options.time_jump_back_restart_s = 1.0;
   Estimator estimator(options);
-  auto play_into = [&](Estimator* e, int scans) {
-    for (int k = 1; k <= scans; ++k) {
+  auto play_into = [&](Estimator* e, int first, int last) {
+    for (int k = first; k <= last; ++k) {
       const int64_t t = 100000 * k;
       e->AddOdometry(Odometry(t, 0.05 * k, 0.5));
       e->ProcessScan(Scan(t, {Feature(5.0 - 0.05 * k, 0.2), Feature(6.0 - 0.05 * k, -0.3)}),
                      &rng_);
     }
   };
-  auto play = [&](int scans) { play_into(&estimator, scans); };
-  play(30);
+  auto play = [&]() { play_into(&estimator, 1, 30); };
+  play();
   ASSERT_EQ(estimator.counters().restarts, 0);
   int64_t largest_id = 0;
   for (const StateObject& object : estimator.state().objects()) {
@@ -231,15 +241,18 @@ TEST_F(BadInputTest, ALogPlayedAgainStartsTheEstimationOver) {
   ASSERT_GT(largest_id, 0);
   EXPECT_FALSE(estimator.ProcessScan(Scan(2500000, {Feature(5.0, 0.2)}), &rng_).processed);
   EXPECT_EQ(estimator.counters().messages_out_of_order, 1);  // 0.5 s back: late, dropped
-  play(30);
-  // The odometry's jump started it over, the scans of the new run then came to a fresh start.
+  play();
+  // The odometry's third jumped reading started it over, the scans of the new run then came to
+  // a fresh start.
   EXPECT_EQ(estimator.counters().restarts, 1);
+  EXPECT_EQ(estimator.counters().time_jumps_rejected, 4);
   EXPECT_NE(estimator.last_event().find("started over"), std::string::npos);
   EXPECT_EQ(estimator.counters().messages_out_of_order, 1);
-  EXPECT_EQ(estimator.counters().scans_processed, 60);
-  // What is left is the second run alone, as a fresh estimator sees it, with new identities.
+  EXPECT_EQ(estimator.counters().scans_processed, 58);
+  // What is left is the second run from its third messages on, as a fresh estimator sees it,
+  // with new identities.
   Estimator fresh(options);
-  play_into(&fresh, 30);
+  play_into(&fresh, 3, 30);
   EXPECT_NEAR((estimator.state().robot_pose() - fresh.state().robot_pose()).norm(), 0.0, 1e-12);
   ASSERT_EQ(estimator.state().num_objects(), 2);
   for (const StateObject& object : estimator.state().objects()) {
@@ -248,10 +261,9 @@ TEST_F(BadInputTest, ALogPlayedAgainStartsTheEstimationOver) {
   ExpectHealthy(estimator);
 }
 
-// One scan stamped a million seconds ahead (a corrupted utime) is one inflated gap; the
-// ordinary scans after it are then a new time base, and the estimator goes on instead of
-// dropping everything for eleven days.
-TEST_F(BadInputTest, OneFarFutureUtimeDoesNotSilenceTheEstimator) {
+// One scan stamped a million seconds ahead (a corrupted utime) is dropped and counted: no
+// eleven-day gap, no restart when the ordinary scans go on, nothing else lost.
+TEST_F(BadInputTest, OneFarFutureUtimeIsDroppedAndTheEstimatorGoesOn) {
   Estimator estimator{EstimatorOptions{}};
   int64_t t = 0;
   for (int k = 0; k < 10; ++k) {
@@ -259,16 +271,19 @@ TEST_F(BadInputTest, OneFarFutureUtimeDoesNotSilenceTheEstimator) {
     estimator.AddOdometry(Odometry(t, 0.0));
     estimator.ProcessScan(Scan(t, {Feature(5.0, 0.2)}), &rng_);
   }
-  EXPECT_TRUE(estimator.ProcessScan(Scan(t + 1000000000000, {Feature(5.0, 0.2)}), &rng_).processed);
+  EXPECT_FALSE(
+      estimator.ProcessScan(Scan(t + 1000000000000, {Feature(5.0, 0.2)}), &rng_).processed);
+  EXPECT_NE(estimator.last_event().find("a jump"), std::string::npos);
   for (int k = 0; k < 10; ++k) {
     t += 100000;
     estimator.AddOdometry(Odometry(t, 0.0));
     EXPECT_TRUE(estimator.ProcessScan(Scan(t, {Feature(5.0, 0.2)}), &rng_).processed);
   }
-  EXPECT_EQ(estimator.counters().time_gaps, 1);
-  EXPECT_EQ(estimator.counters().restarts, 1);
+  EXPECT_EQ(estimator.counters().time_gaps, 0);
+  EXPECT_EQ(estimator.counters().restarts, 0);
+  EXPECT_EQ(estimator.counters().time_jumps_rejected, 1);
   EXPECT_EQ(estimator.counters().messages_out_of_order, 0);
-  EXPECT_EQ(estimator.counters().scans_processed, 21);
+  EXPECT_EQ(estimator.counters().scans_processed, 20);
   ExpectHealthy(estimator);
 }
 

@@ -309,6 +309,9 @@ TEST(EstimatorStageTest, PublishesEveryOutputWithTheFeaturesUtime) {
   const double prior_sigma = defaults.heading_drift_sigma_rad_per_m;
   EXPECT_EQ(status.heading_drift_rad_per_m, 0.0);
   EXPECT_EQ(status.restarts, 0);
+  EXPECT_EQ(status.time_jumps_rejected, 0);
+  EXPECT_EQ(status.features_over_cap, 0);
+  EXPECT_EQ(status.state_recoveries, 0);
   EXPECT_NEAR(status.heading_drift_sigma_rad_per_m,
               std::sqrt(prior_sigma * prior_sigma + 0.05 * defaults.heading_drift_walk_var_per_m),
               1e-12);
@@ -317,9 +320,11 @@ TEST(EstimatorStageTest, PublishesEveryOutputWithTheFeaturesUtime) {
   EXPECT_EQ(timing.stage, "estimator");
   EXPECT_EQ(timing.substage, (std::vector<std::string>{"predict", "gating", "level1", "ransac",
                                                         "level2_3", "track_management"}));
-  EXPECT_EQ(timing.counter_name, (std::vector<std::string>{"features", "objects", "hypotheses",
-                                                            "updates", "updates_skipped",
-                                                            "lines_unused"}));
+  EXPECT_EQ(timing.counter_name,
+            (std::vector<std::string>{"features", "objects", "hypotheses", "updates",
+                                      "updates_skipped", "lines_unused", "features_over_cap",
+                                      "ransac_pair_tests", "ransac_budget_cut",
+                                      "state_recovered"}));
   EXPECT_EQ(timing.counter_value[0], 2);
   EXPECT_EQ(timing.counter_value[1], 2);
   EXPECT_EQ(timing.counter_value[3], 0);  // two new objects, nothing to update yet

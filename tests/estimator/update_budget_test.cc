@@ -52,14 +52,32 @@ TEST(ObjectsThatMayUpdateTest, TheKLeastRecentlyUpdatedLandmarksWithAPairAndEver
   const std::vector<Candidate> gated = {{0, 0, 1.0}, {1, 1, 1.0}, {2, 2, 1.0}, {3, 3, 1.0},
                                         {4, mover, 1.0}, {5, 1, 2.0}};
   // Budget 2 among landmarks 0-3: the least recently updated are 1 and 2 (tie at 3: both).
-  EXPECT_EQ(ObjectsThatMayUpdate(scene.state, gated, 2),
+  EXPECT_EQ(ObjectsThatMayUpdate(scene.state, gated, 2, 0),
             (std::vector<uint8_t>{0, 1, 1, 0, 1, 1}));
   // A tie at the cut goes to the lower index.
-  EXPECT_EQ(ObjectsThatMayUpdate(scene.state, gated, 1),
+  EXPECT_EQ(ObjectsThatMayUpdate(scene.state, gated, 1, 0),
             (std::vector<uint8_t>{0, 1, 0, 0, 1, 1}));
   // No limit, or a budget as large as the competitors.
-  EXPECT_EQ(ObjectsThatMayUpdate(scene.state, gated, 0), std::vector<uint8_t>(6, 1));
-  EXPECT_EQ(ObjectsThatMayUpdate(scene.state, gated, 4), std::vector<uint8_t>(6, 1));
+  EXPECT_EQ(ObjectsThatMayUpdate(scene.state, gated, 0, 0), std::vector<uint8_t>(6, 1));
+  EXPECT_EQ(ObjectsThatMayUpdate(scene.state, gated, 4, 0), std::vector<uint8_t>(6, 1));
+}
+
+TEST(ObjectsThatMayUpdateTest, TheMLeastRecentlyUpdatedMoversWithAPair) {
+  testing::StepScene scene;
+  const int64_t updated_at[] = {7, 2, 4, 2};
+  for (int k = 0; k < 4; ++k) {
+    const int mover = scene.AddMover({5.0, 1.0 * k}, 0.1, {0.0, 0.0}, 0.1);
+    scene.state.object(mover).record.last_update_utime = updated_at[k];
+  }
+  scene.AddLandmark({-5.0, 0.0}, 0.1);
+  const std::vector<Candidate> gated = {{0, 0, 1.0}, {1, 1, 1.0}, {2, 2, 1.0}, {3, 3, 1.0},
+                                        {4, 4, 1.0}};
+  // Budget 2 among the movers: 1 and 3 (updated at 2); the landmark is in the other budget.
+  EXPECT_EQ(ObjectsThatMayUpdate(scene.state, gated, 32, 2),
+            (std::vector<uint8_t>{0, 1, 0, 1, 1}));
+  EXPECT_EQ(ObjectsThatMayUpdate(scene.state, gated, 32, 3),
+            (std::vector<uint8_t>{0, 1, 1, 1, 1}));
+  EXPECT_EQ(ObjectsThatMayUpdate(scene.state, gated, 32, 0), std::vector<uint8_t>(5, 1));
 }
 
 TEST(GatingTest, BearingLookupFindsExactlyThePairsOfTheFullLoop) {

@@ -424,6 +424,11 @@ struct Sample<slammtt_msgs::estimator_status_t> {
     m.heading_drift_rad_per_m = -0.0009;
     m.heading_drift_sigma_rad_per_m = 0.002;
     m.restarts = 1;
+    m.time_jumps_rejected = 2;
+    m.odometry_frame_jumps = 1;
+    m.state_recoveries = 0;
+    m.features_over_cap = 7;
+    m.ransac_budget_cuts = 1;
     return m;
   }
   static std::vector<CountField> Counts(const slammtt_msgs::estimator_status_t& m) {
