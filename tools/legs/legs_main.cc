@@ -1,0 +1,317 @@
+// slammtt-legs: trains the leg classifier on imported leg_tracker recordings and measures leg
+// and person detection on them (docs/perception.md, "Learned leg classifier").
+//
+//   slammtt-legs train --labelled NAME=LOG ... [--static-map NAME=LOG] [--negatives NAME=LOG]
+//                      [--arc NAME=MIN:MAX:RANGE] -o perception/leg_model.cc
+//   slammtt-legs evaluate --labelled NAME=LOG ... [--arc ...] [--unlabelled NAME=LOG ...]
+//                         [--config FILE] [--strides 1,2,3]
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "perception/segmenter_stage.h"
+#include "runtime/command_line.h"
+#include "runtime/log.h"
+#include "runtime/process.h"
+#include "tools/legs/leg_training.h"
+
+namespace slammtt {
+namespace {
+
+std::pair<std::string, std::string> NameValue(const std::string& text, const std::string& option) {
+  const size_t eq = text.find('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 == text.size()) {
+    throw UsageError("--" + option + " wants NAME=VALUE, got '" + text + "'");
+  }
+  return {text.substr(0, eq), text.substr(eq + 1)};
+}
+
+std::vector<double> Numbers(const std::string& text, char separator, const std::string& what) {
+  std::vector<double> out;
+  std::stringstream in(text);
+  for (std::string item; std::getline(in, item, separator);) {
+    char* end = nullptr;
+    const double v = std::strtod(item.c_str(), &end);
+    if (item.empty() || end == nullptr || *end != '\0' || !std::isfinite(v)) {
+      throw UsageError(what + ": '" + text + "' is not a list of numbers");
+    }
+    out.push_back(v);
+  }
+  return out;
+}
+
+std::vector<int> Strides(const CommandLine& cl) {
+  std::vector<int> strides;
+  for (double v : Numbers(cl.ValueOr("strides", "1,2,3"), ',', "--strides")) {
+    if (v < 1 || v > 10 || v != std::floor(v)) throw UsageError("--strides: whole numbers 1-10");
+    strides.push_back(static_cast<int>(v));
+  }
+  return strides;
+}
+
+std::map<std::string, LabelArc> Arcs(const CommandLine& cl) {
+  std::map<std::string, LabelArc> arcs;
+  for (const std::string& text : cl.Values("arc")) {
+    const auto [name, value] = NameValue(text, "arc");
+    const std::vector<double> v = Numbers(value, ':', "--arc " + name);
+    if (v.size() != 3 || !(v[0] < v[1]) || !(v[2] > 0.0)) {
+      throw UsageError("--arc " + name + ": MIN_DEG:MAX_DEG:RANGE_M with MIN < MAX, RANGE > 0");
+    }
+    arcs[name] = LabelArc{v[0], v[1], v[2]};
+  }
+  return arcs;
+}
+
+// --part NAME=BEGIN:END of the command line, [0, 1) by default.
+std::map<std::string, std::pair<double, double>> g_parts;
+
+Recording Load(const std::string& name, const std::string& path) {
+  Recording r = ReadRecording(name, path);
+  const auto part = g_parts.find(name);
+  if (part != g_parts.end()) r = PartOf(r, part->second.first, part->second.second);
+  if (r.undecodable > 0) LogWarning() << path << ": " << r.undecodable << " undecodable events";
+  if (r.labels_without_scan > 0) {
+    LogWarning() << path << ": " << r.labels_without_scan << " LEG_LABELS without their scan";
+  }
+  return r;
+}
+
+std::string Fixed(double v, int digits) {
+  if (!std::isfinite(v)) return "-";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.*f", digits, v);
+  return text;
+}
+
+void AddCommon(CommandLine* cl) {
+  cl->AddRepeatedOption("labelled", "NAME=LOG", "an imported recording with LEG_LABELS");
+  cl->AddRepeatedOption("arc", "NAME=MIN:MAX:RANGE",
+                        "where NAME's labeller labelled every leg (default -15:15:5)");
+  cl->AddOption("strides", "LIST", "beam strides (every k-th beam), default 1,2,3");
+  cl->AddRepeatedOption("part", "NAME=BEGIN:END",
+                        "use only that part of NAME's scans (fractions, e.g. 0:0.5)");
+}
+
+void ReadParts(const CommandLine& cl) {
+  for (const std::string& text : cl.Values("part")) {
+    const auto [name, value] = NameValue(text, "part");
+    const std::vector<double> v = Numbers(value, ':', "--part " + name);
+    if (v.size() != 2 || !(v[0] >= 0.0 && v[0] < v[1] && v[1] <= 1.0)) {
+      throw UsageError("--part " + name + ": BEGIN:END with 0 <= BEGIN < END <= 1");
+    }
+    g_parts[name] = {v[0], v[1]};
+  }
+}
+
+int Train(const CommandLine& cl) {
+  const std::vector<int> strides = Strides(cl);
+  const std::map<std::string, LabelArc> arcs = Arcs(cl);
+  std::map<std::string, std::string> static_maps;
+  for (const std::string& text : cl.Values("static-map")) {
+    static_maps.insert(NameValue(text, "static-map"));
+  }
+  std::vector<Recording> recordings;
+  std::vector<Recording> maps;
+  std::vector<bool> labelled;
+  std::vector<bool> empty;
+  for (const std::string& text : cl.Values("labelled")) {
+    const auto [name, path] = NameValue(text, "labelled");
+    recordings.push_back(Load(name, path));
+    labelled.push_back(true);
+    empty.push_back(false);
+  }
+  for (const std::string& text : cl.Values("negatives")) {
+    const auto [name, path] = NameValue(text, "negatives");
+    recordings.push_back(Load(name, path));
+    labelled.push_back(false);
+    empty.push_back(false);
+  }
+  for (const std::string& text : cl.Values("empty")) {
+    const auto [name, path] = NameValue(text, "empty");
+    recordings.push_back(Load(name, path));
+    labelled.push_back(false);
+    empty.push_back(true);
+  }
+  if (recordings.empty()) throw UsageError("train: no --labelled recording");
+  // Static background of each recording: its --static-map recording, else its own scans.
+  std::vector<StaticBackground> backgrounds;
+  backgrounds.reserve(recordings.size());
+  for (const Recording& r : recordings) {
+    const auto found = static_maps.find(r.name);
+    if (found == static_maps.end()) {
+      backgrounds.emplace_back(r.scans);
+    } else {
+      backgrounds.emplace_back(Load(r.name + "-map", found->second).scans);
+    }
+  }
+  std::vector<TrainingRecording> inputs;
+  std::vector<size_t> folds;
+  std::vector<LabelArc> fold_arcs;
+  for (size_t i = 0; i < recordings.size(); ++i) {
+    inputs.push_back(TrainingRecording{&recordings[i], &backgrounds[i], empty[i]});
+    if (labelled[i]) {
+      folds.push_back(i);
+      const auto arc = arcs.find(recordings[i].name);
+      fold_arcs.push_back(arc == arcs.end() ? LabelArc{} : arc->second);
+    }
+  }
+  const SegmenterOptions options;
+  const BoostingOptions boosting;
+  const double recall_aim = cl.DoubleValue("recall-aim").value_or(0.92);
+  std::vector<double> thresholds;
+  for (int k = 1; k < 20; ++k) thresholds.push_back(0.05 * k);
+
+  std::ostringstream provenance;
+  provenance << "Gradient-boosted trees: " << boosting.rounds << " rounds, depth "
+             << boosting.max_depth << ", learning rate " << boosting.learning_rate
+             << ", lambda " << boosting.lambda << ", min child Hessian "
+             << boosting.min_child_hessian << ", min child samples " << boosting.min_child_samples
+             << (boosting.balance_classes ? ", classes balanced" : "") << ".\nBeam strides:";
+  for (int s : strides) provenance << " " << s;
+  provenance << ". Samples (legs / static background / left out):\n";
+  std::vector<TrainingSample> all;
+  for (const TrainingRecording& input : inputs) {
+    SampleCounts counts;
+    std::vector<TrainingSample> s = ExtractSamples(input, options, strides, &counts);
+    all.insert(all.end(), s.begin(), s.end());
+    provenance << "  " << input.recording->name << ": " << input.recording->scans.size()
+               << " scans, " << counts.legs << " / " << counts.background << " / "
+               << counts.unknown << "\n";
+    LogInfo() << input.recording->name << ": " << counts.legs << " legs, " << counts.background
+              << " background, " << counts.unknown << " left out";
+  }
+  ThresholdChoice choice;
+  if (cl.DoubleValue("threshold")) {
+    choice.threshold = *cl.DoubleValue("threshold");
+  } else {
+    choice = CrossValidateThreshold(inputs, folds, fold_arcs, options, strides, boosting,
+                                    thresholds, recall_aim);
+  }
+  provenance << "Leave-one-recording-out threshold (labelled recordings, stride 1), recall aim "
+             << recall_aim << ": " << Fixed(choice.threshold, 2)
+             << "\n  threshold  recall  precision (in the labelled arc)\n";
+  for (const ThresholdCurvePoint& p : choice.curve) {
+    provenance << "  " << Fixed(p.threshold, 2) << "  " << Fixed(p.pooled.recall(), 4) << "  "
+               << Fixed(p.pooled.precision(), 4) << "\n";
+  }
+  TrainedTrees trees = TrainBoostedTrees(all, boosting);
+  trees.suggested_threshold = choice.threshold;
+  const std::string out_path = *cl.Value("output");
+  std::ofstream out(out_path + ".partial", std::ios::binary);
+  out << ModelSource(trees, provenance.str());
+  out.close();
+  if (!out || std::rename((out_path + ".partial").c_str(), out_path.c_str()) != 0) {
+    throw std::runtime_error("cannot write " + out_path);
+  }
+  std::cout << provenance.str() << "wrote " << out_path << ": " << trees.roots.size()
+            << " trees, " << trees.nodes.size() << " nodes, " << all.size() << " samples\n";
+  return 0;
+}
+
+int Evaluate(const CommandLine& cl, const ProcessSettings& settings) {
+  const std::vector<int> strides = Strides(cl);
+  const std::map<std::string, LabelArc> arcs = Arcs(cl);
+  Config section = settings.config.Child("segmenter");
+  const SegmenterOptions options = ReadSegmenterOptions(section);
+  section.CheckUnused();
+  std::cout << "| recording | stride | scans | leg recall | leg precision (arc) | people per scan "
+               "| people per minute | one-leg people | scans with 0 / 1 / 2 / 3 / 4 / 5+ people |\n"
+               "|---|---|---|---|---|---|---|---|---|\n";
+  const auto row = [&](const std::string& name, const std::string& path) {
+    const Recording r = Load(name, path);
+    const auto arc = arcs.find(name);
+    for (int stride : strides) {
+      const LegDetectionScore s =
+          EvaluateRecording(r, options, stride, arc == arcs.end() ? LabelArc{} : arc->second);
+      std::cout << "| " << name << " | " << stride << " | " << s.scans << " | "
+                << Fixed(s.recall(), 4) << " | " << Fixed(s.precision(), 4) << " | "
+                << Fixed(s.people_per_scan(), 3) << " | " << Fixed(s.people_per_minute(), 1)
+                << " | " << s.people_one_leg << " |";
+      for (size_t k = 0; k < s.people_per_scan_histogram.size(); ++k) {
+        std::cout << (k ? " / " : " ") << s.people_per_scan_histogram[k];
+      }
+      std::cout << " |\n";
+    }
+  };
+  for (const std::string& text : cl.Values("labelled")) {
+    const auto [name, path] = NameValue(text, "labelled");
+    row(name, path);
+  }
+  for (const std::string& text : cl.Values("unlabelled")) {
+    const auto [name, path] = NameValue(text, "unlabelled");
+    row(name, path);
+  }
+  return 0;
+}
+
+int Run(int argc, char** argv) {
+  CommandLine cl("slammtt-legs", "train|evaluate [options]",
+                 "Trains the leg classifier on imported leg_tracker recordings (train) and "
+                 "measures leg and person detection on imported recordings (evaluate).");
+  AddStandardOptions(&cl);
+  cl.AddPositional("COMMAND", "train or evaluate");
+  AddCommon(&cl);
+  cl.AddRepeatedOption("static-map", "NAME=LOG",
+                       "train: the recording whose static background gives NAME's negatives "
+                       "(default: NAME's own scans)");
+  cl.AddRepeatedOption("negatives", "NAME=LOG",
+                       "train: a recording of a standing scanner used for its static "
+                       "background only");
+  cl.AddRepeatedOption("empty", "NAME=LOG",
+                       "train: a recording where nobody is present: every cluster a non-leg");
+  cl.AddOption("recall-aim", "R", "train: pooled cross-validated recall the threshold keeps "
+                                  "(default 0.92)");
+  cl.AddOption("threshold", "P", "train: this threshold instead of the cross-validated one "
+                                 "(no cross-validation)");
+  cl.AddOption("output", "MODEL.cc", "train: the generated model source", 'o');
+  cl.AddRepeatedOption("unlabelled", "NAME=LOG", "evaluate: a recording without labels");
+  if (!cl.Parse(argc, argv)) return 0;
+  const std::string command = *cl.Positional("COMMAND");
+  ReadParts(cl);
+  const ProcessSettings settings = LoadProcessSettings(cl);
+  if (command == "train") {
+    if (!cl.Value("output")) throw UsageError("train: -o MODEL.cc is required");
+    return Train(cl);
+  }
+  if (command == "evaluate") return Evaluate(cl, settings);
+  if (command == "diagnose") {
+    const auto [name, path] = NameValue(cl.Values("labelled").at(0), "labelled");
+    const Recording r = Load(name, path);
+    SegmenterOptions o;
+    Segmenter seg(o);
+    LabelArc arc;
+    for (const RecordedScan& scan : r.scans) {
+      seg.Segment(scan.view());
+      for (const Feature& f : seg.features()) {
+        if (f.leg_likeness < o.leg_threshold) continue;
+        const LegClusterRecord& rec = seg.leg_clusters()[f.leg_cluster];
+        if (!arc.Contains(rec.centroid_x_m, rec.centroid_y_m)) continue;
+        double best = 1e9;
+        for (auto& l : scan.labels_m) best = std::min(best, std::hypot(l.x() - rec.centroid_x_m, l.y() - rec.centroid_y_m));
+        std::cout << "cand " << best << " n " << f.num_points << " w " << f.width_m << " r " << f.range_m << " p " << f.leg_likeness << " nl " << scan.labels_m.size() << "\n";
+      }
+      for (auto& l : scan.labels_m) {
+        double best = 1e9; double bestf = 1e9;
+        for (auto& rec : seg.leg_clusters()) best = std::min(best, std::hypot(l.x() - rec.centroid_x_m, l.y() - rec.centroid_y_m));
+        for (const Feature& f : seg.features()) { const auto& rec = seg.leg_clusters()[f.leg_cluster]; bestf = std::min(bestf, std::hypot(l.x() - rec.centroid_x_m, l.y() - rec.centroid_y_m)); }
+        int fate = -1; double bd = 1e9;
+        for (auto& rec : seg.leg_clusters()) { double d = std::hypot(l.x() - rec.centroid_x_m, l.y() - rec.centroid_y_m); if (d < bd) { bd = d; fate = int(rec.fate); } }
+        std::cout << "label " << best << " " << bestf << " r " << l.norm() << " fate " << fate << "\n";
+      }
+    }
+    return 0;
+  }
+  throw UsageError("unknown command '" + command + "' (train or evaluate)");
+}
+
+}  // namespace
+}  // namespace slammtt
+
+int main(int argc, char** argv) {
+  return slammtt::ProcessMain(argc, argv, "slammtt-legs", slammtt::Run);
+}
