@@ -94,6 +94,17 @@ ClusterTruth ClassifyCluster(const LegClusterRecord& record,
   return ClusterTruth::kUnknown;
 }
 
+ClusterTruth ClassifySimulatedCluster(const LegClusterRecord& record, const RecordedScan& scan) {
+  const Eigen::Vector2d c(record.centroid_x_m, record.centroid_y_m);
+  for (const Eigen::Vector2d& leg : scan.labels_m) {
+    if ((leg - c).norm() <= kLabelMatchM) return ClusterTruth::kLeg;
+  }
+  for (const Eigen::Vector2d& p : scan.people_m) {
+    if ((p - c).norm() <= kSimulatedClearM) return ClusterTruth::kUnknown;
+  }
+  return ClusterTruth::kBackground;
+}
+
 double LegDetectionScore::recall() const {
   return labels > 0 ? static_cast<double>(labels_found) / static_cast<double>(labels)
                     : std::numeric_limits<double>::quiet_NaN();

@@ -45,6 +45,9 @@ struct RecordedScan {
   double range_max_m = 0.0;
   bool labelled = false;
   std::vector<Eigen::Vector2d> labels_m;  // sensor frame
+  // Simulated scans only: where every person and leg is (seen or not), sensor frame. A cluster
+  // near none of them is surely not a leg.
+  std::vector<Eigen::Vector2d> people_m;
   ScanView view() const;
 };
 
@@ -79,6 +82,12 @@ enum class ClusterTruth { kLeg, kBackground, kUnknown };
 ClusterTruth ClassifyCluster(const LegClusterRecord& record,
                              const std::vector<Eigen::Vector2d>& labels,
                              const StaticBackground* background);
+
+// A cluster of a simulated scan: kLeg when a leg (labels_m) is within kLabelMatchM of its
+// centroid, kBackground when no person or leg (people_m) is within kSimulatedClearM, else
+// kUnknown.
+inline constexpr double kSimulatedClearM = 0.5;
+ClusterTruth ClassifySimulatedCluster(const LegClusterRecord& record, const RecordedScan& scan);
 
 // Detection figures of one recording, accumulated scan by scan.
 struct LegDetectionScore {

@@ -1,5 +1,7 @@
 #include "tools/legs/leg_training.h"
 
+#include <algorithm>
+
 namespace slammtt {
 
 SegmenterOptions ExtractionOptions(const SegmenterOptions& options) {
@@ -22,9 +24,10 @@ std::vector<TrainingSample> ExtractSamples(const TrainingRecording& input,
       segmenter.Segment(scan.view());
       for (const LegClusterRecord& record : segmenter.leg_clusters()) {
         const ClusterTruth truth =
-            input.empty ? ClusterTruth::kBackground
-                        : ClassifyCluster(record, scan.labelled ? scan.labels_m : no_labels,
-                                          input.background);
+            input.empty       ? ClusterTruth::kBackground
+            : input.simulated ? ClassifySimulatedCluster(record, scan)
+                              : ClassifyCluster(record, scan.labelled ? scan.labels_m : no_labels,
+                                                input.background);
         if (truth == ClusterTruth::kUnknown) {
           ++counts->unknown;
           continue;
@@ -73,7 +76,7 @@ ThresholdChoice CrossValidateThreshold(const std::vector<TrainingRecording>& inp
                                        const std::vector<int>& strides,
                                        const BoostingOptions& boosting,
                                        const std::vector<double>& thresholds,
-                                       double recall_aim) {
+                                       double recall_margin) {
   std::vector<std::vector<TrainingSample>> samples(inputs.size());
   for (size_t i = 0; i < inputs.size(); ++i) {
     SampleCounts counts;
@@ -101,9 +104,13 @@ ThresholdChoice CrossValidateThreshold(const std::vector<TrainingRecording>& inp
            &choice.curve[t].pooled);
     }
   }
+  double best_recall = 0.0;
+  for (const ThresholdCurvePoint& point : choice.curve) {
+    best_recall = std::max(best_recall, point.pooled.recall());
+  }
   choice.threshold = thresholds.empty() ? 0.5 : thresholds.front();
   for (const ThresholdCurvePoint& point : choice.curve) {
-    if (point.pooled.recall() >= recall_aim) choice.threshold = point.threshold;
+    if (point.pooled.recall() >= best_recall - recall_margin) choice.threshold = point.threshold;
   }
   return choice;
 }

@@ -21,6 +21,8 @@ struct TrainingRecording {
   const StaticBackground* background = nullptr;
   // Nobody is present (negative_2): every cluster is a non-leg.
   bool empty = false;
+  // Simulated (simulated_recording.h): truth from the world, ClassifySimulatedCluster.
+  bool simulated = false;
 };
 
 struct SampleCounts {
@@ -50,7 +52,9 @@ LegDetectionScore EvaluateRecording(const Recording& recording, const SegmenterO
 // not in `folds` are always in training; samples at every stride of `strides`) and its
 // recording is scored, at its own resolution (stride 1), at each threshold of
 // `thresholds`; the scores are pooled per threshold. The choice is the largest threshold whose
-// pooled recall reaches `recall_aim` (the smallest threshold when none does).
+// pooled recall is within `recall_margin` of the best pooled recall of any threshold: the
+// recall that the clustering allows is kept, and every threshold below that buys false legs
+// (the precision inside the labelled arc hardly moves, but false people elsewhere do).
 struct ThresholdCurvePoint {
   double threshold = 0.0;
   LegDetectionScore pooled;
@@ -65,6 +69,6 @@ ThresholdChoice CrossValidateThreshold(const std::vector<TrainingRecording>& inp
                                        const SegmenterOptions& options,
                                        const std::vector<int>& strides,
                                        const BoostingOptions& boosting,
-                                       const std::vector<double>& thresholds, double recall_aim);
+                                       const std::vector<double>& thresholds, double recall_margin);
 
 }  // namespace slammtt

@@ -19,6 +19,8 @@
 #include "runtime/log.h"
 #include "runtime/process.h"
 #include "tools/legs/leg_training.h"
+#include "tools/legs/simulated_recording.h"
+#include "tools/world/scenario_loader.h"
 
 namespace slammtt {
 namespace {
@@ -119,23 +121,41 @@ int Train(const CommandLine& cl) {
   std::vector<Recording> maps;
   std::vector<bool> labelled;
   std::vector<bool> empty;
+  std::vector<bool> simulated;
   for (const std::string& text : cl.Values("labelled")) {
     const auto [name, path] = NameValue(text, "labelled");
     recordings.push_back(Load(name, path));
     labelled.push_back(true);
     empty.push_back(false);
+    simulated.push_back(false);
   }
   for (const std::string& text : cl.Values("negatives")) {
     const auto [name, path] = NameValue(text, "negatives");
     recordings.push_back(Load(name, path));
     labelled.push_back(false);
     empty.push_back(false);
+    simulated.push_back(false);
   }
   for (const std::string& text : cl.Values("empty")) {
     const auto [name, path] = NameValue(text, "empty");
     recordings.push_back(Load(name, path));
     labelled.push_back(false);
     empty.push_back(true);
+    simulated.push_back(false);
+  }
+  const int every = static_cast<int>(cl.IntValue("simulated-every").value_or(10));
+  for (const std::string& text : cl.Values("simulated")) {
+    const auto [name, path] = NameValue(text, "simulated");
+    const Scenario scenario = LoadScenario(path);
+    for (double seed : Numbers(cl.ValueOr("simulated-seeds", "101,102"), ',',
+                               "--simulated-seeds")) {
+      const std::string seed_name = name + "-seed" + std::to_string(static_cast<int>(seed));
+      recordings.push_back(
+          SimulateRecording(seed_name, scenario, static_cast<uint64_t>(seed), every));
+      labelled.push_back(false);
+      empty.push_back(false);
+      simulated.push_back(true);
+    }
   }
   if (recordings.empty()) throw UsageError("train: no --labelled recording");
   // Static background of each recording: its --static-map recording, else its own scans.
@@ -153,7 +173,8 @@ int Train(const CommandLine& cl) {
   std::vector<size_t> folds;
   std::vector<LabelArc> fold_arcs;
   for (size_t i = 0; i < recordings.size(); ++i) {
-    inputs.push_back(TrainingRecording{&recordings[i], &backgrounds[i], empty[i]});
+    inputs.push_back(
+        TrainingRecording{&recordings[i], &backgrounds[i], empty[i], simulated[i]});
     if (labelled[i]) {
       folds.push_back(i);
       const auto arc = arcs.find(recordings[i].name);
@@ -162,7 +183,7 @@ int Train(const CommandLine& cl) {
   }
   const SegmenterOptions options;
   const BoostingOptions boosting;
-  const double recall_aim = cl.DoubleValue("recall-aim").value_or(0.92);
+  const double recall_margin = cl.DoubleValue("recall-margin").value_or(0.02);
   std::vector<double> thresholds;
   for (int k = 1; k < 20; ++k) thresholds.push_back(0.05 * k);
 
@@ -185,22 +206,24 @@ int Train(const CommandLine& cl) {
     LogInfo() << input.recording->name << ": " << counts.legs << " legs, " << counts.background
               << " background, " << counts.unknown << " left out";
   }
-  ThresholdChoice choice;
-  if (cl.DoubleValue("threshold")) {
-    choice.threshold = *cl.DoubleValue("threshold");
-  } else {
-    choice = CrossValidateThreshold(inputs, folds, fold_arcs, options, strides, boosting,
-                                    thresholds, recall_aim);
-  }
-  provenance << "Leave-one-recording-out threshold (labelled recordings, stride 1), recall aim "
-             << recall_aim << ": " << Fixed(choice.threshold, 2)
+  const ThresholdChoice choice = CrossValidateThreshold(inputs, folds, fold_arcs, options,
+                                                        strides, boosting, thresholds,
+                                                        recall_margin);
+  const double threshold = cl.DoubleValue("threshold").value_or(choice.threshold);
+  if (!(threshold >= 0.0 && threshold <= 1.0)) throw UsageError("--threshold: in [0, 1]");
+  provenance << "Leave-one-recording-out threshold (labelled recordings, stride 1): the largest "
+                "within " << recall_margin << " of the best recall: " << Fixed(choice.threshold, 2)
              << "\n  threshold  recall  precision (in the labelled arc)\n";
   for (const ThresholdCurvePoint& p : choice.curve) {
     provenance << "  " << Fixed(p.threshold, 2) << "  " << Fixed(p.pooled.recall(), 4) << "  "
                << Fixed(p.pooled.precision(), 4) << "\n";
   }
   TrainedTrees trees = TrainBoostedTrees(all, boosting);
-  trees.suggested_threshold = choice.threshold;
+  trees.suggested_threshold = threshold;
+  if (cl.DoubleValue("threshold")) {
+    provenance << "The model's threshold is " << Fixed(threshold, 2)
+               << " (--threshold), not the cross-validated one.\n";
+  }
   const std::string out_path = *cl.Value("output");
   std::ofstream out(out_path + ".partial", std::ios::binary);
   out << ModelSource(trees, provenance.str());
@@ -264,10 +287,14 @@ int Run(int argc, char** argv) {
                        "background only");
   cl.AddRepeatedOption("empty", "NAME=LOG",
                        "train: a recording where nobody is present: every cluster a non-leg");
-  cl.AddOption("recall-aim", "R", "train: pooled cross-validated recall the threshold keeps "
-                                  "(default 0.92)");
-  cl.AddOption("threshold", "P", "train: this threshold instead of the cross-validated one "
-                                 "(no cross-validation)");
+  cl.AddRepeatedOption("simulated", "NAME=SCENARIO.yaml",
+                       "train: scans of a world scenario, legs labelled by the world's truth");
+  cl.AddOption("simulated-seeds", "LIST", "train: seeds of the simulated scenarios (101,102)");
+  cl.AddOption("simulated-every", "K", "train: every K-th simulated scan (10)");
+  cl.AddOption("recall-margin", "R", "train: the threshold keeps the best cross-validated "
+                                     "recall but this (default 0.02)");
+  cl.AddOption("threshold", "P", "train: the model's threshold instead of the cross-validated "
+                                 "one (which is still measured and recorded)");
   cl.AddOption("output", "MODEL.cc", "train: the generated model source", 'o');
   cl.AddRepeatedOption("unlabelled", "NAME=LOG", "evaluate: a recording without labels");
   if (!cl.Parse(argc, argv)) return 0;
@@ -279,33 +306,6 @@ int Run(int argc, char** argv) {
     return Train(cl);
   }
   if (command == "evaluate") return Evaluate(cl, settings);
-  if (command == "diagnose") {
-    const auto [name, path] = NameValue(cl.Values("labelled").at(0), "labelled");
-    const Recording r = Load(name, path);
-    SegmenterOptions o;
-    Segmenter seg(o);
-    LabelArc arc;
-    for (const RecordedScan& scan : r.scans) {
-      seg.Segment(scan.view());
-      for (const Feature& f : seg.features()) {
-        if (f.leg_likeness < o.leg_threshold) continue;
-        const LegClusterRecord& rec = seg.leg_clusters()[f.leg_cluster];
-        if (!arc.Contains(rec.centroid_x_m, rec.centroid_y_m)) continue;
-        double best = 1e9;
-        for (auto& l : scan.labels_m) best = std::min(best, std::hypot(l.x() - rec.centroid_x_m, l.y() - rec.centroid_y_m));
-        std::cout << "cand " << best << " n " << f.num_points << " w " << f.width_m << " r " << f.range_m << " p " << f.leg_likeness << " nl " << scan.labels_m.size() << "\n";
-      }
-      for (auto& l : scan.labels_m) {
-        double best = 1e9; double bestf = 1e9;
-        for (auto& rec : seg.leg_clusters()) best = std::min(best, std::hypot(l.x() - rec.centroid_x_m, l.y() - rec.centroid_y_m));
-        for (const Feature& f : seg.features()) { const auto& rec = seg.leg_clusters()[f.leg_cluster]; bestf = std::min(bestf, std::hypot(l.x() - rec.centroid_x_m, l.y() - rec.centroid_y_m)); }
-        int fate = -1; double bd = 1e9;
-        for (auto& rec : seg.leg_clusters()) { double d = std::hypot(l.x() - rec.centroid_x_m, l.y() - rec.centroid_y_m); if (d < bd) { bd = d; fate = int(rec.fate); } }
-        std::cout << "label " << best << " " << bestf << " r " << l.norm() << " fate " << fate << "\n";
-      }
-    }
-    return 0;
-  }
   throw UsageError("unknown command '" + command + "' (train or evaluate)");
 }
 
