@@ -36,6 +36,7 @@
 //   0.85  0.2109  0.9774
 //   0.90  0.0801  0.9848
 //   0.95  0.0067  1.0000
+// The model's threshold is 0.30 (--threshold), not the cross-validated one.
 #include "perception/leg_classifier.h"
 
 namespace slammtt {
@@ -2287,7 +2288,7 @@ const int32_t kRoots[] = {
 
 const LegModel& TrainedLegModel() {
   static const LegModel model{kNodes, 2222, kRoots, 150,
-                              0.0, 0.25};
+                              0.0, 0.29999999999999999};
   return model;
 }
 
