@@ -59,6 +59,7 @@ void GrowTree(const std::vector<TrainingSample>& samples,
     std::vector<float> last(k_open);
     std::vector<uint8_t> has_last(k_open);
     for (int f = 0; f < kNumLegFeatures; ++f) {
+      if (options.excluded_features[static_cast<size_t>(f)]) continue;
       std::fill(gl.begin(), gl.end(), 0.0);
       std::fill(hl.begin(), hl.end(), 0.0);
       std::fill(cl.begin(), cl.end(), 0);

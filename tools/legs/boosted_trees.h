@@ -17,6 +17,7 @@
 // the same samples give the same model, bit for bit, on every run.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -37,6 +38,11 @@ struct BoostingOptions {
   // classes' weights): the training recordings hold 20-30 non-legs per leg, and without this
   // the probabilities would say more about that ratio than about the cluster.
   bool balance_classes = true;
+  // Features no split may read (still computed and stored in the samples). A feature whose
+  // training values carry an artefact of the labelling rather than of legs is left out this
+  // way: the real labels end at 5 m, so the distance to the laser alone would tell "leg" from
+  // "background" there (docs/perception.md, "Learned leg classifier").
+  std::array<bool, kNumLegFeatures> excluded_features{};
 };
 
 struct TrainingSample {

@@ -5,11 +5,16 @@
 //                      [--arc NAME=MIN:MAX:RANGE] -o perception/leg_model.cc
 //   slammtt-legs evaluate --labelled NAME=LOG ... [--arc ...] [--unlabelled NAME=LOG ...]
 //                         [--config FILE] [--strides 1,2,3]
+//   slammtt-legs world --simulated NAME=SCENARIO.yaml ... [--seeds 1-20] [--simulated-every K]
+//                      [--max-range 4,...] [--config FILE]
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -20,6 +25,7 @@
 #include "runtime/process.h"
 #include "tools/legs/leg_training.h"
 #include "tools/legs/simulated_recording.h"
+#include "tools/legs/world_figures.h"
 #include "tools/world/scenario_loader.h"
 
 namespace slammtt {
@@ -67,6 +73,25 @@ std::map<std::string, LabelArc> Arcs(const CommandLine& cl) {
     arcs[name] = LabelArc{v[0], v[1], v[2]};
   }
   return arcs;
+}
+
+// --exclude-features NAME,... (names of kLegFeatureNames).
+BoostingOptions Boosting(const CommandLine& cl) {
+  BoostingOptions boosting;
+  const std::optional<std::string> list = cl.Value("exclude-features");
+  if (!list) return boosting;
+  std::stringstream in(*list);
+  for (std::string name; std::getline(in, name, ',');) {
+    bool known = false;
+    for (int f = 0; f < kNumLegFeatures; ++f) {
+      if (name == kLegFeatureNames[static_cast<size_t>(f)]) {
+        boosting.excluded_features[static_cast<size_t>(f)] = true;
+        known = true;
+      }
+    }
+    if (!known) throw UsageError("--exclude-features: no feature '" + name + "'");
+  }
+  return boosting;
 }
 
 // --part NAME=BEGIN:END of the command line, [0, 1) by default.
@@ -182,7 +207,7 @@ int Train(const CommandLine& cl) {
     }
   }
   const SegmenterOptions options;
-  const BoostingOptions boosting;
+  const BoostingOptions boosting = Boosting(cl);
   const double recall_margin = cl.DoubleValue("recall-margin").value_or(0.02);
   std::vector<double> thresholds;
   for (int k = 1; k < 20; ++k) thresholds.push_back(0.05 * k);
@@ -190,9 +215,17 @@ int Train(const CommandLine& cl) {
   std::ostringstream provenance;
   provenance << "Gradient-boosted trees: " << boosting.rounds << " rounds, depth "
              << boosting.max_depth << ", learning rate " << boosting.learning_rate
-             << ", lambda " << boosting.lambda << ", min child Hessian "
+             << ",\nlambda " << boosting.lambda << ", min child Hessian "
              << boosting.min_child_hessian << ", min child samples " << boosting.min_child_samples
-             << (boosting.balance_classes ? ", classes balanced" : "") << ".\nBeam strides:";
+             << (boosting.balance_classes ? ", classes balanced" : "") << ".\nFeatures left out:";
+  bool any_excluded = false;
+  for (int f = 0; f < kNumLegFeatures; ++f) {
+    if (!boosting.excluded_features[static_cast<size_t>(f)]) continue;
+    provenance << " " << kLegFeatureNames[static_cast<size_t>(f)];
+    any_excluded = true;
+  }
+  if (!any_excluded) provenance << " none";
+  provenance << ".\nBeam strides:";
   for (int s : strides) provenance << " " << s;
   provenance << ". Samples (legs / static background / left out):\n";
   std::vector<TrainingSample> all;
@@ -211,7 +244,7 @@ int Train(const CommandLine& cl) {
                                                         recall_margin);
   const double threshold = cl.DoubleValue("threshold").value_or(choice.threshold);
   if (!(threshold >= 0.0 && threshold <= 1.0)) throw UsageError("--threshold: in [0, 1]");
-  provenance << "Leave-one-recording-out threshold (labelled recordings, stride 1): the largest "
+  provenance << "Leave-one-recording-out threshold (labelled recordings, stride 1): the largest\n"
                 "within " << recall_margin << " of the best recall: " << Fixed(choice.threshold, 2)
              << "\n  threshold  recall  precision (in the labelled arc)\n";
   for (const ThresholdCurvePoint& p : choice.curve) {
@@ -272,12 +305,85 @@ int Evaluate(const CommandLine& cl, const ProcessSettings& settings) {
   return 0;
 }
 
+std::vector<uint64_t> Seeds(const std::string& text) {
+  const size_t dash = text.find('-');
+  std::vector<double> range;
+  if (dash == std::string::npos) {
+    range = Numbers(text, ',', "--seeds");
+  } else {
+    range = Numbers(text.substr(0, dash) + "," + text.substr(dash + 1), ',', "--seeds");
+    if (range.size() != 2 || !(range[0] <= range[1])) throw UsageError("--seeds: A-B, A <= B");
+    const double first = range[0];
+    const double last = range[1];
+    range.clear();
+    for (double s = first; s <= last; s += 1.0) range.push_back(s);
+  }
+  std::vector<uint64_t> seeds;
+  for (double v : range) {
+    if (!(v >= 0.0 && v < 1e9 && v == std::floor(v))) throw UsageError("--seeds: whole numbers");
+    seeds.push_back(static_cast<uint64_t>(v));
+  }
+  return seeds;
+}
+
+// The issue-11 figures on world scenarios (world_figures.h), one row per scenario and range.
+int World(const CommandLine& cl, const ProcessSettings& settings) {
+  Config section = settings.config.Child("segmenter");
+  const SegmenterOptions options = ReadSegmenterOptions(section);
+  section.CheckUnused();
+  const std::vector<uint64_t> seeds = Seeds(cl.ValueOr("seeds", "1-20"));
+  const int every = static_cast<int>(cl.IntValue("simulated-every").value_or(1));
+  std::vector<double> ranges = {std::numeric_limits<double>::infinity()};
+  if (cl.Value("max-range")) {
+    ranges = Numbers(*cl.Value("max-range"), ',', "--max-range");
+  }
+  std::cout << "| scenario | seeds | scans | within | people | person recall (worst seed, median)"
+               " | precision (worst, median) | centre error median / p95 | point features on "
+               "walls | line angle / distance error median |\n|---|---|---|---|---|---|---|---|"
+               "---|---|\n";
+  for (const std::string& text : cl.Values("simulated")) {
+    const auto [name, path] = NameValue(text, "simulated");
+    const Scenario scenario = LoadScenario(path);
+    for (double range : ranges) {
+      FeatureScoreOptions score;
+      score.max_range_m = range;
+      const WorldFigures w = MeasureWorldFigures(scenario, seeds, options, every, score);
+      const FeatureScore& f = w.pooled;
+      std::vector<double> recall = w.seed_recall;
+      std::vector<double> precision = w.seed_precision;
+      std::sort(recall.begin(), recall.end());
+      std::sort(precision.begin(), precision.end());
+      const auto median = [](const std::vector<double>& v) {
+        return v.empty() ? std::nan("") : 0.5 * (v[(v.size() - 1) / 2] + v[v.size() / 2]);
+      };
+      const auto percentile = [](std::vector<double> v, double q) {
+        if (v.empty()) return std::nan("");
+        std::sort(v.begin(), v.end());
+        return v[static_cast<size_t>(q * static_cast<double>(v.size() - 1) + 0.5)];
+      };
+      std::cout << "| " << name << " | " << seeds.front() << "-" << seeds.back() << " | "
+                << w.scans << " | " << (std::isfinite(range) ? Fixed(range, 1) + " m" : "all")
+                << " | " << f.people_truth << " | " << Fixed(f.PersonRecall(), 3) << " ("
+                << Fixed(recall.front(), 3) << ", " << Fixed(median(recall), 3) << ") | "
+                << Fixed(f.PersonPrecision(), 3) << " (" << Fixed(precision.front(), 3) << ", "
+                << Fixed(median(precision), 3) << ") | "
+                << Fixed(percentile(f.centre_errors_m, 0.5), 3) << " / "
+                << Fixed(percentile(f.centre_errors_m, 0.95), 3) << " m | "
+                << Fixed(100.0 * f.WallPointShare(), 1) << " % of " << f.point_features << " | "
+                << Fixed(percentile(f.line_angle_errors_rad, 0.5) * 180.0 / M_PI, 2) << " deg / "
+                << Fixed(percentile(f.line_distance_errors_m, 0.5), 3) << " m |\n";
+    }
+  }
+  return 0;
+}
+
 int Run(int argc, char** argv) {
-  CommandLine cl("slammtt-legs", "train|evaluate [options]",
-                 "Trains the leg classifier on imported leg_tracker recordings (train) and "
-                 "measures leg and person detection on imported recordings (evaluate).");
+  CommandLine cl("slammtt-legs", "train|evaluate|world [options]",
+                 "Trains the leg classifier on imported leg_tracker recordings (train), "
+                 "measures leg and person detection on imported recordings (evaluate) and the "
+                 "perception figures on world scenarios (world).");
   AddStandardOptions(&cl);
-  cl.AddPositional("COMMAND", "train or evaluate");
+  cl.AddPositional("COMMAND", "train, evaluate or world");
   AddCommon(&cl);
   cl.AddRepeatedOption("static-map", "NAME=LOG",
                        "train: the recording whose static background gives NAME's negatives "
@@ -290,7 +396,11 @@ int Run(int argc, char** argv) {
   cl.AddRepeatedOption("simulated", "NAME=SCENARIO.yaml",
                        "train: scans of a world scenario, legs labelled by the world's truth");
   cl.AddOption("simulated-seeds", "LIST", "train: seeds of the simulated scenarios (101,102)");
-  cl.AddOption("simulated-every", "K", "train: every K-th simulated scan (10)");
+  cl.AddOption("seeds", "A-B|LIST", "world: seeds of the scenarios (default 1-20)");
+  cl.AddOption("max-range", "LIST", "world: score within these ranges [m] (default: all)");
+  cl.AddOption("simulated-every", "K", "train: every K-th simulated scan (10); world: (1)");
+  cl.AddOption("exclude-features", "NAME,...",
+               "train: features no split may read (names as in perception/leg_features.cc)");
   cl.AddOption("recall-margin", "R", "train: the threshold keeps the best cross-validated "
                                      "recall but this (default 0.02)");
   cl.AddOption("threshold", "P", "train: the model's threshold instead of the cross-validated "
@@ -306,7 +416,8 @@ int Run(int argc, char** argv) {
     return Train(cl);
   }
   if (command == "evaluate") return Evaluate(cl, settings);
-  throw UsageError("unknown command '" + command + "' (train or evaluate)");
+  if (command == "world") return World(cl, settings);
+  throw UsageError("unknown command '" + command + "' (train, evaluate or world)");
 }
 
 }  // namespace
