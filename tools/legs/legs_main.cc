@@ -11,7 +11,6 @@
 #include <cmath>
 #include <limits>
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 #include <map>
 #include <optional>
@@ -22,6 +21,7 @@
 #include "perception/segmenter_stage.h"
 #include "runtime/command_line.h"
 #include "runtime/log.h"
+#include "runtime/output_file.h"
 #include "runtime/process.h"
 #include "tools/legs/leg_training.h"
 #include "tools/legs/simulated_recording.h"
@@ -258,12 +258,12 @@ int Train(const CommandLine& cl) {
                << " (--threshold), not the cross-validated one.\n";
   }
   const std::string out_path = *cl.Value("output");
-  std::ofstream out(out_path + ".partial", std::ios::binary);
-  out << ModelSource(trees, provenance.str());
-  out.close();
-  if (!out || std::rename((out_path + ".partial").c_str(), out_path.c_str()) != 0) {
+  const std::string source = ModelSource(trees, provenance.str());
+  OutputFile out(out_path);  // complete or absent, never written through a planted link
+  if (std::fwrite(source.data(), 1, source.size(), out.stream()) != source.size()) {
     throw std::runtime_error("cannot write " + out_path);
   }
+  out.Commit();
   std::cout << provenance.str() << "wrote " << out_path << ": " << trees.roots.size()
             << " trees, " << trees.nodes.size() << " nodes, " << all.size() << " samples\n";
   return 0;
