@@ -26,6 +26,8 @@ struct Feature {
   // CCW order. For a cluster across a 360-degree scan's seam, last_beam_index may be smaller.
   int32_t first_beam_index = -1;
   int32_t last_beam_index = -1;
+  // Index of this cluster in Segmenter::leg_clusters() (its leg features and centroid).
+  int32_t leg_cluster = -1;
 };
 
 }  // namespace slammtt

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/Dense>
+
 #include "common/angle.h"
 
 namespace slammtt {
@@ -51,6 +53,41 @@ Eigen::Vector2d Centroid(const double* x_m, const double* y_m, size_t count) {
   Eigen::Vector2d sum = Eigen::Vector2d::Zero();
   for (size_t i = 0; i < count; ++i) sum += Eigen::Vector2d(x_m[i], y_m[i]);
   return count > 0 ? Eigen::Vector2d(sum / static_cast<double>(count)) : sum;
+}
+
+CircleFit FitCircleKasa(const double* x_m, const double* y_m, size_t count) {
+  CircleFit fit;
+  if (count < 3) return fit;
+  const Eigen::Vector2d centroid = Centroid(x_m, y_m, count);
+  const double mx = centroid.x();
+  const double my = centroid.y();
+  Eigen::Matrix3d a = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d b = Eigen::Vector3d::Zero();
+  for (size_t i = 0; i < count; ++i) {
+    const double u = x_m[i] - mx;
+    const double v = y_m[i] - my;
+    const Eigen::Vector3d row(u, v, 1.0);
+    a.noalias() += row * row.transpose();
+    b.noalias() -= row * (u * u + v * v);
+  }
+  const Eigen::Vector3d solution = a.ldlt().solve(b);
+  if (!solution.allFinite()) return fit;
+  const double cu = -0.5 * solution(0);
+  const double cv = -0.5 * solution(1);
+  const double r2 = cu * cu + cv * cv - solution(2);
+  if (!(r2 > 0.0)) return fit;
+  fit.radius_m = std::sqrt(r2);
+  fit.centre_x_m = mx + cu;
+  fit.centre_y_m = my + cv;
+  double sum = 0.0;
+  for (size_t i = 0; i < count; ++i) {
+    const double e = std::hypot(x_m[i] - fit.centre_x_m, y_m[i] - fit.centre_y_m) - fit.radius_m;
+    sum += e * e;
+  }
+  fit.rms_residual_m = std::sqrt(sum / static_cast<double>(count));
+  fit.ok = std::isfinite(fit.rms_residual_m) && std::isfinite(fit.radius_m);
+  if (!fit.ok) fit = CircleFit{};
+  return fit;
 }
 
 LineFit FitLine(const double* x_m, const double* y_m, size_t count, double range_sigma_m,

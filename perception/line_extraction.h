@@ -67,6 +67,20 @@ LineFit FitLine(const double* x_m, const double* y_m, size_t count, double range
 // Mean of the points (x_m[i], y_m[i]), i < count; the origin for count 0.
 Eigen::Vector2d Centroid(const double* x_m, const double* y_m, size_t count);
 
+// Algebraic circle fit (Kasa, "A circle fitting procedure and its error analysis", IEEE Trans.
+// Instrumentation and Measurement 25(1), 1976) about the points' centroid: the centre and
+// radius minimising sum ((x - cx)^2 + (y - cy)^2 - R^2)^2, then the geometric RMS residual
+// sqrt(mean (|p_i - c| - R)^2). ok is false (and the rest 0) for fewer than three points,
+// collinear points or a non-finite solution.
+struct CircleFit {
+  bool ok = false;
+  double centre_x_m = 0.0;
+  double centre_y_m = 0.0;
+  double radius_m = 0.0;
+  double rms_residual_m = 0.0;
+};
+CircleFit FitCircleKasa(const double* x_m, const double* y_m, size_t count);
+
 // Signed distance of (x, y) from the line of a fit (positive on the far side from the sensor).
 inline double DistanceFromLine(double rho_m, double cos_alpha, double sin_alpha, double x_m,
                                double y_m) {

@@ -44,7 +44,11 @@ const SegmenterOptions& Checked(const SegmenterOptions& options) {
 
 Segmenter::Segmenter(const SegmenterOptions& options)
     : options_(Checked(options)),
-      criterion_(options.lambda_rad, options.sigma_r_m, options.max_beam_gap_rad) {}
+      criterion_(options.lambda_rad, options.sigma_r_m, options.max_beam_gap_rad),
+      leg_model_(options.leg_model != nullptr ? options.leg_model : &TrainedLegModel()) {
+  const char* problem = CheckLegModel(*leg_model_);
+  if (*problem != '\0') throw std::invalid_argument(std::string("segmenter options: ") + problem);
+}
 
 const std::vector<Feature>& Segmenter::Segment(const ScanView& scan) {
   PrepareBeams(scan);
@@ -60,6 +64,7 @@ void Segmenter::PrepareBeams(const ScanView& scan) {
   provisional_.clear();
   lines_.clear();
   people_.clear();
+  leg_clusters_.clear();
   clusters_.clear();
   structure_.clear();
   CollectBeams(scan);
@@ -73,6 +78,7 @@ void Segmenter::PrepareBeams(const ScanView& scan) {
 void Segmenter::MakeFeatures() {
   features_.clear();
   provisional_.clear();
+  leg_clusters_.clear();
   stats_.clusters_too_few_points = 0;
   stats_.clusters_too_wide = 0;
   stats_.circle_fit_fallbacks = 0;
@@ -384,38 +390,15 @@ void Segmenter::CountDepthEdges() {
 }
 
 bool Segmenter::ExplainedByCircle(size_t count, double lines_rms_m, size_t runs) const {
-  // Algebraic circle fit (Kasa 1976) about the centroid, then the geometric RMS residual.
-  const double n = static_cast<double>(count);
-  const Eigen::Vector2d centroid = Centroid(sensor_x_.data(), sensor_y_.data(), count);
-  const double mx = centroid.x();
-  const double my = centroid.y();
-  Eigen::Matrix3d a = Eigen::Matrix3d::Zero();
-  Eigen::Vector3d b = Eigen::Vector3d::Zero();
-  for (size_t i = 0; i < count; ++i) {
-    const double u = sensor_x_[i] - mx;
-    const double v = sensor_y_[i] - my;
-    const Eigen::Vector3d row(u, v, 1.0);
-    a.noalias() += row * row.transpose();
-    b.noalias() -= row * (u * u + v * v);
-  }
-  const Eigen::Vector3d solution = a.ldlt().solve(b);
-  if (!solution.allFinite()) return false;
-  const double cu = -0.5 * solution(0);
-  const double cv = -0.5 * solution(1);
-  const double r2 = cu * cu + cv * cv - solution(2);
-  if (!(r2 > 0.0)) return false;
-  const double radius = std::sqrt(r2);
-  if (radius > options_.max_width_m) return false;
-  const double cx = mx + cu;
-  const double cy = my + cv;
+  const CircleFit circle = FitCircleKasa(sensor_x_.data(), sensor_y_.data(), count);
+  if (!circle.ok || circle.radius_m > options_.max_width_m) return false;
   // The centre lies behind the points, seen from the sensor.
-  if (!(cx * cx + cy * cy > mx * mx + my * my)) return false;
-  double sum = 0.0;
-  for (size_t i = 0; i < count; ++i) {
-    const double e = std::hypot(sensor_x_[i] - cx, sensor_y_[i] - cy) - radius;
-    sum += e * e;
-  }
-  return std::sqrt(sum / n) <= (runs >= 2 ? kRoundRmsRatioRuns : kRoundRmsRatioOneRun) * lines_rms_m;
+  const Eigen::Vector2d centroid = Centroid(sensor_x_.data(), sensor_y_.data(), count);
+  const double cx = circle.centre_x_m;
+  const double cy = circle.centre_y_m;
+  if (!(cx * cx + cy * cy > centroid.squaredNorm())) return false;
+  return circle.rms_residual_m <=
+         (runs >= 2 ? kRoundRmsRatioRuns : kRoundRmsRatioOneRun) * lines_rms_m;
 }
 
 double Segmenter::SplitDistance(double range_m) const {
@@ -808,14 +791,19 @@ void Segmenter::MakeFeature(const Cluster& c) {
   feature.covariance(1, 0) = 0.0;
   feature.first_beam_index = beams_[ring_start].index;
   feature.last_beam_index = beams_[last_ring_index].index;
-  feature.leg_likeness = LegLikeness(DescribeClusterShape(cluster, spacing), options_.leg,
-                                     options_.sigma_r_m);
+  feature.leg_likeness =
+      ScoreLegLikeness(cluster, ring_start, last_ring_index, spacing, reference_bearing);
+  feature.leg_cluster = static_cast<int32_t>(leg_clusters_.size()) - 1;
   const bool leg_like = feature.leg_likeness >= options_.leg_threshold;
-  if (provisional && !leg_like) return;
+  if (provisional && !leg_like) {
+    leg_clusters_.back().fate = LegClusterFate::kNotALeg;
+    return;
+  }
   // Pieces of structure are looked for in scans that show structure (a line feature): in a
   // world of round objects, a far post of five points is as flat as the noise allows.
   if (!lines_.empty() && count >= 3 && IsStructurePiece(cluster, width, leg_like)) {
     ++stats_.clusters_structure_pieces;
+    leg_clusters_.back().fate = LegClusterFate::kStructurePiece;
     return;
   }
   if (!lines_.empty() && (count <= 3 || !leg_like)) {
@@ -823,10 +811,53 @@ void Segmenter::MakeFeature(const Cluster& c) {
     FillSensorFromCluster(count, reference_bearing);
     if (LiesOnALine(count)) {
       ++stats_.clusters_on_lines;
+      leg_clusters_.back().fate = LegClusterFate::kOnALine;
       return;
     }
   }
   (provisional ? provisional_ : features_).push_back(feature);
+}
+
+double Segmenter::ScoreLegLikeness(const ClusterView& cluster, size_t ring_start,
+                                   size_t last_ring_index, double spacing_rad,
+                                   double reference_bearing_rad) {
+  const size_t m = beams_.size();
+  const size_t count = cluster.count;
+  // The beams just outside the cluster: none when a beam without a usable return lies between
+  // (counted in unusable_before) or the cluster is the whole ring.
+  ClusterSurroundings around;
+  around.scan_spacing_rad = spacing_rad;
+  if (count < m) {
+    const size_t before = Previous(ring_start);
+    const size_t after = Next(last_ring_index);
+    const double gap = options_.max_beam_gap_rad;
+    if (beams_[ring_start].unusable_before == 0 &&
+        CcwDelta(beams_[before].angle_rad, beams_[ring_start].angle_rad) <= gap) {
+      around.range_before_m = beams_[before].range_m;
+    }
+    if (beams_[after].unusable_before == 0 &&
+        CcwDelta(beams_[last_ring_index].angle_rad, beams_[after].angle_rad) <= gap) {
+      around.range_after_m = beams_[after].range_m;
+    }
+  }
+  LegClusterRecord record;
+  record.features = ComputeLegFeatures(cluster, around);
+  const Eigen::Vector2d centroid = Centroid(cluster.x_m, cluster.y_m, count);
+  const double c = std::cos(reference_bearing_rad);
+  const double s = std::sin(reference_bearing_rad);
+  record.centroid_x_m = centroid.x() * c - centroid.y() * s;
+  record.centroid_y_m = centroid.x() * s + centroid.y() * c;
+  switch (options_.leg_classifier) {
+    case LegClassifier::kTrained:
+      record.leg_likeness = LegProbability(*leg_model_, record.features);
+      break;
+    case LegClassifier::kShape:
+      record.leg_likeness = LegLikeness(DescribeClusterShape(cluster, spacing_rad), options_.leg,
+                                        options_.sigma_r_m);
+      break;
+  }
+  leg_clusters_.push_back(record);
+  return record.leg_likeness;
 }
 
 std::vector<Feature> SegmentScan(const ScanView& scan, const SegmenterOptions& options) {

@@ -80,6 +80,8 @@
 
 #include "perception/breakpoint_criterion.h"
 #include "perception/feature.h"
+#include "perception/leg_classifier.h"
+#include "perception/leg_features.h"
 #include "perception/line_extraction.h"
 #include "perception/person_detection.h"
 #include "perception/scan_view.h"
@@ -120,6 +122,26 @@ struct SegmentationStats {
   int64_t people_one_leg = 0;
 };
 
+// Every cluster whose leg-likeness was computed in one scan (step 5: the compact clusters of
+// at least min_points points and the two-point clusters offered as provisional legs), whether
+// or not it then became a point feature: what the leg classifier saw. The training program
+// (tools/legs) reads these, so it learns from exactly the clusters and features that the
+// classifier meets at run time.
+enum class LegClusterFate {
+  kPointFeature,    // a point feature (or a provisional leg, which FindPeople may drop)
+  kStructurePiece,  // a straight piece or a corner of structure too short for a line
+  kOnALine,         // its points lie on a line feature of the scan
+  kNotALeg,         // a two-point cluster that does not look like a leg
+};
+
+struct LegClusterRecord {
+  LegFeatureVector features{};
+  double centroid_x_m = 0.0;  // mean of the cluster's points, sensor frame
+  double centroid_y_m = 0.0;
+  double leg_likeness = 0.0;
+  LegClusterFate fate = LegClusterFate::kPointFeature;
+};
+
 class Segmenter {
  public:
   // Throws std::invalid_argument with CheckSegmenterOptions()'s message for unusable options.
@@ -143,6 +165,7 @@ class Segmenter {
   const std::vector<Feature>& features() const { return features_; }
   const std::vector<LineFeature>& lines() const { return lines_; }
   const std::vector<PersonFeature>& people() const { return people_; }
+  const std::vector<LegClusterRecord>& leg_clusters() const { return leg_clusters_; }
   const SegmentationStats& stats() const { return stats_; }
   const SegmenterOptions& options() const { return options_; }
 
@@ -176,6 +199,8 @@ class Segmenter {
   void FillSensorFromCluster(size_t count, double reference_bearing_rad);
   bool IsStructurePiece(const ClusterView& cluster, double width_m, bool leg_like);
   void MakeFeature(const Cluster& cluster);
+  double ScoreLegLikeness(const ClusterView& cluster, size_t ring_start, size_t last_ring_index,
+                          double spacing_rad, double reference_bearing_rad);
 
   SegmenterOptions options_;
   BreakpointCriterion criterion_;
@@ -201,6 +226,8 @@ class Segmenter {
     bool merged;  // two runs joined by MergeCollinearLines()
   };
   std::vector<RingRun> line_runs_;   // the beams of each line, parallel to lines_
+  std::vector<LegClusterRecord> leg_clusters_;
+  const LegModel* leg_model_ = nullptr;
   std::vector<LegCandidate> candidates_;
   std::vector<uint8_t> candidate_used_;
   std::vector<int32_t> final_index_;

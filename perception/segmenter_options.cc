@@ -36,6 +36,26 @@ bool ParseCentreRule(const std::string& name, CentreRule* rule) {
   return false;
 }
 
+const char* LegClassifierName(LegClassifier classifier) {
+  switch (classifier) {
+    case LegClassifier::kTrained:
+      return "trained";
+    case LegClassifier::kShape:
+      return "shape";
+  }
+  return "unknown";
+}
+
+bool ParseLegClassifier(const std::string& name, LegClassifier* classifier) {
+  for (LegClassifier candidate : {LegClassifier::kTrained, LegClassifier::kShape}) {
+    if (name == LegClassifierName(candidate)) {
+      *classifier = candidate;
+      return true;
+    }
+  }
+  return false;
+}
+
 std::string CheckSegmenterOptions(const SegmenterOptions& o) {
   // Written as !(x > 0) so that NaN fails every check.
   if (!(o.lambda_rad > 0.0 && o.lambda_rad < 0.5 * M_PI)) {
@@ -99,6 +119,9 @@ std::string CheckSegmenterOptions(const SegmenterOptions& o) {
   }
   if (!(o.leg.convexity_floor >= 0.0 && o.leg.convexity_floor <= 1.0)) {
     return Bad("convexity_floor", "in [0, 1]", o.leg.convexity_floor);
+  }
+  if (o.leg_model != nullptr && *CheckLegModel(*o.leg_model) != '\0') {
+    return CheckLegModel(*o.leg_model);
   }
   if (!(o.leg_threshold >= 0.0 && o.leg_threshold <= 1.0)) {
     return Bad("leg_threshold", "in [0, 1]", o.leg_threshold);

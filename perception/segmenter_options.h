@@ -10,6 +10,7 @@
 #include <limits>
 #include <string>
 
+#include "perception/leg_classifier.h"
 #include "perception/leg_likeness.h"
 #include "perception/person_detection.h"
 
@@ -30,6 +31,20 @@ enum class CentreRule {
   // kRadiusCorrected; kRadiusCorrected is used when the fit cannot be made.
   kCircleFit,
 };
+
+// How a point feature's leg_likeness is computed.
+enum class LegClassifier {
+  // P(leg) from the learned model (leg_classifier.h) on the cluster's features
+  // (leg_features.h): SegmenterOptions::leg_model, by default TrainedLegModel().
+  kTrained,
+  // The hand-written shape score of leg_likeness.h (width, convexity, edges).
+  kShape,
+};
+
+// "trained", "shape".
+const char* LegClassifierName(LegClassifier classifier);
+// Parses a name of LegClassifierName(); false for anything else.
+bool ParseLegClassifier(const std::string& name, LegClassifier* classifier);
 
 // "middle_point", "radius_corrected", "circle_fit".
 const char* CentreRuleName(CentreRule rule);
@@ -121,7 +136,11 @@ struct SegmenterOptions {
   int min_line_points = 5;
   double min_line_length_m = 0.4;
 
-  // Leg-likeness of every point feature (leg_likeness.h; sigma_r_m is this struct's).
+  // Leg-likeness of every point feature: the learned model's P(leg) (leg_classifier.h), or the
+  // hand-written shape score (leg_likeness.h, with `leg` and this struct's sigma_r_m).
+  LegClassifier leg_classifier = LegClassifier::kTrained;
+  // The model of kTrained; nullptr: TrainedLegModel(). Not owned; must outlive the Segmenter.
+  const LegModel* leg_model = nullptr;
   LegLikenessOptions leg;
   // People (person_detection.h) from the point features with leg_likeness >= leg_threshold.
   // A cluster of only two points joins a person as a provisional leg (and then becomes a
@@ -129,7 +148,9 @@ struct SegmenterOptions {
   // beams (range r, beam spacing delta: leg_nominal_diameter_m / (r delta) < min_points; at
   // 0.9 degrees beyond about 2.5 m, never at 0.35 degrees within 6 m).
   bool detect_people = true;
-  double leg_threshold = 0.65;
+  // The trained model's own threshold (chosen by the training program's cross-validation,
+  // leg_classifier.h); with kShape the hand-written score was measured at 0.65.
+  double leg_threshold = TrainedLegModel().suggested_threshold;
   double leg_nominal_diameter_m = 0.12;
   PersonDetectionOptions person;
 

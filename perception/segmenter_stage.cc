@@ -92,6 +92,11 @@ SegmenterOptions ReadSegmenterOptions(const Config& section) {
     section.FailKey("centre_rule", "expected circle_fit, radius_corrected or middle_point, got '" +
                                        rule + "'");
   }
+  const std::string classifier =
+      section.GetString("leg_classifier", LegClassifierName(o.leg_classifier));
+  if (!ParseLegClassifier(classifier, &o.leg_classifier)) {
+    section.FailKey("leg_classifier", "expected trained or shape, got '" + classifier + "'");
+  }
   o.max_object_radius_m = PositiveDouble(section, "max_object_radius_m", o.max_object_radius_m);
   o.bearing_sigma_rad =
       PositiveDouble(section, "bearing_sigma_deg", o.bearing_sigma_rad / kDegToRad) * kDegToRad;

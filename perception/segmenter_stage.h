@@ -48,7 +48,8 @@ namespace slammtt {
 //   line_split_range_fraction (0.005), min_line_points (5), min_line_length_m (0.4),
 //   straight_piece_width_m (0.2), leg_min_diameter_m (0.08), leg_max_diameter_m (0.3),
 //   leg_diameter_margin_m (0.03), convexity_floor (0.6), detect_people (true),
-//   leg_threshold (0.65), leg_nominal_diameter_m (0.12), min_leg_separation_m (0.1),
+//   leg_classifier (trained | shape), leg_threshold (the trained model's threshold; 0.65 was
+//   the shape score's), leg_nominal_diameter_m (0.12), min_leg_separation_m (0.1),
 //   max_leg_separation_m (0.6), single_leg_threshold (0.65), pair_centre_sigma_m (0.05),
 //   single_leg_offset_sigma_m (0.15), depth_edge_m (0.3).
 // Throws ConfigError naming file, line and key for a wrong type, a bad value or an unknown key

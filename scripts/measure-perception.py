@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Measures the perception figures of issue 11 on the real recordings in ../shared/data/real.
 
-    scripts/measure-perception.py OUTDIR [--shared DIR] [--match-m 0.2] [--leg-threshold 0.65]
+    scripts/measure-perception.py OUTDIR [--shared DIR] [--match-m 0.2] [--leg-threshold P]
 
 For each recording it runs the shipped programs:
 
@@ -13,7 +13,8 @@ bag's /leg_cluster_positions) with the project's Python package (build/venv, mad
 scripts/python-env.sh). Figures, one Markdown table row per recording:
 
 - leg recall and precision (positive_*_extracted): a label is found when a point feature with
-  leg_likeness >= --leg-threshold (the segmenter's leg_threshold) lies within --match-m of it,
+  leg_likeness >= --leg-threshold (default: the segmenter's default leg_threshold, the trained
+  model's threshold read from perception/leg_model.cc) lies within --match-m of it,
   one-to-one, nearest pairs first; precision = matched leg candidates / leg candidates. The
   labels are the legs inside the training box only (docs/perception.md);
 - person features per scan and per minute (negative_2: nobody is there, every one is false);
@@ -24,6 +25,7 @@ positive_4_extracted and negative_2 are held out: no default was chosen on them.
 import argparse
 import math
 import os
+import re
 import subprocess
 import sys
 
@@ -108,13 +110,26 @@ def measure(out_log, match_m, leg_threshold):
     }
 
 
+def model_threshold():
+    """The trained model's threshold: the last number of TrainedLegModel()'s initialiser in the
+    generated perception/leg_model.cc (SegmenterOptions::leg_threshold's default)."""
+    with open(os.path.join(ROOT, "perception", "leg_model.cc")) as f:
+        source = f.read()
+    found = re.search(r"static const LegModel model\{([^}]*)\}", source)
+    if not found:
+        sys.exit("measure-perception: no TrainedLegModel() in perception/leg_model.cc")
+    return float(found.group(1).split(",")[-1])
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("outdir")
     parser.add_argument("--shared", default=os.path.join(os.path.dirname(ROOT), "shared"))
     parser.add_argument("--match-m", type=float, default=0.2)
-    parser.add_argument("--leg-threshold", type=float, default=0.65)
+    parser.add_argument("--leg-threshold", type=float, default=None)
     args = parser.parse_args()
+    if args.leg_threshold is None:
+        args.leg_threshold = model_threshold()
     try:
         import slammtt.lcmlog  # noqa: F401
     except ImportError:
