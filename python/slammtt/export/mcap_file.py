@@ -1,0 +1,40 @@
+"""An MCAP file of a log in Foxglove's schemas (slammtt.foxglove.convert), written by the
+Foxglove SDK's MCAP writer (protobuf messages, zstd chunks, with the summary, statistics and
+message indexes a viewer seeks with). Written to FILE.partial and renamed when whole."""
+
+import os
+
+import foxglove
+
+import slammtt
+from slammtt.foxglove.convert import ChannelSet, Converter
+from slammtt.lcmlog import LogReader
+
+
+def write_mcap(log_path, path, channels, mount):
+    """Converts every message of the log, in log order; returns (ChannelSet, Converter,
+    LogReader) for the counts."""
+    path = os.fspath(path)
+    os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
+    partial = path + ".partial"
+    context = foxglove.Context()
+    converter = Converter(channels, mount)
+    reader = LogReader(log_path)
+    try:
+        with foxglove.open_mcap(partial, allow_overwrite=True, context=context) as writer:
+            topics = ChannelSet(context)
+            for channel, _, message in reader:
+                for output in converter.convert(channel, message):
+                    topics.log(output)
+            writer.write_metadata("slammtt", {
+                "log": os.path.basename(os.fspath(log_path)),
+                "exporter": f"slammtt-export {slammtt.__version__}",
+                "laser_mount_forward_m": repr(converter.mount.x_m),
+                "laser_mount_left_m": repr(converter.mount.y_m),
+            })
+    except BaseException:
+        if os.path.exists(partial):
+            os.remove(partial)
+        raise
+    os.replace(partial, path)
+    return topics, converter, reader
