@@ -481,13 +481,18 @@ class _Skip(Exception):
 
 
 class ChannelSet:
-    """The Foxglove channels of a context (an MCAP file's or a WebSocket server's), each made
-    when its first message is logged, so that only topics with data are listed."""
+    """The Foxglove channels of a context (an MCAP file's or a WebSocket server's). Lazy (an
+    MCAP file): each is made when its first message is logged, so that only topics with data
+    are listed. Eager (a live server): every topic of TOPICS is made at once, so that a viewer
+    sees every channel advertised before the first message arrives."""
 
-    def __init__(self, context):
+    def __init__(self, context, eager=False):
         self.context = context
         self.channels = {}
         self.counts = {}
+        if eager:
+            for topic, (channel_class, _) in TOPICS.items():
+                self.channels[topic] = channel_class(topic, context=context)
 
     def log(self, output):
         channel = self.channels.get(output.topic)
