@@ -227,9 +227,10 @@ STALE_MAPPING = [
 def test_py_motmetrics_keeps_a_stale_mapping(tmp_path):
     """In frame 3, slammtt-eval keeps B with X (B's last match, which no other object has had
     since) and gives A the other track Y, an identity switch: 1 error in 4 truths, MOTA 0.75.
-    py-motmetrics keeps A with X, A's match of frame 1, although X has been B's since (mot.py, step 1 of MOTAccumulator.update: `self.m[o]` is never cleared when its track
-    goes to another object), so B finds no track within 1 m: a miss and a false positive, MOTA
-    0.5, and one pair fewer matched. Its answer depends on the order of the truth rows of the
+    py-motmetrics keeps A with X, A's match of frame 1, although X has been B's since (mot.py,
+    step 1 of MOTAccumulator.update: `self.m[o]` is never cleared when its track goes to
+    another object), so B finds no track within 1 m: a miss and a false positive, MOTA 0.5,
+    and one pair fewer matched. Its answer depends on the order of the truth rows of the
     frame: with B's row first, B keeps X, and py-motmetrics agrees with slammtt-eval.
     TrackEval's CLEAR (which keeps matches of the previous frame only) agrees with
     slammtt-eval."""
