@@ -1,14 +1,19 @@
-"""slammtt-export's command line, TUM trajectories and CSV tables, read back by evo and by the
-csv module: evo_ape --align_origin reproduces slammtt-eval's ATE to 1e-6 (docs/export.md)."""
+"""slammtt-export's command line, TUM trajectories, CSV tables and MOTChallenge files, read
+back by evo, the csv module, TrackEval and py-motmetrics: evo_ape --align_origin reproduces
+slammtt-eval's ATE to 1e-6 (docs/export.md)."""
 
 import csv
 import math
 import os
+import re
 import subprocess
 
 import pytest
 
 from conftest import BIN_DIR, export_ok, read_log, run_export, scenario_run, venv_program
+
+# py-motmetrics 1.4.0's reader warns on pandas 3 (motmetrics/io.py subtracts a tuple).
+pytestmark = pytest.mark.filterwarnings("ignore:Operation with tuple is deprecated")
 
 SCENARIOS = [("s1-crossing", 7), ("s2-lobby", 3)]
 
@@ -178,3 +183,43 @@ def test_launcher_runs_the_venv_program():
     done = subprocess.run([str(launcher), "--version"], capture_output=True, text=True,
                           timeout=60)
     assert done.returncode == 0 and done.stdout.startswith("slammtt-export "), done.stderr
+
+
+def test_mot_files_read_by_trackeval_and_py_motmetrics(run, tmp_path):
+    """TrackEval's MOTChallenge reader (MotChallenge2DBox, the folder layout of the export) and
+    py-motmetrics' (mot15-2D) read the files: every row, the flags, the points."""
+    import motmetrics
+    import trackeval
+    err = export_ok(run.log, "--mot", tmp_path, "--mot-sequence", "seq", "--config", run.config)
+    counts = dict(re.search(r"MOT: (?P<frames>\d+) frames, (?P<truth>\d+) truth rows "
+                            r"\((?P<scored>\d+) scored\), (?P<tracks>\d+) track rows", err)
+                  .groupdict())
+    counts = {k: int(v) for k, v in counts.items()}
+    assert counts["truth"] > counts["scored"] > 0 and counts["tracks"] > 0
+    dataset = trackeval.datasets.MotChallenge2DBox({
+        "GT_FOLDER": str(tmp_path / "gt"), "TRACKERS_FOLDER": str(tmp_path / "trackers"),
+        "TRACKERS_TO_EVAL": ["slammtt"], "SKIP_SPLIT_FOL": True, "SEQ_INFO": {"seq": None},
+        "PRINT_CONFIG": False})
+    raw = dataset.get_raw_seq_data("slammtt", "seq")
+    assert raw["num_timesteps"] == counts["frames"]
+    assert sum(len(ids) for ids in raw["gt_ids"]) == counts["truth"]
+    assert sum(len(ids) for ids in raw["tracker_ids"]) == counts["tracks"]
+    # MOTChallenge's preprocessing drops the flag-0 truth (standing or invisible movers).
+    data = dataset.get_preprocessed_seq_data(raw, "pedestrian")
+    assert data["num_gt_dets"] == counts["scored"]
+    assert data["num_tracker_dets"] == counts["tracks"]
+
+    gt = motmetrics.io.loadtxt(str(tmp_path / "gt" / "seq" / "gt" / "gt.txt"), fmt="mot15-2D")
+    tracks = motmetrics.io.loadtxt(str(tmp_path / "trackers" / "slammtt" / "data" / "seq.txt"),
+                                   fmt="mot15-2D")
+    assert len(gt) == counts["truth"] and int((gt["Confidence"] == 1).sum()) == counts["scored"]
+    assert len(tracks) == counts["tracks"]
+    # The truth points: (X, Y) + 1 (the reader's 1-based pixel shift) + half the 1 m box.
+    log = read_log(run.log)
+    frames = [line.split(",") for line in (tmp_path / "frames.csv").read_text().splitlines()[1:]]
+    utime_of = {int(f): int(u) for f, u in frames}
+    truth_at = {m.utime: m for m in log["GROUND_TRUTH"]}
+    (frame, object_id), row = next(iter(gt.iterrows()))
+    o = next(o for o in truth_at[utime_of[frame]].objects if o.id == object_id)
+    assert row["X"] + 1 + 0.5 == pytest.approx(o.x_m, abs=1e-9)
+    assert row["Y"] + 1 + 0.5 == pytest.approx(o.y_m, abs=1e-9)

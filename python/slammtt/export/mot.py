@@ -4,7 +4,7 @@ the folder layout TrackEval's MotChallenge2DBox reads (with SKIP_SPLIT_FOL):
 
   DIR/gt/SEQ/gt/gt.txt                 frame,id,bb_left,bb_top,w,h,flag,class,visibility
   DIR/gt/SEQ/seqinfo.ini               seqLength, frameRate
-  DIR/trackers/slammtt/data/SEQ.txt    frame,id,bb_left,bb_top,w,h,conf,x,y,z
+  DIR/trackers/slammtt/data/SEQ.txt    frame,id,bb_left,bb_top,w,h,conf,-1,-1,-1
   DIR/frames.csv                       frame -> utime_us
 
 The stack tracks points on the floor, not boxes in an image. Every object and track is written
@@ -12,7 +12,9 @@ as the axis-aligned square of side `box_m` centred on its position, in metres of
 (bb_left = x - box_m / 2, bb_top = y - box_m / 2, y not mirrored): distances between the
 (bb_left, bb_top) corners are exactly the distances between the points, so an evaluation by
 Euclidean distance on those columns (py-motmetrics' 'euc' with distfields X, Y) sees the
-stack's geometry, and the track files also carry the point itself in x, y (z = 0). An
+stack's geometry; the point is bb_left + box_m / 2, bb_top + box_m / 2. The track files' last
+three columns (MOTChallenge's 3D x, y, z) are -1, as in MOTChallenge's 2D results: TrackEval
+reads the eighth column of a result row as its class and refuses any above 1. An
 evaluation by box overlap (IoU) sees squares whose overlap falls with distance, which no box
 side makes equal to a distance threshold in every direction.
 
@@ -115,7 +117,7 @@ def write_mot(data, directory, sequence, rules, box_m=1.0):
                 continue
             x_m, y_m = transform.apply(t.x_m, t.y_m) if transform else (t.x_m, t.y_m)
             track_lines.append(",".join(number_text(v) for v in (
-                frame, t.id, *_box(x_m, y_m, box_m), 1.0, x_m, y_m, 0.0)))
+                frame, t.id, *_box(x_m, y_m, box_m), 1.0, -1, -1, -1)))
             counts["track_rows"] += 1
 
     if data["ground_truth"]:
