@@ -121,3 +121,28 @@ def scenario_run(tmp_path_factory, scenario, seed, duration_s=20):
             pytest.skip(f"{program} is not built: the tests on a scenario's log are skipped")
     return ScenarioRun(tmp_path_factory.mktemp(f"{scenario}-{seed}"), scenario, seed,
                        duration_s)
+
+
+@pytest.fixture
+def netns():
+    """Skips a test that uses LCM unless it runs in a private network namespace (ctest runs
+    test_live_*.py through tests/support/netns-run)."""
+    if os.environ.get("SLAMMTT_IN_NETNS") != "1":
+        pytest.skip("not in a private network namespace (run it through ctest or "
+                    "tests/support/netns-run): LCM tests are skipped")
+
+
+def evo_stats(program, *args, home):
+    """An evo program of this venv (evo_ape, evo_rpe) run as a user runs it, with HOME (where
+    evo keeps its settings) in `home`; its statistics (rmse, max, mean, ...) read back from
+    --save_results."""
+    from evo.tools import file_interface
+    results = home / f"{program}-results.zip"
+    env = dict(os.environ, HOME=str(home), MPLBACKEND="Agg")
+    done = subprocess.run([str(venv_program(program)), *map(str, args), "--no_warnings",
+                           "--save_results", str(results)], capture_output=True, text=True,
+                          env=env, timeout=300)
+    assert done.returncode == 0, done.stdout + done.stderr
+    stats = file_interface.load_res_file(str(results)).stats
+    results.unlink()
+    return stats

@@ -18,13 +18,12 @@ even when that track has since been matched to another object (the stale mapping
 """
 
 import math
-import os
 import subprocess
 
 import numpy as np
 import pytest
 
-from conftest import EVAL, export_ok, scenario_run, venv_program
+from conftest import EVAL, evo_stats, export_ok, scenario_run
 
 # py-motmetrics 1.4.0's reader warns on pandas 3 (motmetrics/io.py subtracts a tuple).
 pytestmark = pytest.mark.filterwarnings("ignore:Operation with tuple is deprecated")
@@ -266,19 +265,6 @@ def test_py_motmetrics_keeps_a_stale_mapping(tmp_path):
                 ids=lambda p: f"{p[0]}-seed{p[1]}")
 def run(request, tmp_path_factory):
     return scenario_run(tmp_path_factory, *request.param)
-
-
-def evo_stats(program, *args, home):
-    from evo.tools import file_interface
-    results = home / f"{program}.zip"
-    env = dict(os.environ, HOME=str(home), MPLBACKEND="Agg")   # evo keeps settings in ~/.evo
-    done = subprocess.run([str(venv_program(program)), *map(str, args), "--no_warnings",
-                           "--save_results", str(results)], capture_output=True, text=True,
-                          env=env, timeout=300)
-    assert done.returncode == 0, done.stdout + done.stderr
-    stats = file_interface.load_res_file(str(results)).stats
-    results.unlink()
-    return stats
 
 
 def test_aligned_ate_and_rpe_equal_evos(run, tmp_path):

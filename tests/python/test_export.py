@@ -4,13 +4,12 @@ slammtt-eval's ATE to 1e-6 (docs/export.md)."""
 
 import csv
 import math
-import os
 import re
 import subprocess
 
 import pytest
 
-from conftest import BIN_DIR, export_ok, read_log, run_export, scenario_run, venv_program
+from conftest import BIN_DIR, evo_stats, export_ok, read_log, run_export, scenario_run
 
 # py-motmetrics 1.4.0's reader warns on pandas 3 (motmetrics/io.py subtracts a tuple).
 pytestmark = pytest.mark.filterwarnings("ignore:Operation with tuple is deprecated")
@@ -30,21 +29,9 @@ def exported(run, tmp_path_factory):
     return out, err
 
 
-def evo(program, *args, home):
-    """An evo program of this venv; its statistics (rmse, max, ...) from --save_results."""
-    from evo.tools import file_interface
-    results = home / f"{program}-{len(list(home.glob('*.zip')))}.zip"
-    env = dict(os.environ, HOME=str(home), MPLBACKEND="Agg")   # evo keeps settings in ~/.evo
-    done = subprocess.run([str(venv_program(program)), *map(str, args), "--no_warnings",
-                           "--save_results", str(results)], capture_output=True, text=True,
-                          env=env, timeout=300)
-    assert done.returncode == 0, done.stdout + done.stderr
-    return file_interface.load_res_file(str(results)).stats
-
-
 def test_evo_ape_align_origin_is_slammtt_evals_ate(run, exported, tmp_path):
     out, err = exported
-    stats = evo("evo_ape", "tum", out / "tum" / "truth.tum", out / "tum" / "estimate.tum",
+    stats = evo_stats("evo_ape", "tum", out / "tum" / "truth.tum", out / "tum" / "estimate.tum",
                 "--align_origin", home=tmp_path)
     robot = run.report["detail"]["robot"]
     assert stats["rmse"] == pytest.approx(run.report["ate_rmse_m"], abs=1e-6)

@@ -7,7 +7,6 @@ traffic never leaves it."""
 
 import base64
 import json
-import os
 import re
 import signal
 import struct
@@ -23,13 +22,6 @@ URL = "udpm://239.255.76.67:7667?ttl=0"
 ALL_TOPICS = {"/tf", "/laser_scan", "/laser_scan/points", "/pose", "/smoothed_pose",
               "/odometry", "/ground_truth/pose", "/map", "/tracks", "/features",
               "/ground_truth/objects", "/ground_truth/walls", "/leg_labels"}
-
-
-@pytest.fixture
-def netns():
-    if os.environ.get("SLAMMTT_IN_NETNS") != "1":
-        pytest.skip("not in a private network namespace (run it through ctest or "
-                    "tests/support/netns-run): LCM tests are skipped")
 
 
 class Bridge:

@@ -15,13 +15,6 @@ import pytest
 from conftest import BIN_DIR, SOURCE_DIR, scenario_run, venv_program
 
 
-@pytest.fixture
-def netns():
-    if os.environ.get("SLAMMTT_IN_NETNS") != "1":
-        pytest.skip("not in a private network namespace (run it through ctest or "
-                    "tests/support/netns-run): LCM tests are skipped")
-
-
 def readme_commands():
     readme = (SOURCE_DIR / "README.md").read_text()
     section = readme.split("## Looking at the data\n", 1)[1].split("\n## ", 1)[0]

@@ -7,13 +7,13 @@ Exit status: 0 done, 1 the log cannot be read (one line; nothing is left under a
 2 a bad command line or configuration.
 """
 
-import argparse
 import math
 import os
 import pathlib
 import sys
 
 import slammtt
+from slammtt.cli import Parser, UsageError, run_main
 from slammtt.export import mot, tables, tum
 from slammtt.export.logdata import LogData
 from slammtt.lcmlog import LogError
@@ -22,17 +22,8 @@ from slammtt.stackconfig import ConfigError, StackConfig
 PROGRAM = "slammtt-export"
 
 
-class UsageError(Exception):
-    pass
-
-
-class _Parser(argparse.ArgumentParser):
-    def error(self, message):
-        raise UsageError(message)
-
-
 def _parser():
-    p = _Parser(
+    p = Parser(
         prog=PROGRAM, add_help=False,
         usage=f"{PROGRAM} [options] LOG (-o DIR | --tum DIR | --csv DIR | --mot DIR | "
               "--mcap FILE)...",
@@ -173,23 +164,7 @@ def _report_input(data, info):
 
 
 def main(argv=None):
-    try:
-        return run(sys.argv[1:] if argv is None else argv)
-    except UsageError as error:
-        print(f"{PROGRAM}: error: {error} (see --help)", file=sys.stderr)
-        return 2
-    except ConfigError as error:
-        print(f"{PROGRAM}: error: {error}", file=sys.stderr)
-        return 2
-    except LogError as error:
-        print(f"{PROGRAM}: error: {error}", file=sys.stderr)
-        return 1
-    except OSError as error:
-        print(f"{PROGRAM}: error: {error.filename or ''}: {error.strerror}", file=sys.stderr)
-        return 1
-    except KeyboardInterrupt:
-        print(f"{PROGRAM}: interrupted", file=sys.stderr)
-        return 130
+    return run_main(PROGRAM, run, argv, usage_errors=(ConfigError,), input_errors=(LogError,))
 
 
 if __name__ == "__main__":

@@ -14,7 +14,6 @@ Exit status: 0 stopped by SIGINT or SIGTERM, or the log played to its end (witho
 1 the log, LCM or the port cannot be used (one line); 2 a bad command line or configuration.
 """
 
-import argparse
 import math
 import os
 import re
@@ -24,23 +23,15 @@ import time
 
 import slammtt
 from slammtt import msgs
+from slammtt.cli import Parser, UsageError, run_main
 from slammtt.lcmlog import LogError, LogReader
 from slammtt.stackconfig import ConfigError, StackConfig
 
 PROGRAM = "slammtt-foxglove"
 
 
-class UsageError(Exception):
-    pass
-
-
-class _Parser(argparse.ArgumentParser):
-    def error(self, message):
-        raise UsageError(message)
-
-
 def _parser():
-    p = _Parser(prog=PROGRAM, add_help=False, usage=f"{PROGRAM} [options] [LOG]",
+    p = Parser(prog=PROGRAM, add_help=False, usage=f"{PROGRAM} [options] [LOG]",
                 description="Serves the stack's channels to Foxglove over a WebSocket (open "
                             "ws://HOST:PORT in Foxglove): live from LCM, or from LOG, in the "
                             "schemas of slammtt-export --mcap.")
@@ -202,21 +193,7 @@ def run(argv):
 
 
 def main(argv=None):
-    try:
-        return run(sys.argv[1:] if argv is None else argv)
-    except UsageError as error:
-        print(f"{PROGRAM}: error: {error} (see --help)", file=sys.stderr)
-        return 2
-    except ConfigError as error:
-        print(f"{PROGRAM}: error: {error}", file=sys.stderr)
-        return 2
-    except LogError as error:
-        print(f"{PROGRAM}: error: {error}", file=sys.stderr)
-        return 1
-    except OSError as error:
-        where = f"{error.filename}: " if error.filename else ""
-        print(f"{PROGRAM}: error: {where}{error.strerror or error}", file=sys.stderr)
-        return 1
+    return run_main(PROGRAM, run, argv, usage_errors=(ConfigError,), input_errors=(LogError,))
 
 
 if __name__ == "__main__":

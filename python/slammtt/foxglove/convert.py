@@ -24,7 +24,6 @@ channel), never converted half; an unknown channel is ignored.
 """
 
 import math
-import struct
 from typing import NamedTuple
 
 import numpy as np
