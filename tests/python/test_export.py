@@ -25,7 +25,8 @@ def run(request, tmp_path_factory):
 @pytest.fixture(scope="module")
 def exported(run, tmp_path_factory):
     out = tmp_path_factory.mktemp("export")
-    err = export_ok(run.log, "--tum", out / "tum", "--csv", out / "csv", "--config", run.config)
+    err = export_ok(run.log, "--tum", out / "tum", "--csv", out / "csv", "--mot", out / "mot",
+                    "--config", run.config)
     return out, err
 
 
@@ -127,11 +128,13 @@ def test_csv_tables_have_units_and_every_row(run, exported):
 
 def test_same_log_same_bytes(run, exported, tmp_path):
     out, _ = exported
-    export_ok(run.log, "--tum", tmp_path / "tum", "--csv", tmp_path / "csv", "--config",
-              run.config)
-    for sub in ("tum", "csv"):
-        names = sorted(p.name for p in (out / sub).iterdir())
-        assert names == sorted(p.name for p in (tmp_path / sub).iterdir())
+    export_ok(run.log, "--tum", tmp_path / "tum", "--csv", tmp_path / "csv", "--mot",
+              tmp_path / "mot", "--config", run.config)
+    for sub in ("tum", "csv", "mot"):
+        names = sorted(p.relative_to(out / sub) for p in (out / sub).rglob("*") if p.is_file())
+        assert names == sorted(p.relative_to(tmp_path / sub)
+                               for p in (tmp_path / sub).rglob("*") if p.is_file())
+        assert len(names) >= 3
         for name in names:
             assert (out / sub / name).read_bytes() == (tmp_path / sub / name).read_bytes()
 
