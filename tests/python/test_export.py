@@ -139,6 +139,18 @@ def test_same_log_same_bytes(run, exported, tmp_path):
             assert (out / sub / name).read_bytes() == (tmp_path / sub / name).read_bytes()
 
 
+def test_a_link_planted_at_an_output_is_replaced_not_written_through(run, tmp_path):
+    victim = tmp_path / "victim"
+    victim.write_text("keep me")
+    (tmp_path / "tum").mkdir()
+    (tmp_path / "tum" / "estimate.tum").symlink_to(victim)
+    export_ok(run.log, "--tum", tmp_path / "tum")
+    assert victim.read_text() == "keep me"
+    estimate = tmp_path / "tum" / "estimate.tum"
+    assert not estimate.is_symlink() and len(estimate.read_text().splitlines()) > 100
+    assert not list((tmp_path / "tum").glob("*.partial*"))
+
+
 def one_line_error(status, err, expected_status):
     assert status == expected_status, err
     assert len(err.strip().splitlines()) == 1, err

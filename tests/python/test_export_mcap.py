@@ -184,4 +184,14 @@ def test_not_finite_messages_are_skipped_and_counted(run, tmp_path):
     _, _, messages = read_mcap(out)
     assert len(messages["/pose"]) == poses - poses // 10
     assert all(math.isfinite(p.pose.position.x) for _, p in messages["/pose"])
-    assert not list(tmp_path.glob("*.partial"))
+    assert not list(tmp_path.glob("*.partial*"))
+
+
+def test_a_link_planted_at_the_output_is_replaced_not_written_through(run, tmp_path):
+    victim = tmp_path / "victim"
+    victim.write_text("keep me")
+    out = tmp_path / "run.mcap"
+    out.symlink_to(victim)
+    export_ok(run.log, "--mcap", out)
+    assert victim.read_text() == "keep me"
+    assert not out.is_symlink() and read_mcap(out)[0].statistics.message_count > 1000

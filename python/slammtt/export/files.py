@@ -1,18 +1,19 @@
-"""Writing export files: into PATH.partial, renamed to PATH once whole, so that a failure never
-leaves half a file under the final name (as slammtt-replay's and slammtt-import's writers)."""
+"""Writing export files through slammtt.output_file: a partial file created exclusively (never
+through a link planted at its name), renamed to PATH once whole, so that a failure never leaves
+half a file under the final name (as slammtt-replay's and slammtt-import's writers)."""
 
 import csv
 import io
 import os
 
+from slammtt.output_file import write_text_atomically
+
 
 def write_text(path, text):
+    """`text` into `path`, creating its folder."""
     path = os.fspath(path)
     os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
-    partial = path + ".partial"
-    with open(partial, "w", encoding="utf-8", newline="") as f:
-        f.write(text)
-    os.replace(partial, path)
+    write_text_atomically(path, text)
 
 
 def write_csv(path, header, rows):

@@ -1,6 +1,7 @@
 """An MCAP file of a log in Foxglove's schemas (slammtt.foxglove.convert), written by the
 Foxglove SDK's MCAP writer (protobuf messages, zstd chunks, with the summary, statistics and
-message indexes a viewer seeks with). Written to FILE.partial and renamed when whole."""
+message indexes a viewer seeks with). Written to a partial file (slammtt.output_file: created
+exclusively, never through a planted link) and renamed to FILE when whole."""
 
 import os
 
@@ -9,6 +10,7 @@ import foxglove
 import slammtt
 from slammtt.foxglove.convert import ChannelSet, Converter
 from slammtt.lcmlog import LogReader
+from slammtt.output_file import create_partial
 
 
 def write_mcap(log_path, path, channels, mount):
@@ -16,12 +18,13 @@ def write_mcap(log_path, path, channels, mount):
     LogReader) for the counts."""
     path = os.fspath(path)
     os.makedirs(os.path.dirname(path) or ".", exist_ok=True)
-    partial = path + ".partial"
+    fd, partial = create_partial(path)
     context = foxglove.Context()
     converter = Converter(channels, mount)
     reader = LogReader(log_path)
     try:
-        with foxglove.open_mcap(partial, allow_overwrite=True, context=context) as writer:
+        with os.fdopen(fd, "w+b") as out, \
+                foxglove.open_mcap(out, context=context) as writer:
             topics = ChannelSet(context)
             for channel, _, message in reader:
                 for output in converter.convert(channel, message):
@@ -33,7 +36,7 @@ def write_mcap(log_path, path, channels, mount):
                 "laser_mount_left_m": repr(converter.mount.y_m),
             })
     except BaseException:
-        if os.path.exists(partial):
+        if os.path.lexists(partial):
             os.remove(partial)
         raise
     os.replace(partial, path)
