@@ -1,8 +1,9 @@
-"""Every command of the README's "Looking at the data", run as written, on a scenario's replay in
-place of the office run (s1-crossing seed 7, 20 s, and its configuration), with out/ a temporary
-folder: the exports, evo_ape (which prints slammtt-eval's ATE), and slammtt-foxglove playing
-the log and live from LCM (each until it serves, then SIGTERM: exit 0). In a network namespace
-of its own (netns-run), where the fixed port 8765 and LCM's multicast are private."""
+"""Every command of the README's "Looking at the data" (its exports and Foxglove part), run as
+written, on a scenario's replay in place of the office run (s1-crossing seed 7, 20 s, and its
+configuration), with out/ a temporary folder: the exports, evo_ape (which prints slammtt-eval's
+ATE), and slammtt-foxglove playing the log and live from LCM (each until it serves, then
+SIGTERM: exit 0). In a network namespace of its own (netns-run), where the fixed port 8765 and
+LCM's multicast are private."""
 
 import os
 import re
@@ -18,6 +19,7 @@ from conftest import BIN_DIR, SOURCE_DIR, scenario_run, venv_program
 def readme_commands():
     readme = (SOURCE_DIR / "README.md").read_text()
     section = readme.split("## Looking at the data\n", 1)[1].split("\n## ", 1)[0]
+    section = section.split("### Exports and the Foxglove view\n", 1)[1].split("\n### ", 1)[0]
     block = re.search(r"```sh\n(.*?)```", section, re.S).group(1)
     return [line.split("#", 1)[0].strip() for line in block.splitlines() if line.strip()]
 
