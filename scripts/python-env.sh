@@ -3,13 +3,15 @@
 #   scripts/python-env.sh [VENV]        (default: build/venv of the checkout)
 # 1. python3 -m venv VENV (python3 and python3-venv from Debian if missing; $PYTHON chooses
 #    another interpreter, 3.10 or newer);
-# 2. the pinned PyPI versions of python/requirements.txt (again only when that file changed);
+# 2. the pinned PyPI versions of python/requirements.txt, then python/requirements-no-deps.txt
+#    without their declared dependencies (again only when either file changed);
 # 3. the Python LCM types, generated from lcmtypes/*.lcm by the lcm-gen of PyPI's lcm package
 #    (Debian's lcm-gen 1.3.1 turns boolean arrays into a map iterator) into the venv's
 #    site-packages as package slammtt_msgs, every time (never committed);
-# 4. the slammtt package (python/), editable, with its program slammtt-import in VENV/bin.
-# Nothing else of the repository needs the venv; build/bin/slammtt-import (written by CMake)
-# runs VENV/bin/slammtt-import.
+# 4. the slammtt package (python/), editable, with its programs slammtt-import, slammtt-export
+#    and slammtt-foxglove in VENV/bin.
+# Nothing else of the repository needs the venv; build/bin/slammtt-import, slammtt-export and
+# slammtt-foxglove (written by CMake) run the venv's programs.
 set -eu
 venv=${1:-}
 case "$venv" in
@@ -44,10 +46,12 @@ fi
 vpython="$venv/bin/python"
 
 stamp="$venv/.slammtt-requirements"
-if ! cmp -s python/requirements.txt "$stamp"; then
+if ! cat python/requirements.txt python/requirements-no-deps.txt | cmp -s - "$stamp"; then
   echo "python-env: installing python/requirements.txt into $venv" >&2
   "$vpython" -m pip install --quiet --disable-pip-version-check -r python/requirements.txt
-  cp python/requirements.txt "$stamp"
+  "$vpython" -m pip install --quiet --disable-pip-version-check --no-deps \
+    -r python/requirements-no-deps.txt
+  cat python/requirements.txt python/requirements-no-deps.txt > "$stamp"
 fi
 
 site=$("$vpython" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')
@@ -60,7 +64,8 @@ mv "$generated/slammtt_msgs" "$site/slammtt_msgs"
 rm -rf "$generated"
 
 if ! "$vpython" -c 'import slammtt.importer.cli' >/dev/null 2>&1 ||
-   [ ! -x "$venv/bin/slammtt-import" ] ||
+   [ ! -x "$venv/bin/slammtt-import" ] || [ ! -x "$venv/bin/slammtt-export" ] ||
+   [ ! -x "$venv/bin/slammtt-foxglove" ] ||
    [ "$("$vpython" -c 'import slammtt, os; print(os.path.dirname(slammtt.__file__))')" != \
      "$root/python/slammtt" ]; then
   echo "python-env: installing python/ (editable) into $venv" >&2

@@ -11,7 +11,9 @@
 #  4. the live stack runs over LCM on the real robot's setting (rplidar-a2: 360-degree scans ->
 #     slammtt-segmenter -> slammtt-estimator), recorded by lcm-logger, evaluated and drawn.
 #     It runs in a private network namespace (tests/support/netns-run), so it works on a
-#     machine without a network and never disturbs a robot stack on the same host.
+#     machine without a network and never disturbs a robot stack on the same host;
+#  5. the office run's log (step 3) exported to an MCAP file in Foxglove's schemas
+#     (out/office-seed1.mcap: open it in Foxglove), with the Python tools' venv.
 # Everything lands in out/. The README's pictures (docs/images) come from steps 2 and 3, made
 # by scripts/make-readme-pictures.sh.
 set -eu
@@ -41,3 +43,8 @@ echo "== 3. office, seed 1: scans -> segmenter -> estimator (replay), evaluation
 
 echo "== 4. live stack over LCM: rplidar-a2, seed 7"
 tests/support/netns-run scripts/run-pipeline.sh rplidar-a2 7 out/rplidar-a2-live 5
+
+echo "== 5. the office run for Foxglove -> out/office-seed1.mcap"
+scripts/python-env.sh build/venv
+"$bin/slammtt-export" out/office-seed1-replay.lcm --config estimator/config/office.yaml \
+  --mcap out/office-seed1.mcap

@@ -63,3 +63,86 @@ def odometry(utime, x):
     m.utime = utime
     m.x_m = x
     return m
+
+
+# The stack's programs a test runs on a shipped scenario (skipped when they are not built).
+WORLD = BIN_DIR / "slammtt-world"
+REPLAY_PROGRAM = BIN_DIR / "slammtt-replay"
+EVAL = BIN_DIR / "slammtt-eval"
+
+
+def run_module(module, *args, timeout=300, env=None):
+    """`python -m module args` of this venv: (exit status, stdout, stderr)."""
+    done = subprocess.run([sys.executable, "-m", module, *map(str, args)], capture_output=True,
+                          text=True, timeout=timeout, env=env)
+    return done.returncode, done.stdout, done.stderr
+
+
+def run_export(*args):
+    return run_module("slammtt.export.cli", *args)
+
+
+def export_ok(*args):
+    status, out, err = run_export(*args)
+    assert status == 0, err
+    return err
+
+
+def venv_program(name):
+    """A program of this venv (evo_ape, evo_rpe, ...)."""
+    return pathlib.Path(sys.executable).parent / name
+
+
+class ScenarioRun:
+    """A shipped scenario's scans through slammtt-replay, its slammtt-eval JSON report, and the
+    estimator configuration both used."""
+
+    def __init__(self, directory, scenario, seed, duration_s):
+        import json
+        self.config = SOURCE_DIR / "estimator" / "config" / f"{scenario}.yaml"
+        world = directory / "world.lcm"
+        self.log = directory / f"{scenario}-seed{seed}.lcm"
+        self.report_path = directory / "report.json"
+        for command in (
+                [WORLD, "--scenario", scenario, "--seed", seed, "--duration", duration_s,
+                 "--output", "scans", "--log", world],
+                [REPLAY_PROGRAM, "-q", "--no-timing", world, "-o", self.log, "--config",
+                 self.config],
+                [EVAL, self.log, "--config", self.config, "--json", self.report_path]):
+            done = subprocess.run(list(map(str, command)), capture_output=True, text=True,
+                                  timeout=600)
+            assert done.returncode == 0, done.stderr
+        self.report = json.loads(self.report_path.read_text())
+
+
+def scenario_run(tmp_path_factory, scenario, seed, duration_s=20):
+    for program in (WORLD, REPLAY_PROGRAM, EVAL):
+        if not program.exists():
+            pytest.skip(f"{program} is not built: the tests on a scenario's log are skipped")
+    return ScenarioRun(tmp_path_factory.mktemp(f"{scenario}-{seed}"), scenario, seed,
+                       duration_s)
+
+
+@pytest.fixture
+def netns():
+    """Skips a test that uses LCM unless it runs in a private network namespace (ctest runs
+    test_live_*.py through tests/support/netns-run)."""
+    if os.environ.get("SLAMMTT_IN_NETNS") != "1":
+        pytest.skip("not in a private network namespace (run it through ctest or "
+                    "tests/support/netns-run): LCM tests are skipped")
+
+
+def evo_stats(program, *args, home):
+    """An evo program of this venv (evo_ape, evo_rpe) run as a user runs it, with HOME (where
+    evo keeps its settings) in `home`; its statistics (rmse, max, mean, ...) read back from
+    --save_results."""
+    from evo.tools import file_interface
+    results = home / f"{program}-results.zip"
+    env = dict(os.environ, HOME=str(home), MPLBACKEND="Agg")
+    done = subprocess.run([str(venv_program(program)), *map(str, args), "--no_warnings",
+                           "--save_results", str(results)], capture_output=True, text=True,
+                          env=env, timeout=300)
+    assert done.returncode == 0, done.stdout + done.stderr
+    stats = file_interface.load_res_file(str(results)).stats
+    results.unlink()
+    return stats

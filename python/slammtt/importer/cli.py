@@ -7,13 +7,13 @@ BreezySLAM's Mines recordings (.dat). Exit status: 0 done, 1 the input cannot be
 line says why; no output is left behind), 2 a bad command line.
 """
 
-import argparse
 import math
 import os
 import pathlib
 import sys
 
 import slammtt
+from slammtt.cli import Parser, UsageError, run_main
 from slammtt.importer import breezyslam, laser, odometry, rosbag
 from slammtt.importer.geometry import wrap_angles
 from slammtt.importer.mount import Mount
@@ -25,21 +25,12 @@ CHANNEL_DEFAULTS = {"laser_scan": "LASER_SCAN", "odometry": "ODOMETRY",
                     "leg_labels": "LEG_LABELS"}
 
 
-class UsageError(Exception):
-    pass
-
-
 class InputError(Exception):
     """The input cannot be imported (one line)."""
 
 
-class _Parser(argparse.ArgumentParser):
-    def error(self, message):
-        raise UsageError(message)
-
-
 def _parser():
-    p = _Parser(
+    p = Parser(
         prog=PROGRAM, add_help=False,
         usage=f"{PROGRAM} [options] INPUT -o OUT.lcm",
         description="Turns a ROS 1 / ROS 2 bag (LaserScan, Odometry, tf, leg labels) or a "
@@ -299,20 +290,7 @@ def run(argv):
 
 
 def main(argv=None):
-    try:
-        return run(sys.argv[1:] if argv is None else argv)
-    except UsageError as error:
-        print(f"{PROGRAM}: error: {error} (see --help)", file=sys.stderr)
-        return 2
-    except InputError as error:
-        print(f"{PROGRAM}: error: {error}", file=sys.stderr)
-        return 1
-    except OSError as error:
-        print(f"{PROGRAM}: error: {error.filename or ''}: {error.strerror}", file=sys.stderr)
-        return 1
-    except KeyboardInterrupt:
-        print(f"{PROGRAM}: interrupted", file=sys.stderr)
-        return 130
+    return run_main(PROGRAM, run, argv, input_errors=(InputError,))
 
 
 if __name__ == "__main__":
