@@ -21,6 +21,7 @@ struct StepCounts {
   int became_moving = 0;
   int became_static = 0;
   int started_moving = 0;
+  int speeds_limited = 0;       // velocity estimates limited to their kind's speed (people.h)
   int updates_failed = 0;
   int static_updates_skipped = 0;  // associated landmarks left out by the per-scan budget
   int observation_predictions = 0;  // times every object's observation was predicted (once
