@@ -19,9 +19,11 @@ evaluation rules of docs/evaluation.md (--min-beams 1 --min-moving-speed-mps 0),
 "MOTA norules". Column "MOTA" scores the reported tracks (track_t.reported), "MOTA coast" every
 confirmed track, coasting ones included; "people MOTA" / "people IDSW" the visible people,
 standing ones counted (docs/evaluation.md), at --people-match-m (0.75 m, issue 13's office
-target); "people in map": final-map landmarks within 1 m of a person's path. --summary adds, per
-scenario and mode, the worst seed and the median of the columns in SUMMARISED. The pseudo-scenario s1-static-only is s1-crossing with its five movers taken out
-(the same landmarks, robot path and sensor): the robot error EKF-SLAM reaches when nothing moves.
+target); "people in map" (office, corridor): final-map landmarks within that distance of a
+person's path. --summary adds, per scenario and mode, the worst seed and the median of the
+columns in SUMMARISED. The pseudo-scenario s1-static-only is s1-crossing with its five movers
+taken out (the same landmarks, robot path and sensor): the robot error EKF-SLAM reaches when
+nothing moves.
 
 Prints one Markdown table row per run; every file stays in OUTDIR. Needs a build (build/bin) and
 python3 with no extra modules. Per-scan times depend on the machine's load: quote them from a

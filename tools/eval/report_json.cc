@@ -310,7 +310,9 @@ json ReportToJson(const EvalInput& input, const EvaluationReport& report,
     if (w.code == "pose_coverage") j["ate_rmse_m"] = nullptr;
     if (w.code == "tracks_coverage") {
       for (const char* key : {"ospa_mean_m", "gospa_mean_m", "mota", "motp_m", "id_switches",
-                              "fragmentations", "idf1", "hota"}) {
+                              "fragmentations", "idf1", "hota", "mota_with_coasting",
+                              "id_switches_with_coasting", "people_mota",
+                              "people_id_switches"}) {
         j[key] = nullptr;
       }
     }
