@@ -6,7 +6,8 @@
 // that got none is missed (RecordMiss) for the time since the previous scan, as "in geometry"
 // when its prediction at the state after the updates lies surely inside the field of view and
 // range, and as "expected visible" when it is also not in the shadow of any of the scan's
-// features (ExpectedVisible; up to detection_range_m, 0: max_range_m). Baseline (a), the static world, counts no misses.
+// features (ExpectedVisible; up to detection_range_m, 0: max_range_m). Baseline (a), the static
+// world, counts no misses.
 #pragma once
 
 #include <cstdint>
