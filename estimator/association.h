@@ -34,6 +34,7 @@ class Assignment {
     return MeasurementFree(c.measurement) && ObjectFree(c.object);
   }
   int ObjectOf(int i) const { return object_of_measurement_[static_cast<size_t>(i)]; }
+  int MeasurementOf(int j) const { return measurement_of_object_[static_cast<size_t>(j)]; }
   void Set(int i, int j);
 
  private:

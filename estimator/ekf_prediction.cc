@@ -31,16 +31,19 @@ void ApplyRobotPrediction(const Eigen::Vector3d& new_pose, const Eigen::Matrix3d
   ApplyRobotPrediction(new_pose, f, q, state);
 }
 
-void PredictMovers(double dt_s, double sigma_q_moving_mps2, double sigma_q_undecided_mps2,
-                   SlamState* state) {
+void PredictMovers(double dt_s, double sigma_q_moving_mps2, double sigma_q_moving_person_mps2,
+                   double sigma_q_undecided_mps2, SlamState* state) {
   auto mean = state->mean();
   auto cov = state->covariance();
   const Eigen::Matrix4d q_moving = ConstantVelocityProcessNoise(dt_s, sigma_q_moving_mps2);
+  const Eigen::Matrix4d q_moving_person =
+      ConstantVelocityProcessNoise(dt_s, sigma_q_moving_person_mps2);
   const Eigen::Matrix4d q_undecided = ConstantVelocityProcessNoise(dt_s, sigma_q_undecided_mps2);
   for (const StateObject& o : state->objects()) {
     if (!o.has_velocity()) continue;
-    const Eigen::Matrix4d& q =
-        o.record.object_class == ObjectClass::kMoving ? q_moving : q_undecided;
+    const bool moving = o.record.object_class == ObjectClass::kMoving;
+    const bool person = o.record.kind == ObjectKind::kPerson;
+    const Eigen::Matrix4d& q = !moving ? q_undecided : person ? q_moving_person : q_moving;
     const int p = o.position_index;
     const int v = o.velocity_index;
     // Eqs. 6-7 on this object's rows and columns (constant_velocity_model.h).

@@ -22,10 +22,11 @@ void ApplyRobotPrediction(const Eigen::Vector3d& new_pose, const Eigen::Matrix3d
                           const Eigen::Matrix3d& noise, SlamState* state);
 
 // Mover part of eq. 9: every object with velocity states follows eq. 6 over dt_s with the
-// process noise of eq. 8: sigma_q_moving_mps2 for objects classified MOVING, sigma_q_undecided_mps2
-// for the others (not yet classified).
-void PredictMovers(double dt_s, double sigma_q_moving_mps2, double sigma_q_undecided_mps2,
-                   SlamState* state);
+// process noise of eq. 8: sigma_q_moving_mps2 for objects classified MOVING (of kind PERSON:
+// sigma_q_moving_person_mps2, people.h), sigma_q_undecided_mps2 for the others (not yet
+// classified).
+void PredictMovers(double dt_s, double sigma_q_moving_mps2, double sigma_q_moving_person_mps2,
+                   double sigma_q_undecided_mps2, SlamState* state);
 
 // Adds `added` (2x2, symmetric PSD) to the velocity covariance of every object with velocity
 // states: used when the time since the last scan is too long to trust the constant-velocity

@@ -15,6 +15,7 @@
 #include "estimator/nearest_neighbour.h"
 #include "estimator/new_objects.h"
 #include "estimator/observation_predictions.h"
+#include "estimator/people.h"
 #include "estimator/pruning.h"
 #include "estimator/ransac_level.h"
 #include "estimator/reacquisition.h"
@@ -213,6 +214,8 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
                                        &state_, assignment, &counts);
     AssociateLevel3(association, options_, &predicted, &state_, &assignment, &counts);
   }
+  // The speeds each kind can reach (people.h).
+  counts.speeds_limited = LimitSpeedsToTheirKind(options_.people, &state_);
   lap(Substage::kLevel23);
 
   // 7. Track management (line 11), judged at the state after the updates.
@@ -337,8 +340,12 @@ void Estimator::ReportEstimate(int64_t utime, ScanResult* result) const {
     ObjectEstimate e;
     e.id = record.id;
     e.object_class = record.object_class;
-    e.confirmed =
-        ReportedConfirmed(record, state_.object(j).has_velocity(), utime, options_.tracks);
+    const bool has_velocity = state_.object(j).has_velocity();
+    e.confirmed = ReportedConfirmed(record, has_velocity, utime, options_.tracks);
+    e.reported = ReportedTrack(record, has_velocity, utime, options_.tracks);
+    e.kind = record.kind;
+    e.measured = record.last_seen_utime == utime;
+    e.coasting_s = SecondsBetween(utime, record.last_seen_utime);
     e.position = state_.position(j);
     e.velocity = state_.velocity(j);
     e.covariance = state_.ObjectCovariance(j);

@@ -16,7 +16,8 @@
 //                             best hypothesis' pairs gated by d1 (line 7: ransac_level.h);
 //   6. level 3                a velocity jump for movers that lost their measurement in a turn
 //                             (manoeuvres.h), then what is left with gate d2 > d1 (line 9:
-//                             level3.h);
+//                             level3.h); then every velocity limited to its kind's plausible
+//                             speed (people.h);
 //   7. track management       hits and misses (line 11: hits_and_misses.h), and the identity
 //                             take-overs of lost movers tagged at an earlier scan
 //                             (reacquisition.h, step 2);
@@ -88,7 +89,13 @@ class StepObserver {
 struct ObjectEstimate {
   int64_t id = 0;
   ObjectClass object_class = ObjectClass::kUndecided;
+  ObjectKind kind = ObjectKind::kOther;
   bool confirmed = false;
+  // Honest reporting (track_management.h): measured in this scan, time since the last
+  // measurement, and whether it counts as a reported track.
+  bool measured = false;
+  double coasting_s = 0.0;
+  bool reported = false;
   Eigen::Vector2d position = Eigen::Vector2d::Zero();
   Eigen::Vector2d velocity = Eigen::Vector2d::Zero();
   Eigen::Matrix4d covariance = Eigen::Matrix4d::Zero();  // (x, y, vx, vy)

@@ -59,6 +59,9 @@ void VisitMotionOptions(OptionVisitor* v, EstimatorOptions* o) {
             "process noise sigma_Q (eq. 8) of MOVING objects");
   v->Double("undecided_acceleration_sigma_mps2", &o->undecided_acceleration_sigma_mps2,
             R::AtLeast(0), "process noise sigma_Q (eq. 8) of UNDECIDED objects");
+  v->BeginGroup("people");
+  VisitPeopleOptions(v, &o->people);
+  v->EndGroup();
   v->Double("new_object_velocity_sigma_mps", &o->new_object_velocity_sigma_mps, R::Above(0),
             "prior sigma of a new object's velocity");
   v->Double("manoeuvre_velocity_sigma_mps", &o->manoeuvre_velocity_sigma_mps, R::AtLeast(0),
@@ -152,6 +155,10 @@ std::string CheckEstimatorOptions(const EstimatorOptions& options) {
   if (!(o.max_range_m > o.min_range_m)) return "max_range_m must be > min_range_m";
   if (!(o.max_prediction_s >= o.max_time_gap_s)) {
     return "max_prediction_s must be >= max_time_gap_s";
+  }
+  if (o.tracks.confirm_window_scans > 0 &&
+      o.tracks.confirm_window_scans < o.tracks.confirm_hits) {
+    return "tracks_confirm_window_scans must be 0 or >= tracks_confirm_hits";
   }
   if (o.level3 && !(o.gate_d2_chi2 > o.gate_d1_chi2)) {
     return "gate_d2_chi2 must be > gate_d1_chi2 (or level3 false)";

@@ -11,6 +11,7 @@
 #include "estimator/ml_ransac.h"
 #include "estimator/motion_classifier.h"
 #include "estimator/odometry_plausibility.h"
+#include "estimator/people.h"
 #include "estimator/range_bearing_model.h"
 #include "estimator/robot_motion_model.h"
 #include "estimator/track_management.h"
@@ -72,6 +73,8 @@ struct EstimatorOptions {
   // object seen from a drifting robot.
   double mover_acceleration_sigma_mps2 = 0.02;
   double undecided_acceleration_sigma_mps2 = 0.2;
+  // People's own process noise and the plausible-speed gate of every kind (people.h).
+  PeopleOptions people;
   double new_object_velocity_sigma_mps = 1.0;    // prior of a new object's velocity
   // Manoeuvres: a MOVING object with no measurement after level 2 while an
   // unassigned measurement lies inside its gate dn gets a velocity jump of this standard

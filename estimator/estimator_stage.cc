@@ -69,6 +69,7 @@ ScanInput ScanInputFromFeatures(const slammtt_msgs::features_t& message, bool pe
       reading.range_var_m2 = p.range_var_m2;
       reading.bearing_var_rad2 = p.bearing_var_rad2;
       reading.range_bearing_cov_m_rad = p.range_bearing_cov_m_rad;
+      reading.person = true;
       std::vector<const slammtt_msgs::feature_t*> legs;
       for (int k = 0; k < 2 && k < p.num_legs; ++k) {
         const int32_t index = p.leg_index[k];
@@ -261,8 +262,14 @@ void EstimatorStage::HandleFeatures(const void* data, int size, MessageSink& out
     track.first_seen_utime = e.first_seen_utime;
     track.hits = e.hits;
     track.last_seen_utime = e.last_seen_utime;
+    track.measured = e.measured;
+    track.coasting_s = e.coasting_s;
+    track.reported = e.reported;
+    track.kind = e.kind == ObjectKind::kPerson ? slammtt_msgs::track_t::KIND_PERSON
+                                               : slammtt_msgs::track_t::KIND_OTHER;
     tracks.tracks.push_back(track);
-    if (e.object_class == ObjectClass::kStatic && e.confirmed) {
+    // A standing person is a STATIC object of kind PERSON: tracked, never part of the map.
+    if (e.object_class == ObjectClass::kStatic && e.confirmed && e.kind != ObjectKind::kPerson) {
       slammtt_msgs::landmark_t landmark;
       landmark.id = e.id;
       landmark.x_m = e.position(0);

@@ -9,9 +9,10 @@
 // Per features_t: one step of Algorithm 2 (Estimator::ProcessScan), then, all with the FEATURES
 // message's utime and in this order:
 //  - pose_t (`pose`): robot pose in the map frame (the start pose) and its covariance;
-//  - map_t (`map`): every confirmed STATIC object;
-//  - tracks_t (`tracks`): every object, with its class (STATIC / MOVING / UNDECIDED) and
-//    whether it is confirmed;
+//  - map_t (`map`): every confirmed STATIC object that is not a person (a standing person);
+//  - tracks_t (`tracks`): every object, with its class (STATIC / MOVING / UNDECIDED), its kind
+//    (PERSON / OTHER), whether it is confirmed, measured in this scan, how long it has coasted
+//    and whether it is a reported track (track_management.h);
 //  - estimator_status_t (`estimator_status`): cumulative counters and the last unusual event;
 //  - stage_timing_t (`stage_timing`): stage "estimator", substages "predict", "gating",
 //    "level1", "ransac", "level2_3", "track_management"; counters "features" (received),

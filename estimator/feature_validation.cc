@@ -35,6 +35,7 @@ std::string RejectionReason(const FeatureReading& f, const EstimatorOptions& opt
 PointMeasurement MeasurementOf(const FeatureReading& f, const EstimatorOptions& options) {
   PointMeasurement m;
   m.range_bearing = Eigen::Vector2d(f.range_m, WrapAngle(f.bearing_rad));
+  m.person = f.person;
   if (options.use_feature_covariance && f.range_var_m2 > 0.0 && f.bearing_var_rad2 > 0.0) {
     m.covariance << f.range_var_m2, f.range_bearing_cov_m_rad, f.range_bearing_cov_m_rad,
         f.bearing_var_rad2;

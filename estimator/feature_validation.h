@@ -32,6 +32,7 @@ struct FeatureReading {
   double bearing_var_rad2 = 0.0;
   double range_bearing_cov_m_rad = 0.0;
   double width_m = 0.0;        // extent of the cluster (0: a point), for occlusion reasoning
+  bool person = false;         // a person feature's centre (people.h), not a point feature
 };
 
 struct ValidatedFeatures {

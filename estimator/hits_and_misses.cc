@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "estimator/people.h"
 #include "estimator/track_management.h"
 
 namespace slammtt {
@@ -26,6 +27,8 @@ void RecordHitsAndMisses(const ScanAssociation& scan, const std::vector<double>&
     ObjectRecord& record = state->object(j).record;
     if (!assignment.ObjectFree(j)) {
       RecordHit(scan.utime, options.tracks, &record);
+      const int i = assignment.MeasurementOf(j);
+      RecordMeasurementKind(scan.measurements[static_cast<size_t>(i)].person, &record);
       record.last_seen_m = now.position(j);
       continue;
     }

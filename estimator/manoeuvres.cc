@@ -5,22 +5,23 @@
 namespace slammtt {
 namespace {
 
-// Whether a free measurement lies inside gate dn of `prediction` widened by a position jump of
-// jump_m standard deviation.
-bool FreeMeasurementInWidenedGate(const ObjectPrediction& prediction, double jump_m,
-                                  const ScanAssociation& scan, double gate_dn,
-                                  const Assignment& assignment) {
+// Whether the jump is what lets level 3 take a free measurement: one lies inside `gate` of
+// `prediction` widened by a position jump of jump_m standard deviation, and none lies inside
+// `gate` of the prediction as it is (level 3 takes that one without a jump).
+bool JumpLetsLevel3TakeAMeasurement(const ObjectPrediction& prediction, double jump_m,
+                                    const ScanAssociation& scan, double gate,
+                                    const Assignment& assignment) {
   ObjectPrediction widened = prediction;
   widened.hph += jump_m * jump_m * prediction.jacobian_position *
                  prediction.jacobian_position.transpose();
+  bool inside_widened = false;
   for (int i = 0; i < assignment.num_measurements(); ++i) {
     if (!assignment.MeasurementFree(i)) continue;
-    if (NormalizedInnovationSquared(scan.measurements[static_cast<size_t>(i)], widened,
-                                    gate_dn) < gate_dn) {
-      return true;
-    }
+    const PointMeasurement& z = scan.measurements[static_cast<size_t>(i)];
+    if (NormalizedInnovationSquared(z, prediction, gate) < gate) return false;
+    inside_widened = inside_widened || NormalizedInnovationSquared(z, widened, gate) < gate;
   }
-  return false;
+  return inside_widened;
 }
 
 }  // namespace
@@ -42,8 +43,7 @@ void GiveManoeuvringMoversAVelocityJump(double dt_s, const ScanAssociation& scan
         object.record.object_class != ObjectClass::kMoving) {
       continue;
     }
-    if (FreeMeasurementInWidenedGate(p, jump_m, scan, options.new_object_gate_dn_chi2,
-                                     assignment)) {
+    if (JumpLetsLevel3TakeAMeasurement(p, jump_m, scan, options.gate_d2_chi2, assignment)) {
       AddVelocityJump(j, dt_s, sigma, state);
       ++counts->manoeuvres;
     }

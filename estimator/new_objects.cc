@@ -3,6 +3,7 @@
 #include <limits>
 
 #include "estimator/motion_classifier.h"
+#include "estimator/people.h"
 #include "estimator/range_bearing_model.h"
 #include "estimator/track_management.h"
 
@@ -34,6 +35,8 @@ void AddNewObjects(const ScanAssociation& scan, const std::vector<double>& neare
     record.confirmed = static_world;
     record.last_seen_m = position;
     record.continues_id = continues_id[static_cast<size_t>(i)];
+    record.person_hits = z.person ? 1 : 0;
+    record.kind = KindOfRecord(record);
     const int k = state->AddObject(
         position, jacobian_robot,
         jacobian_measurement * z.covariance * jacobian_measurement.transpose(), record);

@@ -1,7 +1,8 @@
 // New objects (paper Algorithm 2, line 13): every measurement that no level took and whose NIS
 // to every object is at least gate dn starts an object, at the point the inverse of eq. 10
 // gives from the robot's pose, with its cross-covariance with the robot (SlamState::AddObject).
-// A new object is UNDECIDED and tentative, with zero velocity and velocity covariance
+// A new object is UNDECIDED and tentative, of the kind of its measurement (people.h), with zero
+// velocity and velocity covariance
 // new_object_velocity_sigma_mps^2 I, its "still" window open, and the lost track it may continue
 // (reacquisition.h). In baseline (a), the static world, it is a STATIC landmark without
 // velocity states, confirmed at once (plain EKF-SLAM maps a landmark at its first sighting).

@@ -9,6 +9,7 @@ namespace slammtt {
 struct PointMeasurement {
   Eigen::Vector2d range_bearing = Eigen::Vector2d::Zero();  // [m, rad], bearing in (-pi, pi]
   Eigen::Matrix2d covariance = Eigen::Matrix2d::Identity();  // R over (range, bearing)
+  bool person = false;  // the centre of a person feature (two legs, or one with a larger R)
 };
 
 }  // namespace slammtt

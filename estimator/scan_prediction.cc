@@ -64,6 +64,7 @@ PredictionNotes PredictToScan(int64_t utime, const ScanInterval& interval,
   ApplyRobotPrediction(motion.pose(), motion.jacobian(), motion.noise(), state);
   if (interval.dt_s > 0.0) {
     PredictMovers(interval.dt_s, options.mover_acceleration_sigma_mps2,
+                  options.people.acceleration_sigma_mps2,
                   options.undecided_acceleration_sigma_mps2, state);
   }
   return notes;

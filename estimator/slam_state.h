@@ -26,6 +26,8 @@ namespace slammtt {
 
 // Same numbering as track_t's CLASS_* constants.
 enum class ObjectClass : int8_t { kStatic = 0, kMoving = 1, kUndecided = 2 };
+// What an object is (people.h); same numbering as track_t's KIND_* constants.
+enum class ObjectKind : int8_t { kOther = 0, kPerson = 1 };
 
 // Book-keeping of one object (track management and classification read and write it).
 struct ObjectRecord {
@@ -33,6 +35,13 @@ struct ObjectRecord {
   ObjectClass object_class = ObjectClass::kUndecided;
   bool confirmed = false;
   int hits = 0;                    // scans in which a measurement updated the object
+  // Of those, the scans whose measurement was a person feature, and the kind they make it
+  // (people.h: a person when most of its measurements were person features).
+  int person_hits = 0;
+  ObjectKind kind = ObjectKind::kOther;
+  // The object's last scans, newest in bit 0: 1 for a scan with a measurement (M-of-N
+  // confirmation, TrackManagementOptions::confirm_window_scans).
+  uint32_t recent_hits = 0;
   int64_t first_seen_utime = 0;
   int64_t last_seen_utime = 0;
   Eigen::Vector2d last_seen_m = Eigen::Vector2d::Zero();  // position estimate after that scan

@@ -23,6 +23,7 @@ struct StepCounts {
   int became_moving = 0;
   int became_static = 0;
   int started_moving = 0;
+  int speeds_limited = 0;       // velocity estimates limited to their kind's speed (people.h)
   int updates_failed = 0;
   int static_updates_skipped = 0;  // associated objects left out by the per-scan budgets K, M
   int state_recovered = 0;      // 1: the scan ended non-finite and was recovered

@@ -1,6 +1,7 @@
 #include "estimator/track_management.h"
 
 #include <algorithm>
+#include <bitset>
 #include <cmath>
 
 #include "common/utime.h"
@@ -17,21 +18,31 @@ ObjectRecord NewObjectRecord(int64_t id, int64_t utime, ObjectClass object_class
   record.last_update_utime = utime;
   record.class_change_utime = utime;
   record.hits = 1;
+  record.recent_hits = 1;
   return record;
 }
 
 void RecordHit(int64_t utime, const TrackManagementOptions& options, ObjectRecord* record) {
   ++record->hits;
+  record->recent_hits = (record->recent_hits << 1) | 1u;
   record->last_seen_utime = utime;
   record->unseen_in_view_s = 0.0;
   record->unseen_observable_s = 0.0;
-  if (record->hits >= options.confirm_hits) record->confirmed = true;
+  if (record->confirmed) return;
+  const int window = options.confirm_window_scans;
+  const int hits_in_window =
+      window <= 0 ? record->hits
+                  : static_cast<int>(std::bitset<32>(
+                        record->recent_hits & (window >= 32 ? ~0u : (1u << window) - 1u))
+                                         .count());
+  if (hits_in_window >= options.confirm_hits) record->confirmed = true;
 }
 
 void RecordMiss(double dt_s, bool in_geometry, bool expected_visible, ObjectRecord* record) {
   // One scan is one chance to see the object, whatever the time since the previous one (after
   // a time gap nobody was looking in between): at most kMaxMissPerScan_s per scan.
   const double miss_s = std::min(dt_s, kMaxMissPerScan_s);
+  record->recent_hits <<= 1;
   if (expected_visible) record->unseen_in_view_s += miss_s;
   if (in_geometry) record->unseen_observable_s += miss_s;
 }
@@ -67,6 +78,13 @@ bool ReportedConfirmed(const ObjectRecord& record, bool has_velocity, int64_t ut
   return options.coast_unseen_s <= 0.0 || unseen_s <= options.coast_unseen_s;
 }
 
+bool ReportedTrack(const ObjectRecord& record, bool has_velocity, int64_t utime,
+                   const TrackManagementOptions& options) {
+  if (!ReportedConfirmed(record, has_velocity, utime, options)) return false;
+  if (!has_velocity && record.kind != ObjectKind::kPerson) return true;
+  return SecondsBetween(utime, record.last_seen_utime) <= options.report_measured_within_s;
+}
+
 bool SurelyInGeometry(const Eigen::Vector2d& predicted, double sigma_m, double max_range_m,
                       double field_of_view_rad) {
   const double range = predicted(0);
@@ -96,7 +114,9 @@ bool ExpectedVisible(const Eigen::Vector2d& predicted, double sigma_m,
 void VisitTrackManagementOptions(OptionVisitor* v, TrackManagementOptions* t) {
   using R = OptionRange;
   v->Int("confirm_hits", &t->confirm_hits, R::Between(1, 1000),
-         "hits that confirm a tentative object (T_th)");
+         "hits that confirm a tentative object (T_th; M of M-of-N)");
+  v->Int("confirm_window_scans", &t->confirm_window_scans, R::Between(0, 32),
+         "N of M-of-N: confirm_hits of the last N scans (0: at any time)");
   v->Double("prune_unseen_s", &t->prune_unseen_s, R::AtLeast(0),
             "an object with velocity unseen this long goes (paper 5.1: 3.5 s)");
   v->Double("tentative_prune_unseen_s", &t->tentative_prune_unseen_s, R::AtLeast(0),
@@ -111,6 +131,8 @@ void VisitTrackManagementOptions(OptionVisitor* v, TrackManagementOptions* t) {
             "reported unconfirmed after this long missed where it should be seen (0: off)");
   v->Double("coast_unseen_s", &t->coast_unseen_s, R::AtLeast(0),
             "reported unconfirmed after this long unseen (0: off)");
+  v->Double("report_measured_within_s", &t->report_measured_within_s, R::AtLeast(0),
+            "a reported track was measured within this time (track_t.reported)");
   v->Double("prune_out_of_view_s", &t->prune_out_of_view_s, R::AtLeast(0),
             "a MOVING object out of view goes after this long");
   v->Double("max_coast_sigma_m", &t->max_coast_sigma_m, R::Above(0),

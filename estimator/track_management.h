@@ -42,7 +42,12 @@ namespace slammtt {
 // the track is still kept for re-association until it is pruned. Static landmarks are not
 // affected (the map keeps what the robot cannot see). 0 disables either rule.
 struct TrackManagementOptions {
-  int confirm_hits = 3;                       // T_th
+  int confirm_hits = 3;                       // T_th: M of M-of-N
+  // N of M-of-N: a tentative object is confirmed when confirm_hits of its last
+  // confirm_window_scans scans (at most 32) had a measurement, so that a cluster seen now and
+  // then (clutter, a reflection, a chair leg at the edge of detection) never accumulates hits
+  // into a confirmed track. 0: confirm_hits measured scans at any time (the rule before).
+  int confirm_window_scans = 5;
   double prune_unseen_s = 3.5;                // paper section 5.1
   double tentative_prune_unseen_s = 1.0;
   double static_prune_unseen_in_view_s = 3.5;
@@ -50,6 +55,10 @@ struct TrackManagementOptions {
   double shadow_radius_m = 0.4;  // angular half-width of what a point feature hides, at its range
   double coast_confirmed_s = 0.5;
   double coast_unseen_s = 0.75;
+  // A track counts as reported (track_t.reported: what a user is shown, what slammtt-eval
+  // scores) when it is confirmed (above) and was measured within this time; a static landmark
+  // that is not a person is reported while confirmed (it is the map).
+  double report_measured_within_s = 0.5;
   double prune_out_of_view_s = 30.0;
   double max_coast_sigma_m = 2.5;
   // Re-acquisition of lost movers (reacquisition.h): the largest speed at which a person is
@@ -65,10 +74,15 @@ void VisitTrackManagementOptions(OptionVisitor* visitor, TrackManagementOptions*
 bool ReportedConfirmed(const ObjectRecord& record, bool has_velocity, int64_t utime,
                        const TrackManagementOptions& options);
 
+// Whether an object is a reported track at utime (see report_measured_within_s).
+bool ReportedTrack(const ObjectRecord& record, bool has_velocity, int64_t utime,
+                   const TrackManagementOptions& options);
+
 // A fresh record for an object first seen at utime.
 ObjectRecord NewObjectRecord(int64_t id, int64_t utime, ObjectClass object_class);
 
-// Marks a scan in which the object got a measurement.
+// Marks a scan in which the object got a measurement (confirmation: confirm_hits of the last
+// confirm_window_scans scans).
 void RecordHit(int64_t utime, const TrackManagementOptions& options, ObjectRecord* record);
 
 // Accounts a scan of dt_s without a measurement (in_geometry: the prediction lies inside the

@@ -80,9 +80,9 @@ inline constexpr int64_t kSegmentTruth = kInt64 + kInt8 + 4 * kDouble + kInt32;
 // One leg_labels_t label: x_m and y_m.
 inline constexpr int64_t kLegLabel = 2 * kDouble;
 // track_t: id, x_m, y_m, vx_mps, vy_mps, covariance[16], object_class, confirmed,
-// first_seen_utime, hits, last_seen_utime.
-inline constexpr int64_t kTrack =
-    kInt64 + 4 * kDouble + 16 * kDouble + kInt8 + kBoolean + kInt64 + kInt32 + kInt64;
+// first_seen_utime, hits, last_seen_utime, measured, coasting_s, reported, kind.
+inline constexpr int64_t kTrack = kInt64 + 4 * kDouble + 16 * kDouble + kInt8 + kBoolean +
+                                  kInt64 + kInt32 + kInt64 + kBoolean + kDouble + kBoolean + kInt8;
 // landmark_t: id, x_m, y_m, covariance[4].
 inline constexpr int64_t kLandmark = kInt64 + 2 * kDouble + 4 * kDouble;
 }  // namespace encoded_bytes

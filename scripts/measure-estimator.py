@@ -2,6 +2,7 @@
 """Measures every figure of the estimator's issue (issue 6) with the shipped programs.
 
     scripts/measure-estimator.py OUTDIR [--seeds 1-5] [--scenarios s1-crossing,...]
+        [--modes ml_ransac,...] [--summary] [--set KEY=VALUE ...]
 
 For each scenario and seed it runs exactly what the target tests run
 (tests/estimator/pipeline_runner.cc):
@@ -15,8 +16,14 @@ For each scenario and seed it runs exactly what the target tests run
 in mode ml_ransac everywhere, static_nn (baseline a) on s1-crossing and ransac_all_pairs
 (baseline b) on s1-crossing and s2-lobby. ml_ransac runs are also scored without the two
 evaluation rules of docs/evaluation.md (--min-beams 1 --min-moving-speed-mps 0), column
-"MOTA norules". The pseudo-scenario s1-static-only is s1-crossing with its five movers taken out
-(the same landmarks, robot path and sensor): the robot error EKF-SLAM reaches when nothing moves.
+"MOTA norules". Column "MOTA" scores the reported tracks (track_t.reported), "MOTA coast" every
+confirmed track, coasting ones included; "people MOTA" / "people IDSW" the visible people,
+standing ones counted (docs/evaluation.md), at --people-match-m (0.75 m, issue 13's office
+target); "people in map" (office, corridor): final-map landmarks within that distance of a
+person's path. --summary adds, per scenario and mode, the worst seed and the median of the
+columns in SUMMARISED. The pseudo-scenario s1-static-only is s1-crossing with its five movers
+taken out (the same landmarks, robot path and sensor): the robot error EKF-SLAM reaches when
+nothing moves.
 
 Prints one Markdown table row per run; every file stays in OUTDIR. Needs a build (build/bin) and
 python3 with no extra modules. Per-scan times depend on the machine's load: quote them from a
@@ -32,7 +39,11 @@ import sys
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 BIN = os.path.join(ROOT, "build", "bin")
 SCENARIOS = ["s1-crossing", "s1-static-only", "s2-lobby", "s3-no-static", "rplidar-a2",
-             "crowd-zara02"]
+             "crowd-zara02", "office", "corridor"]
+# The columns summarised over the seeds of each scenario and mode (--summary): worst and median.
+# Higher is better for MOTA, lower for the others.
+SUMMARISED = {"MOTA": max, "MOTA coast": max, "people MOTA": max, "people IDSW": min,
+              "IDSW": min, "ATE m": min, "movers in map": min, "people in map": min}
 
 
 def modes_of(scenario):
@@ -82,11 +93,46 @@ def fmt(value, digits=3):
     return str(value)
 
 
+def print_summary(results, seeds):
+    """Worst seed and median of each summarised column, per scenario and mode."""
+    print(f"\nseeds {seeds.start}-{seeds.stop - 1}: worst (seed) / median")
+    print("| scenario | mode | " + " | ".join(SUMMARISED) + " |")
+    print("|" + "---|" * (2 + len(SUMMARISED)))
+    for (scenario, mode), rows in results.items():
+        cells = []
+        for column, worse in SUMMARISED.items():
+            values = [(float(r[column]), r["seed"]) for r in rows if r[column] not in ("-",)]
+            if not values:
+                cells.append("-")
+                continue
+            # worst: the lowest MOTA, the highest error or count
+            worst = min(values) if worse is max else max(values)
+            ordered = sorted(v for v, _ in values)
+            mid = len(ordered) // 2
+            median = ordered[mid] if len(ordered) % 2 else 0.5 * (ordered[mid - 1] + ordered[mid])
+            cells.append(f"{worst[0]:.3f} ({worst[1]}) / {median:.3f}")
+        print(f"| {scenario} | {mode} | " + " | ".join(cells) + " |")
+    for (scenario, mode), rows in results.items():
+        if scenario != "s1-crossing" or mode != "ml_ransac":
+            continue
+        met = [r["seed"] for r in rows
+               if r["IDSW"] == "0" and r["movers in map"] == "0" and float(r["MOTA"]) >= 0.95
+               and float(r["ATE m"]) <= 0.3]
+        print(f"\ns1-crossing targets (0 identity switches, MOTA >= 0.95, ATE <= 0.3 m, 0 movers "
+              f"in the map) met on {len(met)} of {len(rows)} seeds: {' '.join(met)}")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("outdir")
     parser.add_argument("--seeds", default="1-5", help="first-last (default 1-5)")
     parser.add_argument("--scenarios", default=",".join(SCENARIOS))
+    parser.add_argument("--modes", default="", help="only these modes (default: all of each)")
+    parser.add_argument("--people-match-m", default="0.75")
+    parser.add_argument("--summary", action="store_true")
+    parser.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                        help="an estimator option appended to every run's configuration "
+                             "(repeatable; for measuring an option's effect)")
     args = parser.parse_args()
     first, _, last = args.seeds.partition("-")
     seeds = range(int(first), int(last or first) + 1)
@@ -96,10 +142,13 @@ def main():
             sys.exit(f"measure-estimator: unknown scenario '{scenario}' "
                      f"(known: {', '.join(SCENARIOS)})")
     os.makedirs(args.outdir, exist_ok=True)
-    columns = ["scenario", "seed", "mode", "MOTA", "MOTA norules", "MOTP m", "IDSW", "frag",
+    only_modes = [m for m in args.modes.split(",") if m]
+    columns = ["scenario", "seed", "mode", "MOTA", "MOTA norules", "MOTA coast", "people MOTA",
+               "people IDSW", "people in map", "MOTP m", "IDSW", "frag",
                "OSPA m", "GOSPA m", "ATE m", "odom ATE m", "movers in map", "landmark RMSE m",
                "static recall", "class. acc.", "mean delay s", "max delay s", "hypotheses",
                "p50 us", "p99 us"]
+    results = {}
     print("| " + " | ".join(columns) + " |")
     print("|" + "---|" * len(columns))
     for scenario in scenarios:
@@ -119,10 +168,13 @@ def main():
             if not os.path.exists(world):
                 run([os.path.join(BIN, "slammtt-world"), "--quiet", "--scenario", source,
                      "--seed", str(seed), "--log", world])
-            for mode in modes_of(scenario):
+            for mode in [m for m in modes_of(scenario) if not only_modes or m in only_modes]:
                 config = f"{stem}-{mode}.yaml"
                 with open(config, "w") as f:
                     f.write(shipped_config + f"  mode: {mode}\n")
+                    for setting in args.set:
+                        key, _, value = setting.partition("=")
+                        f.write(f"  {key}: {value}\n")
                 out = f"{stem}-{mode}.out.lcm"
                 run([os.path.join(BIN, "slammtt-replay"), "--quiet", world, "-o", out,
                      "--config", config] + stages)
@@ -137,9 +189,19 @@ def main():
                          norules_path, "--min-beams", "1", "--min-moving-speed-mps", "0"])
                     with open(norules_path) as f:
                         norules = fmt(json.load(f)["mota"])
+                people_path = f"{stem}-{mode}.people.json"
+                run([os.path.join(BIN, "slammtt-eval"), "--quiet", out, "--json", people_path,
+                     "--match-threshold-m", args.people_match_m])
+                with open(people_path) as f:
+                    people_report = json.load(f)
+                map_detail = people_report["detail"]["map"] or {}
+                people_in_map = (len(map_detail.get("mover_landmark_ids", []))
+                                 if scenario in ("office", "corridor") else None)
                 p50, p99, hypotheses = timing(out + ".timing.lcm")
                 classification = report["detail"]["classification"]
                 row = [scenario, str(seed), mode, fmt(report["mota"]), norules,
+                       fmt(report["mota_with_coasting"]), fmt(people_report["people_mota"]),
+                       fmt(people_report["people_id_switches"]), fmt(people_in_map),
                        fmt(report["motp_m"]), fmt(report["id_switches"]),
                        fmt(report["fragmentations"]), fmt(report["ospa_mean_m"]),
                        fmt(report["gospa_mean_m"]), fmt(report["ate_rmse_m"]),
@@ -150,6 +212,9 @@ def main():
                        fmt(classification.get("max_delay_s"), 2), str(hypotheses),
                        fmt(p50, 0), fmt(p99, 0)]
                 print("| " + " | ".join(row) + " |", flush=True)
+                results.setdefault((scenario, mode), []).append(dict(zip(columns, row)))
+    if args.summary:
+        print_summary(results, seeds)
 
 
 if __name__ == "__main__":

@@ -158,7 +158,7 @@ TEST(EkfUpdateTest, CovarianceStaysSymmetricPositiveSemiDefiniteOverLongRuns) {
     const OdometryIncrement u{0.05, 0.01 * std::sin(step * 0.01)};
     const Eigen::Vector3d pose = PredictRobotPose(state.robot_pose(), u, &f, &g);
     ApplyRobotPrediction(pose, f, g * odometry_noise * g.transpose(), &state);
-    PredictMovers(0.1, 0.5, 0.5, &state);
+    PredictMovers(0.1, 0.5, 0.5, 0.5, &state);
     std::vector<int> seen;
     for (int j = 0; j < state.num_objects(); ++j) {
       if ((step + j) % 2 == 0) seen.push_back(j);

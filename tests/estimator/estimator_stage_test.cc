@@ -350,6 +350,81 @@ TEST(EstimatorStageTest, StaticObjectsReachTheMap) {
   EXPECT_EQ(tracks.tracks[1].covariance[10], 0.0);  // no velocity states
 }
 
+// A person who stands still (the person feature of PersonAndPost, 2 m ahead, at every scan)
+// and a post: both become STATIC; the person is a track of kind PERSON that never enters the
+// map, the post is the map's one landmark. Every track is measured at every scan, so it
+// coasts 0 s and, once confirmed, is reported; the person feature marks the person track.
+TEST(EstimatorStageTest, AStandingPersonIsAStaticPersonTrackNeverInTheMap) {
+  EstimatorStage stage(EstimatorStageOptions{}, Channels());
+  RecordingSink out;
+  for (int k = 0; k <= 60; ++k) {
+    const int64_t t = 100000 * k;
+    Feed(&stage, "ODOMETRY", OdometryBytes(t, 0.0, 0.0), out);
+    slammtt_msgs::features_t m = PersonAndPost();
+    m.utime = t;
+    Feed(&stage, "FEATURES", Encode(m), out);
+  }
+  const auto map = out.Get<slammtt_msgs::map_t>(out.messages.size() - 4);
+  const auto tracks = out.Get<slammtt_msgs::tracks_t>(out.messages.size() - 3);
+  ASSERT_EQ(tracks.num_tracks, 2);
+  using Track = slammtt_msgs::track_t;
+  const Track& person = tracks.tracks[0];
+  const Track& post = tracks.tracks[1];
+  EXPECT_EQ(person.kind, static_cast<int8_t>(Track::KIND_PERSON));
+  EXPECT_EQ(person.object_class, static_cast<int8_t>(Track::CLASS_STATIC));
+  EXPECT_NEAR(person.x_m, 2.0, 0.05);
+  EXPECT_EQ(post.kind, static_cast<int8_t>(Track::KIND_OTHER));
+  EXPECT_EQ(post.object_class, static_cast<int8_t>(Track::CLASS_STATIC));
+  for (const Track& t : tracks.tracks) {
+    EXPECT_TRUE(t.measured);
+    EXPECT_EQ(t.coasting_s, 0.0);
+    EXPECT_TRUE(t.confirmed);
+    EXPECT_TRUE(t.reported);
+    EXPECT_EQ(t.last_seen_utime, tracks.utime);
+  }
+  ASSERT_EQ(map.num_landmarks, 1);
+  EXPECT_EQ(map.landmarks[0].id, post.id);
+}
+
+// The person of PersonAndPost is seen for 20 scans and then no more (the post still is): its
+// track coasts; at 0.1 s per scan it is measured-and-reported at the last scan with the person,
+// still confirmed but no longer reported once it has coasted longer than
+// tracks_report_measured_within_s (0.5 s), and coasting_s says for how long.
+TEST(EstimatorStageTest, ACoastingTrackSaysSoAndIsNotReported) {
+  EstimatorStage stage(EstimatorStageOptions{}, Channels());
+  RecordingSink out;
+  std::vector<slammtt_msgs::tracks_t> tracks;
+  for (int k = 0; k <= 30; ++k) {
+    const int64_t t = 100000 * k;
+    Feed(&stage, "ODOMETRY", OdometryBytes(t, 0.0, 0.0), out);
+    slammtt_msgs::features_t m = PersonAndPost();
+    m.utime = t;
+    if (k >= 20) {  // the post alone
+      m.features = {m.features[2]};
+      m.num_features = 1;
+      m.people.clear();
+      m.num_people = 0;
+    }
+    Feed(&stage, "FEATURES", Encode(m), out);
+    tracks.push_back(out.Get<slammtt_msgs::tracks_t>(out.messages.size() - 3));
+  }
+  auto person_at = [&](int k) {
+    for (const auto& t : tracks[static_cast<size_t>(k)].tracks) {
+      if (t.kind == slammtt_msgs::track_t::KIND_PERSON) return t;
+    }
+    ADD_FAILURE() << "no person track at scan " << k;
+    return slammtt_msgs::track_t{};
+  };
+  EXPECT_TRUE(person_at(19).measured);
+  EXPECT_TRUE(person_at(19).reported);
+  EXPECT_FALSE(person_at(22).measured);
+  EXPECT_NEAR(person_at(22).coasting_s, 0.3, 1e-9);
+  EXPECT_TRUE(person_at(22).reported);  // 0.3 s <= 0.5 s
+  EXPECT_NEAR(person_at(25).coasting_s, 0.6, 1e-9);
+  EXPECT_FALSE(person_at(25).reported);
+  EXPECT_TRUE(person_at(25).confirmed);  // a static track: its existence is not in doubt
+}
+
 TEST(EstimatorStageTest, BadMessagesAreCountedAndDroppedOnesReported) {
   EstimatorStage stage(EstimatorStageOptions{}, Channels());
   RecordingSink out;

@@ -85,6 +85,14 @@ const PipelineRun& PipelineRunner::Run(const std::string& scenario, int seed,
   return runs_.emplace(key, std::move(run)).first->second;
 }
 
+nlohmann::json PipelineRunner::Rescore(const PipelineRun& run, const std::string& eval_arguments) {
+  const std::string report = run.output_log + "." + std::to_string(rescored_++) + ".json";
+  Execute(std::string(SLAMMTT_BIN_DIR) + "/slammtt-eval --quiet " + Quote(run.output_log) +
+          " " + eval_arguments + " --json " + Quote(report) + " > /dev/null");
+  std::ifstream json(report);
+  return nlohmann::json::parse(json);
+}
+
 std::string Headline(const nlohmann::json& r) {
   std::ostringstream out;
   for (const char* key : {"ate_rmse_m", "odometry_ate_rmse_m", "mota", "motp_m", "id_switches",

@@ -35,12 +35,17 @@ class PipelineRunner {
   const PipelineRun& Run(const std::string& scenario, int seed, const std::string& mode,
                          const std::vector<std::string>& extra_yaml = {});
 
+  // slammtt-eval --json of `run`'s output with `eval_arguments` added (e.g.
+  // "--match-threshold-m 0.75").
+  nlohmann::json Rescore(const PipelineRun& run, const std::string& eval_arguments);
+
   static bool ScanScenario(const std::string& scenario);
 
  private:
   std::string WorldLog(const std::string& scenario, int seed);
   TempDir directory_{"slammtt-targets"};
   std::map<std::string, PipelineRun> runs_;
+  int rescored_ = 0;
 };
 
 // One runner for the whole test program (its directory is removed at exit).

@@ -174,7 +174,7 @@ TEST(EkfPredictionTest, BlockPredictionEqualsDenseEquationNine) {
   }
   const Eigen::MatrixXd expected = f_full * p * f_full.transpose() + q_full;
   ApplyRobotPrediction(new_pose, f, q_robot, &state);
-  PredictMovers(dt, sigma_q, sigma_q, &state);
+  PredictMovers(dt, sigma_q, sigma_q, sigma_q, &state);
   EXPECT_LT((state.covariance() - expected).cwiseAbs().maxCoeff(), 1e-12);
   EXPECT_LT((state.mean() - x_expected).cwiseAbs().maxCoeff(), 1e-12);
 }

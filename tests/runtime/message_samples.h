@@ -232,7 +232,11 @@ struct Sample<slammtt_msgs::tracks_t> {
       t.confirmed = static_cast<int8_t>(k > 0);
       t.first_seen_utime = 1700000000000000 + k;
       t.hits = 10 * k;
-      t.last_seen_utime = 1700000000400000;
+      t.last_seen_utime = 1700000000400000 - 100000 * k;
+      t.measured = static_cast<int8_t>(k == 0);
+      t.coasting_s = 0.1 * k;
+      t.reported = static_cast<int8_t>(k == 1);
+      t.kind = static_cast<int8_t>(k % 2);
       m.tracks.push_back(t);
     }
     return m;

@@ -58,6 +58,8 @@ Trk Track(int64_t id, double x, double y, int8_t cls) {
   t.covariance[0] = t.covariance[5] = 0.04;
   t.object_class = cls;
   t.confirmed = true;
+  t.reported = true;
+  t.measured = true;
   t.hits = 3;
   return t;
 }
@@ -634,6 +636,69 @@ TEST(EvalProgramTest, CommandLineOverridesTheRules) {
     EXPECT_NE(out.find(bad.substr(0, bad.find_first_of(" ="))), std::string::npos) << out;
     EXPECT_FALSE(testing::FileExists(dir.File("bad.json"))) << bad;
   }
+}
+
+// Honest reporting: mover 10 walks at 1 m/s, visible at scans 0-3, followed by track 100, which
+// is measured (reported) at scans 0-1 and coasts at scans 2-3 (confirmed, not reported). The
+// score takes reported tracks: 2 matches, 2 misses of 4, MOTA 0.5; with coasting tracks: 4
+// matches, MOTA 1.
+TEST(EvalReportingTest, ReportedTracksAreScoredAndCoastingOnesBeside) {
+  testing::TempDir dir;
+  LogWriter log(dir.File("coast.lcm"));
+  for (int k = 0; k < 4; ++k) {
+    const double x = 5.0 + 0.125 * k;
+    Trk track = Track(100, x, 2, Trk::CLASS_MOVING);
+    track.reported = k < 2;
+    track.measured = k < 2;
+    track.coasting_s = k < 2 ? 0.0 : (k - 1) * kScanUs * 1e-6;
+    WriteScan(&log, k, {Truth(10, x, 2, true, 1.0, 5, true)}, {track}, false);
+  }
+  log.Commit();
+  EvalInput input;
+  const EvaluationReport r = EvaluateFile(dir.File("coast.lcm"), EvalOptions(), &input);
+  ASSERT_TRUE(r.tracking.has_value());
+  ASSERT_TRUE(r.tracking_with_coasting.has_value());
+  EXPECT_EQ(r.tracking->clear_mot.num_matches, 2);
+  EXPECT_EQ(r.tracking->clear_mot.num_misses, 2);
+  EXPECT_DOUBLE_EQ(*r.tracking->clear_mot.mota, 0.5);
+  EXPECT_EQ(r.tracking_with_coasting->clear_mot.num_matches, 4);
+  EXPECT_DOUBLE_EQ(*r.tracking_with_coasting->clear_mot.mota, 1.0);
+  EXPECT_TRUE(input.tracks[3].tracks[0].confirmed);
+  EXPECT_FALSE(input.tracks[3].tracks[0].reported);
+  EXPECT_NEAR(input.tracks[3].tracks[0].coasting_s, 0.25, 1e-12);
+  const nlohmann::json j = ReportToJson(input, r);
+  EXPECT_DOUBLE_EQ(j["mota"].get<double>(), 0.5);
+  EXPECT_DOUBLE_EQ(j["mota_with_coasting"].get<double>(), 1.0);
+}
+
+// A person (20) stands still at scans 0-3 and is tracked by 120, a STATIC track of kind PERSON;
+// 121 is a STATIC landmark of kind OTHER beside it. The rule-based score excuses a standing
+// mover (no truth: MOTA undefined); the people score counts the person at every scan and takes
+// tracks of kind PERSON whatever their class: 4 matches of 4, MOTA 1, and 121 is no track.
+TEST(EvalReportingTest, AStandingPersonCountsInThePeopleScore) {
+  testing::TempDir dir;
+  LogWriter log(dir.File("standing.lcm"));
+  for (int k = 0; k < 4; ++k) {
+    Obj person = Person(20, 5, 1, 6);
+    person.vx_mps = 0.0;
+    Trk track = Track(120, 5, 1, Trk::CLASS_STATIC);
+    track.kind = Trk::KIND_PERSON;
+    WriteScan(&log, k, {person}, {track, Track(121, 5.5, 1, Trk::CLASS_STATIC)}, false);
+  }
+  log.Commit();
+  EvalInput input;
+  const EvaluationReport r = EvaluateFile(dir.File("standing.lcm"), EvalOptions(), &input);
+  ASSERT_TRUE(r.tracking.has_value());
+  EXPECT_EQ(r.tracking->clear_mot.num_truth, 0);
+  EXPECT_FALSE(r.tracking->clear_mot.mota.has_value());
+  ASSERT_TRUE(r.people_tracking.has_value());
+  EXPECT_EQ(r.people_tracking->clear_mot.num_truth, 4);
+  EXPECT_EQ(r.people_tracking->clear_mot.num_matches, 4);
+  EXPECT_EQ(r.people_tracking->clear_mot.num_false_positives, 0);
+  EXPECT_DOUBLE_EQ(*r.people_tracking->clear_mot.mota, 1.0);
+  const nlohmann::json j = ReportToJson(input, r);
+  EXPECT_DOUBLE_EQ(j["people_mota"].get<double>(), 1.0);
+  EXPECT_EQ(j["people_id_switches"], 0);
 }
 
 }  // namespace

@@ -99,7 +99,8 @@ TEST(EvaluationTest, HandBuiltLogGivesHandComputedFigures) {
   EXPECT_NEAR(*r.tracking->identity.idf1, 14.0 / 18.0, 1e-12);
 
   // The JSON carries exactly the top-level keys the issues list (written out here, not taken
-  // from the code under test: issue 5's, plus IDF1 and HOTA of issue 16) plus the detail and
+  // from the code under test: issue 5's, plus IDF1 and HOTA of issue 16, the coasting and
+  // people scores of issue 13) plus the detail and
   // the warnings (issue 15: what withholds a headline figure).
   const nlohmann::json j = ReportToJson(input, r);
   std::vector<std::string> keys;
@@ -108,7 +109,9 @@ TEST(EvaluationTest, HandBuiltLogGivesHandComputedFigures) {
       "ate_rmse_m",     "odometry_ate_rmse_m",  "ospa_mean_m",    "gospa_mean_m",
       "mota",           "motp_m",               "id_switches",    "fragmentations",
       "movers_in_static_map", "landmark_rmse_m", "static_recall", "classification_accuracy",
-      "idf1",           "hota",                 "detail",         "warnings"};
+      "idf1",           "hota",                 "mota_with_coasting",
+      "id_switches_with_coasting",              "people_mota",    "people_id_switches",
+      "detail",         "warnings"};
   std::sort(expected.begin(), expected.end());
   EXPECT_EQ(keys, expected);  // nlohmann::json iterates objects in key order
   std::vector<std::string> listed = TopLevelMetricKeys();

@@ -55,6 +55,8 @@ inline Trk Track(int64_t id, double truth_x, double truth_y, int8_t cls, bool co
   t.covariance[0] = t.covariance[5] = 0.04;
   t.object_class = cls;
   t.confirmed = confirmed;
+  t.reported = confirmed;  // measured in this scan
+  t.measured = true;
   t.hits = 3;
   return t;
 }

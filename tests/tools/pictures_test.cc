@@ -69,9 +69,10 @@ EvalInput FullFrameRun() {
     input.odometry.push_back({At(k), scan.robot});
     TrackScan tracks;
     tracks.utime = At(k);
-    if (k < 15) tracks.tracks.push_back({7, mover, ObjectLabel::kMoving, true});
+    if (k < 15) tracks.tracks.push_back({7, mover, ObjectLabel::kMoving, true, true, true});
     if (k > 24 && k != 30 && k != 31) {
-      tracks.tracks.push_back({8, mover + Eigen::Vector2d(0.1, 0), ObjectLabel::kMoving, true});
+      tracks.tracks.push_back(
+          {8, mover + Eigen::Vector2d(0.1, 0), ObjectLabel::kMoving, true, true, true});
     }
     input.tracks.push_back(tracks);
   }

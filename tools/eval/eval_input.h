@@ -89,6 +89,12 @@ struct TrackSample {
   Eigen::Vector2d position_m = Eigen::Vector2d::Zero();
   ObjectLabel label = ObjectLabel::kUndecided;
   bool confirmed = false;
+  // track_t's honest reporting: confirmed and measured recently enough to be shown (the
+  // estimator's tracks_report_measured_within_s), measured in this scan, time since measured.
+  bool reported = false;
+  bool measured = false;
+  double coasting_s = 0.0;
+  bool person = false;  // kind PERSON
 };
 
 struct TrackScan {

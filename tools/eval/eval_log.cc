@@ -238,12 +238,19 @@ EvalInput ReadEvalInput(const std::string& path, const Channels& channels, LogRe
       scan.utime = msg.utime;
       for (const auto& t : msg.tracks) {
         ok = ok && Finite({t.x_m, t.y_m, t.vx_mps, t.vy_mps}) && AllFinite(t.covariance, 16) &&
-             t.object_class >= 0 && t.object_class <= 2;
+             t.object_class >= 0 && t.object_class <= 2 && std::isfinite(t.coasting_s) &&
+             t.coasting_s >= 0.0 &&
+             (t.kind == slammtt_msgs::track_t::KIND_OTHER ||
+              t.kind == slammtt_msgs::track_t::KIND_PERSON);
         TrackSample sample;
         sample.id = t.id;
         sample.position_m = Eigen::Vector2d(t.x_m, t.y_m);
         sample.label = static_cast<ObjectLabel>(t.object_class);
         sample.confirmed = t.confirmed != 0;
+        sample.reported = t.reported != 0;
+        sample.measured = t.measured != 0;
+        sample.coasting_s = t.coasting_s;
+        sample.person = t.kind == slammtt_msgs::track_t::KIND_PERSON;
         scan.tracks.push_back(sample);
       }
       for (size_t a = 0; ok && a < scan.tracks.size(); ++a) {
@@ -348,6 +355,9 @@ void AddEvalCommandLineOptions(CommandLine* command_line) {
   command_line->AddOption("min-moving-speed-mps", "MPS",
                           "a mover slower than this stands still: don't care for tracking "
                           "(eval.min_moving_speed_mps, default 0.2; 0 turns it off)");
+  command_line->AddOption("match-threshold-m", "M",
+                          "CLEAR-MOT, map and classification match distance "
+                          "(eval.match_threshold_m, default 1.0)");
 }
 
 void ApplyEvalCommandLine(const CommandLine& command_line, EvalOptions* options) {
@@ -362,6 +372,10 @@ void ApplyEvalCommandLine(const CommandLine& command_line, EvalOptions* options)
       throw UsageError("--min-moving-speed-mps must be in [0, 100]");
     }
     options->min_moving_speed_mps = *v;
+  }
+  if (const auto m = command_line.DoubleValue("match-threshold-m")) {
+    if (!(*m > 0.0 && *m <= 1000.0)) throw UsageError("--match-threshold-m must be in (0, 1000]");
+    options->match_threshold_m = *m;
   }
 }
 

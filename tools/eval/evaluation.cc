@@ -85,6 +85,156 @@ std::string Count(int64_t n, const std::string& what) {
   return std::to_string(n) + " " + what;
 }
 
+// Which truth and which tracks one tracking score takes (EvaluationReport's three scores).
+struct TrackingRule {
+  bool coasting_tracks = false;  // confirmed tracks (coasting included), not reported ones
+  // People: truth = visible people, standing ones included (every mover in a log that names no
+  // person); output = MOVING tracks and tracks of kind PERSON of any class.
+  bool people = false;
+};
+
+// A truth object this rule counts as a person (people rule).
+bool CountedAsPerson(const TruthObjectSample& o, bool log_names_people) {
+  return log_names_people ? o.kind == TruthKind::kPerson : o.moving;
+}
+
+// Scores the tracks of `input` (TRACKS span) against its truth by `rule`. `paths` and
+// `classification` (either may be null) collect the pictures' track paths and the
+// classification score.
+TrackingResult ScoreTracking(const EvalInput& input, const Pose2& anchor, bool scan_log,
+                             const EvalOptions& options, const TrackingRule& rule,
+                             std::map<int64_t, TrackPath>* paths,
+                             ClassificationAccumulator* classification) {
+  bool log_names_people = false;
+  for (const TruthScan& scan : input.truth) {
+    for (const TruthObjectSample& o : scan.objects) {
+      log_names_people = log_names_people || o.kind == TruthKind::kPerson;
+    }
+  }
+  std::map<int64_t, const TrackScan*> tracks_at;
+  for (const TrackScan& t : input.tracks) tracks_at[t.utime] = &t;
+  const int64_t window_begin = input.tracks.front().utime;
+  const int64_t window_end = input.tracks.back().utime;
+  TrackingResult tracking;
+  ClearMotAccumulator clear_mot(options.match_threshold_m);
+  IdentityMetricsAccumulator identity(options.match_threshold_m);
+  std::set<int64_t> movers_few_beams;
+  std::set<int64_t> movers_standing;
+  double ospa_sum = 0.0;
+  double ospa_loc_sum = 0.0;
+  double ospa_card_sum = 0.0;
+  double gospa_sum = 0.0;
+  for (const TruthScan& scan : input.truth) {
+    if (scan.utime < window_begin || scan.utime > window_end) continue;
+    const auto found = tracks_at.find(scan.utime);
+    TrackingScan row;
+    row.utime = scan.utime;
+    row.had_tracks_message = found != tracks_at.end();
+    if (!row.had_tracks_message) ++tracking.scans_without_tracks;
+
+    std::vector<IdentifiedPoint> truth_movers;
+    DontCare dont_care;
+    std::vector<TruthObject> truth_objects;
+    for (const TruthObjectSample& o : scan.objects) {
+      const bool visible = Visible(o, scan_log, options.min_beams);
+      const bool standing = Standing(o, options.min_moving_speed_mps);
+      truth_objects.push_back({o.id, o.position_m,
+                               o.moving ? ObjectLabel::kMoving : ObjectLabel::kStatic, visible,
+                               standing});
+      if (rule.people ? !CountedAsPerson(o, log_names_people) : !o.moving) continue;
+      if (!visible) {
+        dont_care.positions.push_back(o.position_m);
+        ++tracking.mover_scans_invisible;
+        if (FewBeams(o, scan_log, options.min_beams)) {
+          ++row.num_few_beams;
+          movers_few_beams.insert(o.id);
+        }
+      } else if (standing && !rule.people) {
+        dont_care.objects.push_back({o.id, o.position_m});
+        ++row.num_standing;
+        movers_standing.insert(o.id);
+      } else {
+        truth_movers.push_back({o.id, o.position_m});
+      }
+    }
+    tracking.mover_scans_few_beams += row.num_few_beams;
+    tracking.mover_scans_standing += row.num_standing;
+    std::vector<IdentifiedPoint> hypotheses;
+    std::vector<LabelledTrack> labelled;
+    if (row.had_tracks_message) {
+      for (const TrackSample& t : found->second->tracks) {
+        if (!(rule.coasting_tracks ? t.confirmed : t.reported)) continue;
+        const Eigen::Vector2d p = TransformPoint(anchor, t.position_m);
+        labelled.push_back({t.id, p, t.label});
+        const bool counted = t.label == ObjectLabel::kMoving || (rule.people && t.person);
+        if (!counted) continue;
+        hypotheses.push_back({t.id, p});
+        if (paths == nullptr) continue;
+        TrackPath& path = (*paths)[t.id];
+        path.id = t.id;
+        path.points.push_back(p);
+      }
+    }
+    const ClearMotFrame frame = clear_mot.AddFrame(truth_movers, hypotheses, dont_care);
+    for (const IdentifiedPoint& p : truth_movers) row.truth_ids.push_back(p.id);
+    row.matches = frame.matches;
+    if (classification != nullptr) classification->AddScan(scan.utime, truth_objects, labelled);
+    for (const IdentitySwitch& e : frame.id_switches) {
+      tracking.identity_switches.push_back({scan.utime, e});
+    }
+    for (const Fragmentation& e : frame.fragmentations) {
+      // Every AddFrame call has its row in tracking.scans, in order: the frame index is the row.
+      const size_t since = static_cast<size_t>(e.untracked_since_frame);
+      tracking.fragmentations.push_back(
+          {scan.utime, since < tracking.scans.size() ? tracking.scans[since].utime : scan.utime,
+           e});
+    }
+
+    const std::set<int64_t> excused(frame.dont_care_hypotheses.begin(),
+                                    frame.dont_care_hypotheses.end());
+    PointSet truth_points;
+    PointSet track_points;
+    std::vector<IdentifiedPoint> scored_hypotheses;
+    for (const IdentifiedPoint& p : truth_movers) truth_points.push_back(p.position_m);
+    for (const IdentifiedPoint& h : hypotheses) {
+      if (excused.count(h.id) != 0) continue;
+      track_points.push_back(h.position_m);
+      scored_hypotheses.push_back(h);
+    }
+    identity.AddFrame(truth_movers, scored_hypotheses);
+    const OspaResult ospa =
+        Ospa(truth_points, track_points, options.ospa_cutoff_m, options.ospa_order);
+    const GospaResult gospa = Gospa(truth_points, track_points, options.ospa_cutoff_m,
+                                    options.ospa_order, options.gospa_alpha);
+    row.num_truth = frame.num_truth;
+    row.num_tracks = frame.num_hypotheses;
+    row.num_matches = frame.num_matches;
+    row.num_dont_care = frame.num_dont_care;
+    row.ospa_m = ospa.distance_m;
+    row.gospa_m = gospa.distance_m;
+    ospa_sum += ospa.distance_m;
+    ospa_loc_sum += ospa.localisation_m;
+    ospa_card_sum += ospa.cardinality_m;
+    gospa_sum += gospa.distance_m;
+    tracking.ospa_max_m = std::max(tracking.ospa_max_m, ospa.distance_m);
+    tracking.gospa_max_m = std::max(tracking.gospa_max_m, gospa.distance_m);
+    tracking.gospa_missed += gospa.num_missed;
+    tracking.gospa_false += gospa.num_false;
+    tracking.scans.push_back(row);
+  }
+  if (tracking.scans.empty()) return tracking;
+  const double n = static_cast<double>(tracking.scans.size());
+  tracking.ospa_mean_m = ospa_sum / n;
+  tracking.ospa_localisation_mean_m = ospa_loc_sum / n;
+  tracking.ospa_cardinality_mean_m = ospa_card_sum / n;
+  tracking.gospa_mean_m = gospa_sum / n;
+  tracking.clear_mot = clear_mot.Summary();
+  tracking.identity = identity.Scores();
+  tracking.movers_few_beams = static_cast<int64_t>(movers_few_beams.size());
+  tracking.movers_standing = static_cast<int64_t>(movers_standing.size());
+  return tracking;
+}
+
 }  // namespace
 
 EvaluationReport Evaluate(const EvalInput& input, const EvalOptions& options) {
@@ -213,130 +363,18 @@ EvaluationReport Evaluate(const EvalInput& input, const EvalOptions& options) {
     report.notes.push_back("no TRACKS in the log: tracking and classification not scored");
     return report;
   }
-  std::map<int64_t, const TrackScan*> tracks_at;
-  for (const TrackScan& t : input.tracks) tracks_at[t.utime] = &t;
-  const int64_t window_begin = input.tracks.front().utime;
-  const int64_t window_end = input.tracks.back().utime;
-  TrackingResult tracking;
-  ClearMotAccumulator clear_mot(options.match_threshold_m);
-  IdentityMetricsAccumulator identity(options.match_threshold_m);
-  ClassificationAccumulator classification(options.match_threshold_m);
   std::map<int64_t, TrackPath> paths;
-  std::set<int64_t> movers_few_beams;
-  std::set<int64_t> movers_standing;
-  double ospa_sum = 0.0;
-  double ospa_loc_sum = 0.0;
-  double ospa_card_sum = 0.0;
-  double gospa_sum = 0.0;
-  for (const TruthScan& scan : input.truth) {
-    if (scan.utime < window_begin || scan.utime > window_end) continue;
-    const auto found = tracks_at.find(scan.utime);
-    TrackingScan row;
-    row.utime = scan.utime;
-    row.had_tracks_message = found != tracks_at.end();
-    if (!row.had_tracks_message) ++tracking.scans_without_tracks;
-
-    std::vector<IdentifiedPoint> truth_movers;
-    DontCare dont_care;
-    std::vector<TruthObject> truth_objects;
-    for (const TruthObjectSample& o : scan.objects) {
-      const bool visible = Visible(o, scan_log, options.min_beams);
-      const bool standing = Standing(o, options.min_moving_speed_mps);
-      truth_objects.push_back({o.id, o.position_m,
-                               o.moving ? ObjectLabel::kMoving : ObjectLabel::kStatic, visible,
-                               standing});
-      if (!o.moving) continue;
-      if (!visible) {
-        dont_care.positions.push_back(o.position_m);
-        ++tracking.mover_scans_invisible;
-        if (FewBeams(o, scan_log, options.min_beams)) {
-          ++row.num_few_beams;
-          movers_few_beams.insert(o.id);
-        }
-      } else if (standing) {
-        dont_care.objects.push_back({o.id, o.position_m});
-        ++row.num_standing;
-        movers_standing.insert(o.id);
-      } else {
-        truth_movers.push_back({o.id, o.position_m});
-      }
-    }
-    tracking.mover_scans_few_beams += row.num_few_beams;
-    tracking.mover_scans_standing += row.num_standing;
-    std::vector<IdentifiedPoint> hypotheses;
-    std::vector<LabelledTrack> labelled;
-    if (row.had_tracks_message) {
-      for (const TrackSample& t : found->second->tracks) {
-        if (!t.confirmed) continue;
-        const Eigen::Vector2d p = TransformPoint(anchor, t.position_m);
-        labelled.push_back({t.id, p, t.label});
-        if (t.label != ObjectLabel::kMoving) continue;
-        hypotheses.push_back({t.id, p});
-        TrackPath& path = paths[t.id];
-        path.id = t.id;
-        path.points.push_back(p);
-      }
-    }
-    const ClearMotFrame frame = clear_mot.AddFrame(truth_movers, hypotheses, dont_care);
-    for (const IdentifiedPoint& p : truth_movers) row.truth_ids.push_back(p.id);
-    row.matches = frame.matches;
-    classification.AddScan(scan.utime, truth_objects, labelled);
-    for (const IdentitySwitch& e : frame.id_switches) {
-      tracking.identity_switches.push_back({scan.utime, e});
-    }
-    for (const Fragmentation& e : frame.fragmentations) {
-      // Every AddFrame call has its row in tracking.scans, in order: the frame index is the row.
-      const size_t since = static_cast<size_t>(e.untracked_since_frame);
-      tracking.fragmentations.push_back(
-          {scan.utime, since < tracking.scans.size() ? tracking.scans[since].utime : scan.utime,
-           e});
-    }
-
-    const std::set<int64_t> excused(frame.dont_care_hypotheses.begin(),
-                                    frame.dont_care_hypotheses.end());
-    PointSet truth_points;
-    PointSet track_points;
-    std::vector<IdentifiedPoint> scored_hypotheses;
-    for (const IdentifiedPoint& p : truth_movers) truth_points.push_back(p.position_m);
-    for (const IdentifiedPoint& h : hypotheses) {
-      if (excused.count(h.id) != 0) continue;
-      track_points.push_back(h.position_m);
-      scored_hypotheses.push_back(h);
-    }
-    identity.AddFrame(truth_movers, scored_hypotheses);
-    const OspaResult ospa =
-        Ospa(truth_points, track_points, options.ospa_cutoff_m, options.ospa_order);
-    const GospaResult gospa = Gospa(truth_points, track_points, options.ospa_cutoff_m,
-                                    options.ospa_order, options.gospa_alpha);
-    row.num_truth = frame.num_truth;
-    row.num_tracks = frame.num_hypotheses;
-    row.num_matches = frame.num_matches;
-    row.num_dont_care = frame.num_dont_care;
-    row.ospa_m = ospa.distance_m;
-    row.gospa_m = gospa.distance_m;
-    ospa_sum += ospa.distance_m;
-    ospa_loc_sum += ospa.localisation_m;
-    ospa_card_sum += ospa.cardinality_m;
-    gospa_sum += gospa.distance_m;
-    tracking.ospa_max_m = std::max(tracking.ospa_max_m, ospa.distance_m);
-    tracking.gospa_max_m = std::max(tracking.gospa_max_m, gospa.distance_m);
-    tracking.gospa_missed += gospa.num_missed;
-    tracking.gospa_false += gospa.num_false;
-    tracking.scans.push_back(row);
-  }
+  // Classification judges every confirmed track's label (coasting ones included).
+  ClassificationAccumulator classification(options.match_threshold_m);
+  TrackingResult tracking = ScoreTracking(input, anchor, scan_log, options, TrackingRule{},
+                                          &paths, nullptr);
+  TrackingResult with_coasting = ScoreTracking(input, anchor, scan_log, options,
+                                               TrackingRule{true, false}, nullptr,
+                                               &classification);
   if (tracking.scans.empty()) {
     report.notes.push_back("no GROUND_TRUTH scan within the time span of TRACKS");
     return report;
   }
-  const double n = static_cast<double>(tracking.scans.size());
-  tracking.ospa_mean_m = ospa_sum / n;
-  tracking.ospa_localisation_mean_m = ospa_loc_sum / n;
-  tracking.ospa_cardinality_mean_m = ospa_card_sum / n;
-  tracking.gospa_mean_m = gospa_sum / n;
-  tracking.clear_mot = clear_mot.Summary();
-  tracking.identity = identity.Scores();
-  tracking.movers_few_beams = static_cast<int64_t>(movers_few_beams.size());
-  tracking.movers_standing = static_cast<int64_t>(movers_standing.size());
   if (tracking.scans_without_tracks > 0) {
     report.notes.push_back(Count(tracking.scans_without_tracks,
                                  "GROUND_TRUTH scans within the TRACKS span have no TRACKS of "
@@ -346,6 +384,10 @@ EvaluationReport Evaluate(const EvalInput& input, const EvalOptions& options) {
     report.notes.push_back("no visible mover in motion in any scored scan: MOTA undefined");
   }
   report.tracking = tracking;
+  report.tracking_with_coasting = std::move(with_coasting);
+  report.people_tracking =
+      ScoreTracking(input, anchor, scan_log, options, TrackingRule{false, true}, nullptr,
+                    nullptr);
   report.classification = classification.Summary();
   for (auto& [id, path] : paths) report.track_paths.push_back(std::move(path));
   return report;

@@ -17,10 +17,16 @@
 //   and vice versa): "don't care" for tracking at that scan, not judged by the classification.
 // - Tracking, per ground-truth scan from the first to the last TRACKS message (a scan in that
 //   window without TRACKS counts as an empty output): truth = visible MOVING objects that are not
-//   standing, output = confirmed tracks labelled MOVING. Don't care (clear_mot.h, DontCare): a
+//   standing, output = reported tracks (track_t.reported: confirmed and measured recently)
+//   labelled MOVING; the same with every confirmed track, coasting ones included
+//   (tracking_with_coasting). Don't care (clear_mot.h, DontCare): a
 //   track the optimal assignment gives to a visible standing mover, and an unmatched track
 //   within the threshold of an existing but invisible mover; both are left out of CLEAR-MOT and
 //   of OSPA/GOSPA. Every identity switch and fragmentation is listed with its time.
+// - People (people_tracking): truth = visible people (TruthKind::kPerson; every mover in a log
+//   that names no person), standing ones counted as people (no standing rule); output =
+//   reported tracks labelled MOVING or of kind PERSON (a standing person is a STATIC track of
+//   kind PERSON). Invisible people are don't-cares as above.
 // - Classification: visible objects of both classes against every confirmed track
 //   (classification_score.h), over the same window; standing scans of movers are not judged.
 // Missing inputs leave the affected results empty, with a one-line note each. Without
@@ -185,6 +191,8 @@ struct EvaluationReport {
   std::optional<TrajectoryResult> odometry;  // ODOMETRY
   std::optional<MapScore> map;
   std::optional<TrackingResult> tracking;
+  std::optional<TrackingResult> tracking_with_coasting;  // confirmed tracks, coasting included
+  std::optional<TrackingResult> people_tracking;
   std::optional<ClassificationSummary> classification;
   std::vector<std::string> notes;
 

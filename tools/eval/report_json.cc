@@ -67,13 +67,90 @@ std::string FixedOr(const std::optional<T>& value, int decimals, const std::stri
   return value ? Fixed(static_cast<double>(*value), decimals) + unit : std::string("n/a");
 }
 
+// The detail of one tracking score.
+json TrackingDetail(const TrackingResult& t) {
+  const ClearMotSummary& c = t.clear_mot;
+  json per_scan = {{"utime", json::array()},       {"ospa_m", json::array()},
+                   {"gospa_m", json::array()},     {"truth", json::array()},
+                   {"tracks", json::array()},      {"matches", json::array()},
+                   {"dont_care", json::array()},   {"few_beams", json::array()},
+                   {"standing", json::array()}};
+  for (const TrackingScan& s : t.scans) {
+    per_scan["utime"].push_back(s.utime);
+    per_scan["ospa_m"].push_back(s.ospa_m);
+    per_scan["gospa_m"].push_back(s.gospa_m);
+    per_scan["truth"].push_back(s.num_truth);
+    per_scan["tracks"].push_back(s.num_tracks);
+    per_scan["matches"].push_back(s.num_matches);
+    per_scan["dont_care"].push_back(s.num_dont_care);
+    per_scan["few_beams"].push_back(s.num_few_beams);
+    per_scan["standing"].push_back(s.num_standing);
+  }
+  json switches = json::array();
+  for (const IdentitySwitchEvent& e : t.identity_switches) {
+    switches.push_back({{"utime", e.utime},
+                        {"truth_id", e.what.truth_id},
+                        {"previous_track_id", e.what.previous_hypothesis_id},
+                        {"new_track_id", e.what.new_hypothesis_id}});
+  }
+  json fragmentations = json::array();
+  for (const FragmentationEvent& e : t.fragmentations) {
+    fragmentations.push_back({{"utime", e.utime},
+                              {"untracked_since_utime", e.untracked_since_utime},
+                              {"truth_id", e.what.truth_id},
+                              {"previous_track_id", e.what.previous_hypothesis_id},
+                              {"new_track_id", e.what.new_hypothesis_id}});
+  }
+  return {
+      {"scans", static_cast<int64_t>(t.scans.size())},
+      {"scans_without_tracks", t.scans_without_tracks},
+      {"ospa", {{"mean_m", t.ospa_mean_m},
+                {"max_m", t.ospa_max_m},
+                {"localisation_mean_m", t.ospa_localisation_mean_m},
+                {"cardinality_mean_m", t.ospa_cardinality_mean_m}}},
+      {"gospa", {{"mean_m", t.gospa_mean_m},
+                 {"max_m", t.gospa_max_m},
+                 {"missed", t.gospa_missed},
+                 {"false", t.gospa_false}}},
+      {"clear_mot", {{"truth", c.num_truth},
+                     {"matches", c.num_matches},
+                     {"misses", c.num_misses},
+                     {"false_positives", c.num_false_positives},
+                     {"id_switches", c.num_id_switches},
+                     {"fragmentations", c.num_fragmentations},
+                     {"dont_care", c.num_dont_care},
+                     {"mota", OrNull(c.mota)},
+                     {"motp_m", OrNull(c.motp_m)}}},
+      {"identity", {{"idf1", OrNull(t.identity.idf1)},
+                    {"id_precision", OrNull(t.identity.id_precision)},
+                    {"id_recall", OrNull(t.identity.id_recall)},
+                    {"id_true_positives", t.identity.id_true_positives},
+                    {"id_false_positives", t.identity.id_false_positives},
+                    {"id_false_negatives", t.identity.id_false_negatives},
+                    {"hota", OrNull(t.identity.hota)},
+                    {"det_a", OrNull(t.identity.det_a)},
+                    {"ass_a", OrNull(t.identity.ass_a)},
+                    {"loc_a", OrNull(t.identity.loc_a)}}},
+      {"dont_care", {{"tracks_on_standing_movers", c.num_dont_care_objects},
+                     {"tracks_near_invisible_movers", c.num_dont_care_positions},
+                     {"mover_scans_invisible", t.mover_scans_invisible},
+                     {"mover_scans_few_beams", t.mover_scans_few_beams},
+                     {"movers_few_beams", t.movers_few_beams},
+                     {"mover_scans_standing", t.mover_scans_standing},
+                     {"movers_standing", t.movers_standing}}},
+      {"identity_switch_events", switches},
+      {"fragmentation_events", fragmentations},
+      {"per_scan", per_scan}};
+}
+
 }  // namespace
 
 const std::vector<std::string>& TopLevelMetricKeys() {
   static const std::vector<std::string> keys = {
       "ate_rmse_m",      "odometry_ate_rmse_m",  "ospa_mean_m",     "gospa_mean_m",
       "mota",            "motp_m",               "id_switches",     "fragmentations",
-      "idf1",            "hota",
+      "idf1",            "hota",                 "mota_with_coasting",
+      "id_switches_with_coasting",               "people_mota",     "people_id_switches",
       "movers_in_static_map", "landmark_rmse_m", "static_recall",   "classification_accuracy"};
   return keys;
 }
@@ -127,6 +204,13 @@ json ReportToJson(const EvalInput& input, const EvaluationReport& report,
   j["hota"] = report.tracking ? OrNull(report.tracking->identity.hota) : json(nullptr);
   j["fragmentations"] =
       report.tracking ? json(report.tracking->clear_mot.num_fragmentations) : json(nullptr);
+  const auto& coasting = report.tracking_with_coasting;
+  j["mota_with_coasting"] = coasting ? OrNull(coasting->clear_mot.mota) : json(nullptr);
+  j["id_switches_with_coasting"] =
+      coasting ? json(coasting->clear_mot.num_id_switches) : json(nullptr);
+  const auto& people = report.people_tracking;
+  j["people_mota"] = people ? OrNull(people->clear_mot.mota) : json(nullptr);
+  j["people_id_switches"] = people ? json(people->clear_mot.num_id_switches) : json(nullptr);
   j["movers_in_static_map"] =
       report.map ? json(report.map->num_movers_in_static_map) : json(nullptr);
   j["landmark_rmse_m"] = report.map ? OrNull(report.map->landmark_rmse_m) : json(nullptr);
@@ -178,83 +262,12 @@ json ReportToJson(const EvalInput& input, const EvaluationReport& report,
   } else {
     detail["map"] = nullptr;
   }
-  if (report.tracking) {
-    const TrackingResult& t = *report.tracking;
-    const ClearMotSummary& c = t.clear_mot;
-    json per_scan = {{"utime", json::array()},       {"ospa_m", json::array()},
-                     {"gospa_m", json::array()},     {"truth", json::array()},
-                     {"tracks", json::array()},      {"matches", json::array()},
-                     {"dont_care", json::array()},   {"few_beams", json::array()},
-                     {"standing", json::array()}};
-    for (const TrackingScan& s : t.scans) {
-      per_scan["utime"].push_back(s.utime);
-      per_scan["ospa_m"].push_back(s.ospa_m);
-      per_scan["gospa_m"].push_back(s.gospa_m);
-      per_scan["truth"].push_back(s.num_truth);
-      per_scan["tracks"].push_back(s.num_tracks);
-      per_scan["matches"].push_back(s.num_matches);
-      per_scan["dont_care"].push_back(s.num_dont_care);
-      per_scan["few_beams"].push_back(s.num_few_beams);
-      per_scan["standing"].push_back(s.num_standing);
-    }
-    json switches = json::array();
-    for (const IdentitySwitchEvent& e : t.identity_switches) {
-      switches.push_back({{"utime", e.utime},
-                          {"truth_id", e.what.truth_id},
-                          {"previous_track_id", e.what.previous_hypothesis_id},
-                          {"new_track_id", e.what.new_hypothesis_id}});
-    }
-    json fragmentations = json::array();
-    for (const FragmentationEvent& e : t.fragmentations) {
-      fragmentations.push_back({{"utime", e.utime},
-                                {"untracked_since_utime", e.untracked_since_utime},
-                                {"truth_id", e.what.truth_id},
-                                {"previous_track_id", e.what.previous_hypothesis_id},
-                                {"new_track_id", e.what.new_hypothesis_id}});
-    }
-    detail["tracking"] = {
-        {"scans", static_cast<int64_t>(t.scans.size())},
-        {"scans_without_tracks", t.scans_without_tracks},
-        {"ospa", {{"mean_m", t.ospa_mean_m},
-                  {"max_m", t.ospa_max_m},
-                  {"localisation_mean_m", t.ospa_localisation_mean_m},
-                  {"cardinality_mean_m", t.ospa_cardinality_mean_m}}},
-        {"gospa", {{"mean_m", t.gospa_mean_m},
-                   {"max_m", t.gospa_max_m},
-                   {"missed", t.gospa_missed},
-                   {"false", t.gospa_false}}},
-        {"clear_mot", {{"truth", c.num_truth},
-                       {"matches", c.num_matches},
-                       {"misses", c.num_misses},
-                       {"false_positives", c.num_false_positives},
-                       {"id_switches", c.num_id_switches},
-                       {"fragmentations", c.num_fragmentations},
-                       {"dont_care", c.num_dont_care},
-                       {"mota", OrNull(c.mota)},
-                       {"motp_m", OrNull(c.motp_m)}}},
-        {"identity", {{"idf1", OrNull(t.identity.idf1)},
-                      {"id_precision", OrNull(t.identity.id_precision)},
-                      {"id_recall", OrNull(t.identity.id_recall)},
-                      {"id_true_positives", t.identity.id_true_positives},
-                      {"id_false_positives", t.identity.id_false_positives},
-                      {"id_false_negatives", t.identity.id_false_negatives},
-                      {"hota", OrNull(t.identity.hota)},
-                      {"det_a", OrNull(t.identity.det_a)},
-                      {"ass_a", OrNull(t.identity.ass_a)},
-                      {"loc_a", OrNull(t.identity.loc_a)}}},
-        {"dont_care", {{"tracks_on_standing_movers", c.num_dont_care_objects},
-                       {"tracks_near_invisible_movers", c.num_dont_care_positions},
-                       {"mover_scans_invisible", t.mover_scans_invisible},
-                       {"mover_scans_few_beams", t.mover_scans_few_beams},
-                       {"movers_few_beams", t.movers_few_beams},
-                       {"mover_scans_standing", t.mover_scans_standing},
-                       {"movers_standing", t.movers_standing}}},
-        {"identity_switch_events", switches},
-        {"fragmentation_events", fragmentations},
-        {"per_scan", per_scan}};
-  } else {
-    detail["tracking"] = nullptr;
-  }
+  detail["tracking"] = report.tracking ? TrackingDetail(*report.tracking) : json(nullptr);
+  detail["tracking_with_coasting"] = report.tracking_with_coasting
+                                         ? TrackingDetail(*report.tracking_with_coasting)
+                                         : json(nullptr);
+  detail["people_tracking"] =
+      report.people_tracking ? TrackingDetail(*report.people_tracking) : json(nullptr);
   if (report.classification) {
     const ClassificationSummary& s = *report.classification;
     json objects = json::array();
@@ -297,7 +310,9 @@ json ReportToJson(const EvalInput& input, const EvaluationReport& report,
     if (w.code == "pose_coverage") j["ate_rmse_m"] = nullptr;
     if (w.code == "tracks_coverage") {
       for (const char* key : {"ospa_mean_m", "gospa_mean_m", "mota", "motp_m", "id_switches",
-                              "fragmentations", "idf1", "hota"}) {
+                              "fragmentations", "idf1", "hota", "mota_with_coasting",
+                              "id_switches_with_coasting", "people_mota",
+                              "people_id_switches"}) {
         j[key] = nullptr;
       }
     }
@@ -356,6 +371,17 @@ std::string ReportSummaryText(const EvaluationReport& report,
           << " beams)";
     }
     out << "; " << t.clear_mot.num_dont_care << " tracks excused";
+    if (report.tracking_with_coasting) {
+      const ClearMotSummary& c = report.tracking_with_coasting->clear_mot;
+      out << "\n  with coasting:  MOTA " << FixedOr(c.mota, 3) << ", " << c.num_id_switches
+          << " identity switches (every confirmed track, measured or not)";
+    }
+    if (report.people_tracking) {
+      const ClearMotSummary& c = report.people_tracking->clear_mot;
+      out << "\n  people:         MOTA " << FixedOr(c.mota, 3) << ", MOTP "
+          << FixedOr(c.motp_m, 3, " m") << ", " << c.num_id_switches
+          << " identity switches (visible people, standing ones counted)";
+    }
   } else {
     out << "n/a";
   }

@@ -1,0 +1,65 @@
+// People and other movers: what kind an object is, the process noise of each kind, and the
+// speeds each kind can plausibly reach.
+//
+// Kind: a person feature (perception's legs paired into a person, or one leg alone with a
+// covariance grown by the leg's offset from the person's centre; docs/perception.md) is one
+// measurement of a person; every other point feature is a measurement of something else. An
+// object is of kind PERSON while more than half of its measured scans were person features
+// (RecordMeasurementKind), so one scan in which a person's legs were not paired (two leg
+// clusters, one taken as the person's single leg, the other as a point) does not change what it
+// is. Kind and class are independent: a standing person is a STATIC object of kind PERSON,
+// tracked like every landmark but never part of the static map (MAP, estimator_stage.h).
+//
+// Speed gate: after the updates of a scan, the velocity estimate of every object with velocity
+// states is projected onto the speeds its kind can reach, |v| <= max_speed (the mean only:
+// estimate projection of a constrained Kalman filter, Simon and Chia, "Kalman filtering with
+// state equality constraints", IEEE Trans. Aerospace and Electronic Systems 38(1), 2002; the
+// inequality is active only when violated, and the covariance is left as it is). Limits, from
+// published speeds:
+//  - people: 3.0 m/s. Adults' fastest walking speeds are 1.75-2.53 m/s (Bohannon, "Comfortable
+//    and maximum walking speed of adults aged 20-79 years", Age and Ageing 26(1), 1997: means of
+//    each age and sex group), comfortable walking 1.27-1.46 m/s; people hurrying over ground
+//    mix walking and running between 1.9 and 3.0 m/s and mostly run at 3.0 m/s (Baker, Long
+//    and Srinivasan, "Overground gait transitions are not sharp but involve gradually changing
+//    walk-run mixtures even over long distances", arXiv 2501.00720, 2025). 3 m/s is above
+//    every walking person and a jog indoors; a faster estimate is a mis-association or a
+//    velocity that absorbed the robot's error, not a person.
+//  - any other mover: 12.5 m/s, above the fastest human sprint measured (Usain Bolt's 100 m
+//    world record, Berlin 2009: 20 m in 1.61 s between 60 and 80 m, 12.4 m/s, in the IAAF's
+//    biomechanical analysis of those championships). Nothing indoors that a laser sees as a
+//    compact object moves faster.
+// 0 turns a limit off. Counted per scan (StepCounts::speeds_limited).
+#pragma once
+
+#include "common/options_schema.h"
+#include "estimator/slam_state.h"
+
+namespace slammtt {
+
+struct PeopleOptions {
+  // sigma_Q of eq. 8 for MOVING people (MOVING objects of other kinds:
+  // EstimatorOptions::mover_acceleration_sigma_mps2).
+  double acceleration_sigma_mps2 = 0.02;
+  double max_speed_mps = 3.0;         // people (see above); 0: no limit
+  double other_max_speed_mps = 12.5;  // every other mover; 0: no limit
+};
+
+// The schema of these options (common/options_schema.h; keys in EstimatorOptions' group
+// `people`).
+void VisitPeopleOptions(OptionVisitor* visitor, PeopleOptions* options);
+
+// The kind a record's measured scans give it: PERSON when person_hits > hits / 2.
+ObjectKind KindOfRecord(const ObjectRecord& record);
+
+// Accounts the kind of one scan's measurement of the object (its hits are already counted)
+// and updates record->kind.
+void RecordMeasurementKind(bool person_measurement, ObjectRecord* record);
+
+// The largest plausible speed of an object of `kind` (0: no limit).
+double MaxSpeedOfKind(ObjectKind kind, const PeopleOptions& options);
+
+// Scales every velocity estimate faster than its kind's limit down to the limit (see above).
+// Returns how many were limited.
+int LimitSpeedsToTheirKind(const PeopleOptions& options, SlamState* state);
+
+}  // namespace slammtt

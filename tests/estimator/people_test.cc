@@ -1,0 +1,124 @@
+// People and other movers (estimator/people.h) and the reporting rules of track management
+// (estimator/track_management.h): the kind of an object, the plausible-speed gate, M-of-N
+// confirmation and which tracks are reported.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+
+#include "estimator/people.h"
+#include "estimator/track_management.h"
+#include "tests/estimator/step_scene.h"
+
+namespace slammtt {
+namespace {
+
+using testing::kSecond;
+using testing::StepScene;
+
+TEST(PeopleTest, AnObjectIsAPersonWhileMostOfItsMeasurementsWerePersonFeatures) {
+  ObjectRecord record = NewObjectRecord(1, 0, ObjectClass::kUndecided);
+  record.person_hits = 1;  // first seen as a person feature
+  EXPECT_EQ(KindOfRecord(record), ObjectKind::kPerson);
+  record.hits = 2;  // then a point feature (legs not paired in that scan)
+  RecordMeasurementKind(false, &record);
+  EXPECT_EQ(record.kind, ObjectKind::kOther) << "1 of 2: not more than half";
+  record.hits = 3;
+  RecordMeasurementKind(true, &record);
+  EXPECT_EQ(record.kind, ObjectKind::kPerson);  // 2 of 3
+  ObjectRecord post = NewObjectRecord(2, 0, ObjectClass::kUndecided);
+  for (int k = 0; k < 10; ++k) {
+    ++post.hits;
+    RecordMeasurementKind(false, &post);
+  }
+  EXPECT_EQ(post.kind, ObjectKind::kOther);
+}
+
+TEST(PeopleTest, VelocitiesAreLimitedToWhatTheirKindCanReach) {
+  StepScene scene;
+  const int walker = scene.AddMover({4.0, 0.0}, 0.1, {1.4, 0.0}, 0.2);
+  const int runner = scene.AddMover({4.0, 1.0}, 0.1, {3.0, 4.0}, 0.2);  // 5 m/s
+  const int cart = scene.AddMover({4.0, 2.0}, 0.1, {3.0, 4.0}, 0.2);    // 5 m/s, not a person
+  const int rocket = scene.AddMover({4.0, 3.0}, 0.1, {0.0, -20.0}, 0.2);
+  scene.state.object(walker).record.kind = ObjectKind::kPerson;
+  scene.state.object(runner).record.kind = ObjectKind::kPerson;
+  const Eigen::MatrixXd covariance_before = scene.state.covariance();
+  const PeopleOptions options;
+  EXPECT_EQ(LimitSpeedsToTheirKind(options, &scene.state), 2);
+  EXPECT_EQ(scene.state.velocity(walker), Eigen::Vector2d(1.4, 0.0));
+  EXPECT_NEAR(scene.state.velocity(runner)(0), 3.0 * 3.0 / 5.0, 1e-12);  // direction kept
+  EXPECT_NEAR(scene.state.velocity(runner)(1), 3.0 * 4.0 / 5.0, 1e-12);
+  EXPECT_EQ(scene.state.velocity(cart), Eigen::Vector2d(3.0, 4.0));
+  EXPECT_NEAR(scene.state.velocity(rocket)(1), -12.5, 1e-12);
+  EXPECT_EQ(scene.state.covariance(), covariance_before);  // the mean only
+  PeopleOptions off;
+  off.max_speed_mps = 0.0;
+  off.other_max_speed_mps = 0.0;
+  scene.state.mean().segment<2>(scene.state.object(runner).velocity_index) << 9.0, 0.0;
+  EXPECT_EQ(LimitSpeedsToTheirKind(off, &scene.state), 0);
+}
+
+// Confirmation by M of N (3 of the last 5 scans): scans hit (H) and missed (M) in the order
+// H M M H M H: 3 hits in all, but only 2 in the last 5, so not confirmed (the rule before, 3
+// hits at any time, confirms it); one more hit makes 3 of the last 5.
+TEST(TrackManagementTest, BirthNeedsMOfTheLastNScans) {
+  TrackManagementOptions options;
+  ASSERT_EQ(options.confirm_hits, 3);
+  ASSERT_EQ(options.confirm_window_scans, 5);
+  ObjectRecord record = NewObjectRecord(1, 0, ObjectClass::kUndecided);
+  const bool hit[] = {false, false, true, false, true};
+  int64_t utime = 0;
+  for (bool h : hit) {
+    utime += kSecond / 10;
+    if (h) {
+      RecordHit(utime, options, &record);
+    } else {
+      RecordMiss(0.1, true, true, &record);
+    }
+  }
+  EXPECT_EQ(record.hits, 3);
+  EXPECT_FALSE(record.confirmed);
+  ObjectRecord before = record;
+  TrackManagementOptions any_time = options;
+  any_time.confirm_window_scans = 0;
+  RecordHit(utime, any_time, &before);
+  EXPECT_TRUE(before.confirmed) << "4 hits at any time";
+  RecordHit(utime + kSecond / 10, options, &record);
+  EXPECT_TRUE(record.confirmed);
+  // A stray cluster seen at every third scan (H M M H M M H ...) never has 3 of the last 5,
+  // however many hits it gathers.
+  ObjectRecord stray = NewObjectRecord(2, 0, ObjectClass::kUndecided);
+  for (int k = 1; k <= 12; ++k) {
+    if (k % 3 == 0) {
+      RecordHit(k * kSecond / 10, options, &stray);
+    } else {
+      RecordMiss(0.1, true, true, &stray);
+    }
+  }
+  EXPECT_EQ(stray.hits, 5);
+  EXPECT_FALSE(stray.confirmed);
+}
+
+TEST(TrackManagementTest, OnlyRecentlyMeasuredTracksAreReported) {
+  TrackManagementOptions options;
+  ObjectRecord mover = NewObjectRecord(1, 0, ObjectClass::kMoving);
+  mover.confirmed = true;
+  mover.last_seen_utime = 10 * kSecond;
+  EXPECT_TRUE(ReportedTrack(mover, true, 10 * kSecond, options));
+  EXPECT_TRUE(ReportedTrack(mover, true, 10 * kSecond + kSecond / 2, options));  // 0.5 s
+  EXPECT_FALSE(ReportedTrack(mover, true, 10 * kSecond + kSecond * 6 / 10, options));
+  options.report_measured_within_s = 1.0;
+  EXPECT_TRUE(ReportedTrack(mover, true, 10 * kSecond + kSecond * 6 / 10, options));
+  options = TrackManagementOptions();
+  // A landmark is the map: reported while confirmed, however long unseen; a standing person
+  // (STATIC, kind PERSON) is a track like any other.
+  ObjectRecord landmark = NewObjectRecord(2, 0, ObjectClass::kStatic);
+  landmark.confirmed = true;
+  EXPECT_TRUE(ReportedTrack(landmark, false, 60 * kSecond, options));
+  landmark.kind = ObjectKind::kPerson;
+  EXPECT_FALSE(ReportedTrack(landmark, false, 60 * kSecond, options));
+  ObjectRecord tentative = NewObjectRecord(3, 0, ObjectClass::kUndecided);
+  EXPECT_FALSE(ReportedTrack(tentative, true, 0, options));
+}
+
+}  // namespace
+}  // namespace slammtt
