@@ -11,6 +11,7 @@
 #include "estimator/hits_and_misses.h"
 #include "estimator/level1.h"
 #include "estimator/level3.h"
+#include "estimator/line_model.h"
 #include "estimator/manoeuvres.h"
 #include "estimator/nearest_neighbour.h"
 #include "estimator/new_objects.h"
@@ -115,6 +116,8 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
   // 1. Predict (line 2).
   Predict(scan.utime, interval);
   last_scan_utime_ = scan.utime;
+  // 1b. The walls (line landmarks) correct the pose before the points are judged.
+  UpdateLines(scan, &counts);
   lap(Substage::kPredict);
 
   // 2, 3. Predict the observations, gate (lines 3-4), and the budget of landmark updates.
@@ -234,6 +237,33 @@ void Estimator::Predict(int64_t utime, const ScanInterval& interval) {
   }
 }
 
+void Estimator::UpdateLines(const ScanInput& scan, StepCounts* counts) {
+  counts->lines = static_cast<int>(scan.lines.size());
+  if (scan.lines.empty()) return;
+  const LineGates gates{options_.gate_d1_chi2, options_.new_object_gate_dn_chi2,
+                        options_.update_group_size};
+  const LineStepCounts lines = UpdateLineLandmarks(scan.lines, scan.utime, options_.lines, gates,
+                                                   options_.sensor, &next_id_, &state_);
+  counts->lines_rejected = lines.rejected;
+  counts->line_updates = lines.level1_updates + lines.level2_updates;
+  counts->lines_associated = lines.associated;
+  counts->line_updates_skipped = lines.updates_skipped;
+  counts->new_lines = lines.new_landmarks;
+  counts->lines_refused = lines.refused;
+  counts->updates_failed += lines.failed;
+  counters_.lines_rejected += lines.rejected;
+  counters_.lines_refused += lines.refused;
+  if (lines.rejected > 0) {
+    Event(std::to_string(lines.rejected) + " line feature(s) rejected, first: " +
+          lines.first_rejection);
+  }
+  if (lines.refused > 0) {
+    Event("scan at utime " + std::to_string(scan.utime) + ": " + std::to_string(lines.refused) +
+          " new line landmark(s) refused, cap of " +
+          std::to_string(options_.lines.max_landmarks) + " reached");
+  }
+}
+
 void Estimator::ReportScanProblems(int64_t utime, const StepCounts& counts) {
   if (counts.objects_refused > 0) {
     counters_.object_cap_hits += counts.objects_refused;
@@ -268,6 +298,20 @@ void Estimator::ReportEstimate(int64_t utime, ScanResult* result) const {
     e.last_seen_utime = record.last_seen_utime;
     e.hits = record.hits;
     result->objects.push_back(e);
+  }
+  result->lines.reserve(static_cast<size_t>(state_.num_lines()));
+  for (int k = 0; k < state_.num_lines(); ++k) {
+    const LineRecord& record = state_.line(k).record;
+    LineEstimate e;
+    e.id = record.id;
+    e.line = state_.line_params(k);
+    e.covariance = state_.LineCovariance(k);
+    e.from_m = PointOnLine(e.line, record.extent_from_m);
+    e.to_m = PointOnLine(e.line, record.extent_to_m);
+    e.hits = record.hits;
+    e.first_seen_utime = record.first_seen_utime;
+    e.last_seen_utime = record.last_seen_utime;
+    result->lines.push_back(e);
   }
 }
 

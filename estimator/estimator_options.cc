@@ -112,6 +112,9 @@ void VisitAssociationOptions(OptionVisitor* v, EstimatorOptions* o) {
   v->BeginGroup("classifier");
   VisitMotionClassifierOptions(v, &o->classifier);
   v->EndGroup();
+  v->BeginGroup("lines");
+  VisitLineLandmarkOptions(v, &o->lines);
+  v->EndGroup();
 }
 
 }  // namespace

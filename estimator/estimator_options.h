@@ -8,6 +8,7 @@
 #include <string>
 
 #include "common/options_schema.h"
+#include "estimator/line_landmarks.h"
 #include "estimator/ml_ransac.h"
 #include "estimator/motion_classifier.h"
 #include "estimator/range_bearing_model.h"
@@ -126,6 +127,9 @@ struct EstimatorOptions {
 
   TrackManagementOptions tracks;
   MotionClassifierOptions classifier;
+  // Walls and furniture sides as line landmarks (line_landmarks.h); gates d1 and dn and the
+  // update group size are the points'.
+  LineLandmarkOptions lines;
 };
 
 // The options schema of the estimator (common/options_schema.h): every option once, with its

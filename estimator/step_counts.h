@@ -23,6 +23,13 @@ struct StepCounts {
   int started_moving = 0;
   int updates_failed = 0;
   int static_updates_skipped = 0;  // associated landmarks left out by the per-scan budget
+  int lines = 0;                // line features received
+  int lines_rejected = 0;
+  int line_updates = 0;         // line features that updated the state (levels 1 and 2)
+  int lines_associated = 0;     // with a line landmark (updating or left out by the budget)
+  int line_updates_skipped = 0;  // by the budget of line updates
+  int new_lines = 0;
+  int lines_refused = 0;        // by lines_max_landmarks
   int observation_predictions = 0;  // times every object's observation was predicted (once
                                     // per state the scan passed through)
 };

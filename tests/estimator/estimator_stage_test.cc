@@ -319,7 +319,8 @@ TEST(EstimatorStageTest, PublishesEveryOutputWithTheFeaturesUtime) {
                                                         "level2_3", "track_management"}));
   EXPECT_EQ(timing.counter_name, (std::vector<std::string>{"features", "objects", "hypotheses",
                                                             "updates", "updates_skipped",
-                                                            "lines_unused"}));
+                                                            "lines", "line_updates",
+                                                            "new_lines"}));
   EXPECT_EQ(timing.counter_value[0], 2);
   EXPECT_EQ(timing.counter_value[1], 2);
   EXPECT_EQ(timing.counter_value[3], 0);  // two new objects, nothing to update yet
