@@ -78,6 +78,7 @@ bool Estimator::RestartOnJumpBack(const char* what, int64_t utime,
   last_scan_utime_.reset();
   last_odometry_utime_.reset();
   odometry_.Clear();
+  line_candidates_.clear();
   return true;
 }
 
@@ -110,7 +111,7 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
   auto lap = [observer](Substage s) { if (observer != nullptr) observer->SubstageDone(s); };
   if (!AcceptScanTime(scan.utime)) return result;
   const ScanInterval interval = IntervalTo(scan.utime);
-  const ValidatedFeatures features = TakeFeatures(scan.features, &counts);
+  ValidatedFeatures features = TakeFeatures(scan.features, &counts);
   const bool static_world = options_.mode == AssociationMode::kStaticNearestNeighbour;
 
   // 1. Predict (line 2).
@@ -118,6 +119,7 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
   last_scan_utime_ = scan.utime;
   // 1b. The walls (line landmarks) correct the pose before the points are judged.
   UpdateLines(scan, &counts);
+  DropPointsOnLines(&features, &counts);
   lap(Substage::kPredict);
 
   // 2, 3. Predict the observations, gate (lines 3-4), and the budget of landmark updates.
@@ -243,7 +245,8 @@ void Estimator::UpdateLines(const ScanInput& scan, StepCounts* counts) {
   const LineGates gates{options_.gate_d1_chi2, options_.new_object_gate_dn_chi2,
                         options_.update_group_size};
   const LineStepCounts lines = UpdateLineLandmarks(scan.lines, scan.utime, options_.lines, gates,
-                                                   options_.sensor, &next_id_, &state_);
+                                                   options_.sensor, &next_id_, &state_,
+                                                   &line_candidates_);
   counts->lines_rejected = lines.rejected;
   counts->line_updates = lines.level1_updates + lines.level2_updates;
   counts->lines_associated = lines.associated;
@@ -262,6 +265,26 @@ void Estimator::UpdateLines(const ScanInput& scan, StepCounts* counts) {
           " new line landmark(s) refused, cap of " +
           std::to_string(options_.lines.max_landmarks) + " reached");
   }
+}
+
+void Estimator::DropPointsOnLines(ValidatedFeatures* features, StepCounts* counts) const {
+  std::vector<Eigen::Vector2d> range_bearings;
+  range_bearings.reserve(features->measurements.size());
+  for (const PointMeasurement& m : features->measurements) {
+    range_bearings.push_back(m.range_bearing);
+  }
+  const std::vector<uint8_t> on_line =
+      PointsOnLineLandmarks(range_bearings, options_.lines, options_.sensor, state_);
+  size_t kept = 0;
+  for (size_t i = 0; i < on_line.size(); ++i) {
+    if (on_line[i]) continue;
+    features->measurements[kept] = features->measurements[i];
+    features->widths_m[kept] = features->widths_m[i];
+    ++kept;
+  }
+  counts->points_on_lines = static_cast<int>(on_line.size() - kept);
+  features->measurements.resize(kept);
+  features->widths_m.resize(kept);
 }
 
 void Estimator::ReportScanProblems(int64_t utime, const StepCounts& counts) {

@@ -7,7 +7,8 @@
 //                             odometry since the previous scan (odometry_buffer.h), movers by
 //                             eqs. 6-8, landmarks unchanged (line 2: scan_prediction.h);
 //  1b. line landmarks        the scan's line features (walls) update the line landmarks and
-//                             the pose, and start new line landmarks (line_landmarks.h);
+//                             the pose, and start new line landmarks; the point features on a
+//                             line landmark are dropped (line_landmarks.h);
 //   2. predict observations   of every object (eqs. 10-11, 20-21), once per state the scan
 //                             passes through (observation_predictions.h);
 //   3. gate                   Mahalanobis distances and the compatibility matrix J with gate d1
@@ -167,6 +168,9 @@ class Estimator {
   void Predict(int64_t utime, const ScanInterval& interval);
   // Step 1b (line_landmarks.h): the walls update the pose and the line landmarks.
   void UpdateLines(const ScanInput& scan, StepCounts* counts);
+  // Takes the point features that lie on a line landmark out of the scan's measurements
+  // (line_landmarks.h: PointsOnLineLandmarks): pieces of walls are not point landmarks.
+  void DropPointsOnLines(ValidatedFeatures* features, StepCounts* counts) const;
   // The object cap and numerically unusable updates of the scan, counted and described.
   void ReportScanProblems(int64_t utime, const StepCounts& counts);
   // The pose and every object as the scan leaves them.
@@ -184,6 +188,7 @@ class Estimator {
   std::optional<int64_t> last_scan_utime_;
   std::optional<int64_t> last_odometry_utime_;
   OdometryBuffer odometry_;
+  std::vector<LineCandidate> line_candidates_;  // straight runs not yet line landmarks
   int64_t next_id_ = 1;
 };
 

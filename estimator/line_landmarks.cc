@@ -238,6 +238,43 @@ void GrowExtent(const LineMeasurement& m, const SensorMount& mount, int j, SlamS
   record.extent_to_m = std::max(record.extent_to_m, std::max(a, b));
 }
 
+// The feature as a map-frame line at the current pose, with its extent along it.
+LineCandidate CandidateOf(const LineMeasurement& m, const SensorMount& mount, int64_t utime,
+                          const SlamState& state) {
+  const Eigen::Vector3d robot = state.robot_pose();
+  LineCandidate c;
+  c.line = LineFromObservation(robot, m.observation, mount);
+  const double a = PositionAlongLine(c.line, SensorPointToMap(robot, mount, m.first_m));
+  const double b = PositionAlongLine(c.line, SensorPointToMap(robot, mount, m.last_m));
+  c.extent_from_m = std::min(a, b);
+  c.extent_to_m = std::max(a, b);
+  c.scans = 1;
+  c.first_seen_utime = utime;
+  c.last_seen_utime = utime;
+  return c;
+}
+
+// Whether `seen` continues `candidate`: the same line within the match distances (either
+// sign of (rho, alpha)), extents overlapping or within extent_gap_m.
+bool Continues(const LineCandidate& seen, const LineCandidate& candidate,
+               const LineLandmarkOptions& options) {
+  double sign = 1.0;
+  double angle = WrapAngle(seen.line(1) - candidate.line(1));
+  if (std::abs(angle) > 0.5 * M_PI) {
+    sign = -1.0;  // the same line written as (-rho, alpha + pi)
+    angle = WrapAngle(angle + M_PI);
+  }
+  if (std::abs(angle) > options.candidate_match_rad ||
+      std::abs(sign * seen.line(0) - candidate.line(0)) > options.candidate_match_m) {
+    return false;
+  }
+  // The seen extent in the candidate's coordinates (the direction flips with the sign).
+  const double from = sign > 0.0 ? seen.extent_from_m : -seen.extent_to_m;
+  const double to = sign > 0.0 ? seen.extent_to_m : -seen.extent_from_m;
+  return from <= candidate.extent_to_m + options.extent_gap_m &&
+         to >= candidate.extent_from_m - options.extent_gap_m;
+}
+
 void AddLineLandmark(const LineMeasurement& m, const SensorMount& mount, int64_t utime,
                      int64_t* next_id, SlamState* state) {
   const Eigen::Vector3d robot = state->robot_pose();
@@ -269,17 +306,64 @@ void VisitLineLandmarkOptions(OptionVisitor* v, LineLandmarkOptions* o) {
             "floor of a line feature's alpha sigma", OptionUnit::kDegrees);
   v->Double("extent_gap_m", &o->extent_gap_m, R::AtLeast(0),
             "a line feature and a landmark are associated only if their extents come closer");
+  v->Double("point_on_line_m", &o->point_on_line_m, R::AtLeast(0),
+            "a point feature this close to a line landmark is a piece of wall (0: off)");
+  v->Double("point_end_margin_m", &o->point_end_margin_m, R::AtLeast(0),
+            "...within the landmark's seen extent lengthened by this at both ends");
+  v->Int("confirm_scans", &o->confirm_scans, R::Between(1, 1000),
+         "scans a candidate line is seen in before it becomes a landmark");
+  v->Double("candidate_timeout_s", &o->candidate_timeout_s, R::AtLeast(0),
+            "a candidate line unseen for longer is dropped");
+  v->Double("candidate_match_m", &o->candidate_match_m, R::Above(0),
+            "a line feature continues a candidate within this distance...");
+  v->Double("candidate_match_rad", &o->candidate_match_rad, R::Above(0),
+            "...and this angle", OptionUnit::kDegrees);
   v->Int("max_updates_per_scan", &o->max_updates_per_scan, R::Between(0, 100000),
          "budget of line-landmark updates per scan (0: no limit)");
   v->Int("max_landmarks", &o->max_landmarks, R::Between(0, 100000),
          "the most line landmarks held; new ones beyond are refused and counted");
 }
 
+std::vector<uint8_t> PointsOnLineLandmarks(const std::vector<Eigen::Vector2d>& range_bearings,
+                                           const LineLandmarkOptions& options,
+                                           const SensorMount& mount, const SlamState& state) {
+  std::vector<uint8_t> on_line(range_bearings.size(), 0);
+  if (!options.enabled || !(options.point_on_line_m > 0.0) || state.num_lines() == 0) {
+    return on_line;
+  }
+  const Eigen::Vector3d robot = state.robot_pose();
+  for (size_t i = 0; i < range_bearings.size(); ++i) {
+    const Eigen::Vector2d& z = range_bearings[i];
+    const Eigen::Vector2d point =
+        SensorPointToMap(robot, mount, z(0) * Eigen::Vector2d(std::cos(z(1)), std::sin(z(1))));
+    for (int j = 0; j < state.num_lines() && !on_line[i]; ++j) {
+      const Eigen::Vector2d line = state.line_params(j);
+      const double across = point.dot(Eigen::Vector2d(std::cos(line(1)), std::sin(line(1))));
+      if (!(std::abs(across - line(0)) <= options.point_on_line_m)) continue;
+      const double along = PositionAlongLine(line, point);
+      const LineRecord& record = state.line(j).record;
+      on_line[i] = along >= record.extent_from_m - options.point_end_margin_m &&
+                   along <= record.extent_to_m + options.point_end_margin_m;
+    }
+  }
+  return on_line;
+}
+
 LineStepCounts UpdateLineLandmarks(const std::vector<LineReading>& lines, int64_t utime,
                                    const LineLandmarkOptions& options, const LineGates& gates,
-                                   const SensorMount& mount, int64_t* next_id, SlamState* state) {
+                                   const SensorMount& mount, int64_t* next_id, SlamState* state,
+                                   std::vector<LineCandidate>* candidates) {
   LineStepCounts counts;
   counts.features = static_cast<int>(lines.size());
+  // Candidates not seen for too long are gone.
+  candidates->erase(std::remove_if(candidates->begin(), candidates->end(),
+                                   [&](const LineCandidate& c) {
+                                     return static_cast<double>(utime - c.last_seen_utime) *
+                                                1e-6 >
+                                            options.candidate_timeout_s;
+                                   }),
+                    candidates->end());
+  counts.candidates = static_cast<int>(candidates->size());
   if (!options.enabled || lines.empty()) return counts;
   const std::vector<LineMeasurement> measurements = ValidateLines(lines, options, &counts);
   const int num_features = static_cast<int>(measurements.size());
@@ -357,6 +441,23 @@ LineStepCounts UpdateLineLandmarks(const std::vector<LineReading>& lines, int64_
         m.observation(0) < kMinLineDistance_m) {
       continue;
     }
+    const LineCandidate seen = CandidateOf(m, mount, utime, *state);
+    auto continued = std::find_if(
+        candidates->begin(), candidates->end(), [&](const LineCandidate& c) {
+          return c.last_seen_utime < utime && Continues(seen, c, options);
+        });
+    if (continued == candidates->end()) {
+      candidates->push_back(seen);
+      continued = candidates->end() - 1;
+    } else {
+      continued->scans += 1;
+      continued->line = seen.line;
+      continued->last_seen_utime = utime;
+      continued->extent_from_m = seen.extent_from_m;
+      continued->extent_to_m = seen.extent_to_m;
+    }
+    if (continued->scans < options.confirm_scans) continue;
+    candidates->erase(continued);
     if (state->num_lines() >= options.max_landmarks) {
       ++counts.refused;
       continue;
@@ -364,6 +465,7 @@ LineStepCounts UpdateLineLandmarks(const std::vector<LineReading>& lines, int64_
     AddLineLandmark(m, mount, utime, next_id, state);
     ++counts.new_landmarks;
   }
+  counts.candidates = static_cast<int>(candidates->size());
   return counts;
 }
 

@@ -24,8 +24,15 @@
 //  5. extents: every associated landmark's extent grows to cover its feature's (at the updated
 //     pose);
 //  6. new landmarks: a feature in no pair, and outside gate new_object_gate_dn_chi2 of every
-//     landmark whose extent it overlaps, becomes a landmark (line_model.h: LineFromObservation,
-//     with its covariance from the robot's and the feature's), up to lines_max_landmarks.
+//     landmark whose extent it overlaps is a candidate line, kept
+//     outside the state (LineCandidate): placed in the map by the pose, it must be seen again
+//     (within lines_candidate_match_m and lines_candidate_match_deg, extents overlapping) in
+//     lines_confirm_scans scans with no gap longer than lines_candidate_timeout_s before it
+//     becomes a landmark (line_model.h: LineFromObservation of its latest feature, with its
+//     covariance from the robot's and the feature's), up to lines_max_landmarks. A straight
+//     run that does not stay (people walking side by side, a cluster that happens to be
+//     straight in one scan) never enters the state, so a scene without walls is estimated
+//     exactly as without this step.
 // Bad input: a feature with a non-finite value, rho < 0, alpha outside [-pi, pi], a negative
 // variance or a covariance that is not positive semi-definite is rejected and counted; a
 // feature or landmark seen edge on (predicted |rho| < kMinLineDistance_m) is not associated.
@@ -62,8 +69,17 @@ struct LineLandmarkOptions {
   double min_rho_sigma_m = 0.03;             // floor of a feature's rho sigma
   double min_alpha_sigma_rad = 1.0 * M_PI / 180.0;  // floor of its alpha sigma
   double extent_gap_m = 1.0;                 // the extents must overlap or lie closer
+  int confirm_scans = 3;                     // scans a candidate is seen in to become a landmark
+  double candidate_timeout_s = 0.5;          // a candidate unseen for longer is dropped
+  double candidate_match_m = 0.1;            // a feature continues a candidate within these
+  double candidate_match_rad = 2.0 * M_PI / 180.0;
   int max_updates_per_scan = 16;             // budget of line updates per scan (0: no limit)
   int max_landmarks = 400;                   // new lines beyond are refused (counted)
+  // A point feature this close to a line landmark's line, within its seen extent lengthened by
+  // point_end_margin_m at both ends, is a piece of that wall (a run too short for a line, a
+  // corner, a door jamb: perception.md) and not a measurement of the point steps. 0: off.
+  double point_on_line_m = 0.1;
+  double point_end_margin_m = 0.2;
 };
 
 void VisitLineLandmarkOptions(OptionVisitor* visitor, LineLandmarkOptions* options);
@@ -78,8 +94,19 @@ struct LineStepCounts {
   int associated = 0;       // features associated with a landmark
   int new_landmarks = 0;
   int refused = 0;          // by lines_max_landmarks
+  int candidates = 0;       // line candidates held after the scan
   int failed = 0;           // numerically unusable updates
   std::string first_rejection;
+};
+
+// A straight run seen in recent scans that is not a landmark yet (step 6), in the map frame.
+struct LineCandidate {
+  Eigen::Vector2d line = Eigen::Vector2d::Zero();  // (rho, alpha), from its latest feature
+  double extent_from_m = 0.0;                       // along the line, as LineRecord's
+  double extent_to_m = 0.0;
+  int scans = 0;                                    // scans it was seen in
+  int64_t first_seen_utime = 0;
+  int64_t last_seen_utime = 0;
 };
 
 // Gates of the points' association (EstimatorOptions), passed in so that lines and points
@@ -90,9 +117,18 @@ struct LineGates {
   int group_size = 32;
 };
 
-// Steps 1-6 above on one scan at `utime`. New landmarks take ids from *next_id.
+// Per measurement (range, bearing from the sensor, at the current pose): 1 when it lies on a
+// line landmark (LineLandmarkOptions::point_on_line_m, point_end_margin_m). All 0 when the
+// step is disabled or the distance is 0.
+std::vector<uint8_t> PointsOnLineLandmarks(const std::vector<Eigen::Vector2d>& range_bearings,
+                                           const LineLandmarkOptions& options,
+                                           const SensorMount& mount, const SlamState& state);
+
+// Steps 1-6 above on one scan at `utime`. New landmarks take ids from *next_id; `candidates`
+// holds the candidate lines from scan to scan (the caller keeps it, empty at the start).
 LineStepCounts UpdateLineLandmarks(const std::vector<LineReading>& lines, int64_t utime,
                                    const LineLandmarkOptions& options, const LineGates& gates,
-                                   const SensorMount& mount, int64_t* next_id, SlamState* state);
+                                   const SensorMount& mount, int64_t* next_id, SlamState* state,
+                                   std::vector<LineCandidate>* candidates);
 
 }  // namespace slammtt

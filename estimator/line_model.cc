@@ -15,7 +15,7 @@ Eigen::Vector2d PredictLineObservation(const Eigen::Vector3d& robot_pose,
   const Eigen::Vector2d n(std::cos(line(1)), std::sin(line(1)));
   const Eigen::Vector2d dn(-n(1), n(0));  // d n / d alpha
   double rho_s = line(0) - s.dot(n);
-  double alpha_s = line(1) - robot_pose(2);
+  double alpha_s = line(1) - robot_pose(2) - mount.yaw_rad;
   const double sign = rho_s < 0.0 ? -1.0 : 1.0;
   if (sign < 0.0) {
     rho_s = -rho_s;
@@ -38,7 +38,7 @@ Eigen::Vector2d LineFromObservation(const Eigen::Vector3d& robot_pose,
                                     Eigen::Matrix2d* jacobian_observation) {
   Eigen::Matrix<double, 2, 3> ds;
   const Eigen::Vector2d s = SensorPosition(robot_pose, mount, &ds);
-  const double alpha = observation(1) + robot_pose(2);
+  const double alpha = observation(1) + robot_pose(2) + mount.yaw_rad;
   const Eigen::Vector2d n(std::cos(alpha), std::sin(alpha));
   const Eigen::Vector2d dn(-n(1), n(0));
   const double rho = observation(0) + s.dot(n);
@@ -57,8 +57,8 @@ Eigen::Vector2d LineFromObservation(const Eigen::Vector3d& robot_pose,
 Eigen::Vector2d SensorPointToMap(const Eigen::Vector3d& robot_pose, const SensorMount& mount,
                                  const Eigen::Vector2d& sensor_point) {
   const Eigen::Vector2d s = SensorPosition(robot_pose, mount);
-  const double c = std::cos(robot_pose(2));
-  const double n = std::sin(robot_pose(2));
+  const double c = std::cos(robot_pose(2) + mount.yaw_rad);
+  const double n = std::sin(robot_pose(2) + mount.yaw_rad);
   return s + Eigen::Vector2d(c * sensor_point(0) - n * sensor_point(1),
                              n * sensor_point(0) + c * sensor_point(1));
 }

@@ -7,9 +7,10 @@
 // through the map origin has rho = 0 and a well-defined alpha), where keeping rho >= 0 would
 // flip alpha by pi whenever an update moved rho across 0.
 //
-// Seen from the sensor at position s (paper eq. 11) with heading phi (the robot's heading), the
-// line is, in the sensor frame (x forward, y left; line_feature_t's form),
-//   rho_s = rho - s . n(alpha),  alpha_s = alpha - phi,
+// Seen from the sensor at position s (paper eq. 11) with heading phi + psi (the robot's heading
+// plus the mount's yaw, range_bearing_model.h), the line is, in the sensor frame (x forward,
+// y left; line_feature_t's form),
+//   rho_s = rho - s . n(alpha),  alpha_s = alpha - phi - psi,
 // brought to rho_s >= 0 as perception gives it (rho_s -> -rho_s, alpha_s -> alpha_s + pi, the
 // rows of rho negated). alpha_s is wrapped to (-pi, pi]. This is the line form of Garulli et
 // al.'s line-based SLAM ("Mobile robot SLAM for line-based environment representation", CDC

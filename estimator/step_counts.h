@@ -30,6 +30,7 @@ struct StepCounts {
   int line_updates_skipped = 0;  // by the budget of line updates
   int new_lines = 0;
   int lines_refused = 0;        // by lines_max_landmarks
+  int points_on_lines = 0;      // point features on a line landmark, not measurements
   int observation_predictions = 0;  // times every object's observation was predicted (once
                                     // per state the scan passed through)
 };

@@ -63,9 +63,13 @@ class LineLandmarksTest : public ::testing::Test {
   LineGates gates_;
   SensorMount mount_;
   int64_t next_id_ = 1;
+  std::vector<LineCandidate> candidates_;
+
+  void SetUp() override { options_.confirm_scans = 1; }  // a feature starts a landmark at once
 
   LineStepCounts Run(const std::vector<LineReading>& lines, int64_t utime) {
-    return UpdateLineLandmarks(lines, utime, options_, gates_, mount_, &next_id_, &state_);
+    return UpdateLineLandmarks(lines, utime, options_, gates_, mount_, &next_id_, &state_,
+                               &candidates_);
   }
 };
 
@@ -189,6 +193,50 @@ TEST_F(LineLandmarksTest, DisabledOrCappedAddsNothing) {
   EXPECT_EQ(counts.new_landmarks, 2);
   EXPECT_EQ(counts.refused, 1);
   EXPECT_EQ(state_.num_lines(), 2);
+}
+
+TEST_F(LineLandmarksTest, ALineBecomesALandmarkOnlyWhenItStays) {
+  options_.confirm_scans = 3;
+  const Wall wall{{3.0, 0.0}, -1.0, 1.0};
+  const int64_t step = kSecond / 10;
+  EXPECT_EQ(Run({See(wall, state_.robot_pose())}, step).candidates, 1);
+  EXPECT_EQ(Run({See(wall, state_.robot_pose())}, 2 * step).new_landmarks, 0);
+  EXPECT_EQ(state_.dim(), SlamState::kRobotDim);  // candidates stay outside the state
+  LineStepCounts counts = Run({See(wall, state_.robot_pose())}, 3 * step);
+  EXPECT_EQ(counts.new_landmarks, 1);
+  EXPECT_EQ(counts.candidates, 0);
+  ASSERT_EQ(state_.num_lines(), 1);
+  // A straight run that moves 0.2 m per scan (people walking side by side) never stays.
+  for (int k = 0; k < 10; ++k) {
+    const Wall walking{{-1.0 - 0.2 * k, M_PI / 2}, -0.5, 0.5};
+    counts = Run({See(walking, state_.robot_pose())}, (4 + k) * step);
+    EXPECT_EQ(counts.new_landmarks, 0);
+  }
+  EXPECT_EQ(state_.num_lines(), 1);
+  // A candidate unseen for longer than the timeout is dropped.
+  const Wall other{{-2.0, 0.0}, -1.0, 1.0};
+  Run({See(other, state_.robot_pose())}, 20 * step);
+  Run({See(other, state_.robot_pose())}, 21 * step);
+  counts = Run({}, 30 * step);
+  EXPECT_EQ(counts.candidates, 0);
+  EXPECT_EQ(Run({See(other, state_.robot_pose())}, 31 * step).new_landmarks, 0);
+}
+
+TEST_F(LineLandmarksTest, PointFeaturesOnALineLandmarkArePiecesOfIt) {
+  Run({See({{3.0, 0.0}, -1.0, 1.0}, state_.robot_pose())}, kSecond);
+  ASSERT_EQ(state_.num_lines(), 1);
+  auto at = [](double x, double y) {
+    return Eigen::Vector2d(std::hypot(x, y), std::atan2(y, x));
+  };
+  // On the wall; 0.08 m in front of it; at its seen end plus 0.15 m (a door jamb); 0.3 m in
+  // front (a person); beyond the end margin; on the far side of the room.
+  const std::vector<Eigen::Vector2d> points = {at(3.0, 0.5), at(2.92, -0.2), at(3.0, 1.15),
+                                               at(2.7, 0.0), at(3.0, 1.5), at(-3.0, 0.0)};
+  EXPECT_EQ(PointsOnLineLandmarks(points, options_, mount_, state_),
+            (std::vector<uint8_t>{1, 1, 1, 0, 0, 0}));
+  options_.point_on_line_m = 0.0;
+  EXPECT_EQ(PointsOnLineLandmarks(points, options_, mount_, state_),
+            std::vector<uint8_t>(points.size(), 0));
 }
 
 TEST(SlamStateLinesTest, LineSlotsFollowTheRemovalOfObjects) {

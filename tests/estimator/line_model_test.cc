@@ -65,8 +65,24 @@ TEST(LineModelTest, InverseGivesTheLineBack) {
   }
 }
 
+TEST(LineModelTest, ARotatedSensorSeesTheLineTurnedByItsYaw) {
+  // The wall x = 3 from the origin, the laser turned 30 degrees left: the wall's normal lies 30
+  // degrees to the laser's right; the inverse gives the wall back.
+  const SensorMount rotated{0.0, 0.0, M_PI / 6};
+  const Eigen::Vector2d z = PredictLineObservation(Eigen::Vector3d::Zero(), {3.0, 0.0}, rotated);
+  EXPECT_NEAR(z(0), 3.0, 1e-12);
+  EXPECT_NEAR(z(1), -M_PI / 6, 1e-12);
+  const Eigen::Vector2d back = LineFromObservation(Eigen::Vector3d::Zero(), z, rotated);
+  EXPECT_NEAR(back(0), 3.0, 1e-12);
+  EXPECT_NEAR(back(1), 0.0, 1e-12);
+  // A point 1 m along the laser's x axis.
+  const Eigen::Vector2d p = SensorPointToMap(Eigen::Vector3d::Zero(), rotated, {1.0, 0.0});
+  EXPECT_NEAR(p(0), std::cos(M_PI / 6), 1e-12);
+  EXPECT_NEAR(p(1), std::sin(M_PI / 6), 1e-12);
+}
+
 TEST(LineModelTest, JacobiansMatchNumericalDerivatives) {
-  const SensorMount mount{0.3, 0.1};
+  for (const SensorMount& mount : {SensorMount{0.3, 0.1, 0.0}, SensorMount{-0.1, 0.2, -2.0}}) {
   const std::vector<Eigen::Vector3d> robots = {
       {0.0, 0.0, 0.0}, {1.5, -2.0, 0.7}, {-3.0, 4.0, -2.9}, {2.0, 1.0, 3.1}};
   // Lines seen from both sides (flipped and not), normals near +-pi.
@@ -114,6 +130,7 @@ TEST(LineModelTest, JacobiansMatchNumericalDerivatives) {
   }
   EXPECT_GT(flipped_cases, 0);  // both branches of the sign were differentiated
   EXPECT_LT(flipped_cases, static_cast<int>(robots.size() * lines.size()));
+  }
 }
 
 TEST(LineModelTest, ExtentCoordinatesRoundTrip) {
