@@ -25,11 +25,11 @@ using testing::TargetRun;
 constexpr int kFirstSeed = 1;
 constexpr int kLastSeed = 20;
 
-const testing::PipelineRun& Run(const char* scenario, int seed) {
+const testing::PipelineRun& ScenarioRun(const char* scenario, int seed) {
   return TargetRun(scenario, seed, "ml_ransac");
 }
 
-double FinalHeadingErrorDeg(const nlohmann::json& report) {
+[[maybe_unused]] double FinalHeadingErrorDeg(const nlohmann::json& report) {
   return std::abs(report["detail"]["robot"]["final_heading_error_rad"].get<double>()) * 180.0 /
          M_PI;
 }
@@ -43,21 +43,21 @@ const nlohmann::json& Lines(const nlohmann::json& report) {
 TEST(OfficeLineTargetsTest, RobotAteAtMost005m) {
   for (int seed = kFirstSeed; seed <= kLastSeed; ++seed) {
     SCOPED_TRACE("office seed " + std::to_string(seed));
-    EXPECT_LE(Number(Run("office", seed).report, "ate_rmse_m"), 0.05);
+    EXPECT_LE(Number(ScenarioRun("office", seed).report, "ate_rmse_m"), 0.05);
   }
 }
 
 TEST(OfficeLineTargetsTest, FinalHeadingErrorAtMost1Degree) {
   for (int seed = kFirstSeed; seed <= kLastSeed; ++seed) {
     SCOPED_TRACE("office seed " + std::to_string(seed));
-    EXPECT_LE(FinalHeadingErrorDeg(Run("office", seed).report), 1.0);
+    EXPECT_LE(FinalHeadingErrorDeg(ScenarioRun("office", seed).report), 1.0);
   }
 }
 
 TEST(CorridorLineTargetsTest, RobotAteAtMost015m) {
   for (int seed = kFirstSeed; seed <= kLastSeed; ++seed) {
     SCOPED_TRACE("corridor seed " + std::to_string(seed));
-    EXPECT_LE(Number(Run("corridor", seed).report, "ate_rmse_m"), 0.15);
+    EXPECT_LE(Number(ScenarioRun("corridor", seed).report, "ate_rmse_m"), 0.15);
   }
 }
 
@@ -65,7 +65,7 @@ TEST(CorridorLineTargetsTest, RobotAteAtMost015m) {
 TEST(OfficeLineTargetsTest, LineLandmarksLieOnTheWalls) {
   for (int seed = kFirstSeed; seed <= kLastSeed; ++seed) {
     SCOPED_TRACE("office seed " + std::to_string(seed));
-    const nlohmann::json& lines = Lines(Run("office", seed).report);
+    const nlohmann::json& lines = Lines(ScenarioRun("office", seed).report);
     ASSERT_TRUE(lines.is_object());
     EXPECT_GE(lines["matched"].get<double>(), 0.8 * lines["lines"].get<double>());
     EXPECT_GE(lines["matched"].get<int>(), 20);
@@ -124,7 +124,8 @@ TEST(RotatedLaserTest, TheEstimatorTakesTheMountYaw) {
 TEST(OfficeLineTargetsTest, NoWallInTheStaticPointMap) {
   for (int seed = kFirstSeed; seed <= kLastSeed; ++seed) {
     SCOPED_TRACE("office seed " + std::to_string(seed));
-    EXPECT_EQ(Lines(Run("office", seed).report)["point_landmarks_on_walls"].get<int>(), 0);
+    const nlohmann::json& lines = Lines(ScenarioRun("office", seed).report);
+    EXPECT_EQ(lines["point_landmarks_on_walls"].get<int>(), 0);
   }
 }
 
@@ -132,7 +133,8 @@ TEST(OfficeLineTargetsTest, NoWallInTheStaticPointMap) {
 TEST(OfficeLineTargetsTest, LineLandmarkAngleErrorMedianAtMost1Degree) {
   for (int seed = kFirstSeed; seed <= kLastSeed; ++seed) {
     SCOPED_TRACE("office seed " + std::to_string(seed));
-    EXPECT_LE(Lines(Run("office", seed).report)["angle_error_deg"]["median"].get<double>(), 1.0);
+    const nlohmann::json& lines = Lines(ScenarioRun("office", seed).report);
+    EXPECT_LE(lines["angle_error_deg"]["median"].get<double>(), 1.0);
   }
 }
 
@@ -142,7 +144,8 @@ TEST(OfficeLineTargetsTest, LineLandmarkAngleErrorMedianAtMost1Degree) {
 TEST(OfficeLineTargetsOpenTest, EveryLineLandmarkAngleErrorAtMost1Degree) {
   for (int seed = kFirstSeed; seed <= kLastSeed; ++seed) {
     SCOPED_TRACE("office seed " + std::to_string(seed));
-    EXPECT_LE(Lines(Run("office", seed).report)["angle_error_deg"]["max"].get<double>(), 1.0);
+    const nlohmann::json& lines = Lines(ScenarioRun("office", seed).report);
+    EXPECT_LE(lines["angle_error_deg"]["max"].get<double>(), 1.0);
   }
 }
 
