@@ -7,19 +7,7 @@
 #include "estimator/angle.h"
 
 namespace slammtt {
-namespace {
-
-struct Linearised {
-  int object = -1;
-  int position_index = -1;
-  Eigen::Vector2d innovation;
-  Eigen::Matrix<double, 2, 3> h_robot;
-  Eigen::Matrix2d h_position;
-  Eigen::Matrix2d r;
-};
-
-// One batch update (eq. 22) of already linearised observations.
-bool ApplyGroup(const std::vector<Linearised>& group, SlamState* state) {
+bool ApplyLinearisedGroup(const std::vector<LinearisedObservation>& group, SlamState* state) {
   const int n = state->dim();
   const int k = static_cast<int>(group.size());
   auto cov = state->covariance();
@@ -28,14 +16,14 @@ bool ApplyGroup(const std::vector<Linearised>& group, SlamState* state) {
   // its update, comes through its correlation with the pose).
   Eigen::MatrixXd w(n, 2 * k);
   for (int t = 0; t < k; ++t) {
-    const Linearised& o = group[static_cast<size_t>(t)];
+    const LinearisedObservation& o = group[static_cast<size_t>(t)];
     w.middleCols<2>(2 * t).noalias() = cov.leftCols<3>() * o.h_robot.transpose();
     w.middleCols<2>(2 * t).noalias() += cov.middleCols<2>(o.position_index) * o.h_position.transpose();
   }
   // S = H W + R.
   Eigen::MatrixXd s(2 * k, 2 * k);
   for (int t = 0; t < k; ++t) {
-    const Linearised& o = group[static_cast<size_t>(t)];
+    const LinearisedObservation& o = group[static_cast<size_t>(t)];
     s.middleRows<2>(2 * t).noalias() = o.h_robot * w.topRows<3>();
     s.middleRows<2>(2 * t).noalias() += o.h_position * w.middleRows<2>(o.position_index);
     s.block<2, 2>(2 * t, 2 * t) += o.r;
@@ -56,14 +44,12 @@ bool ApplyGroup(const std::vector<Linearised>& group, SlamState* state) {
   return true;
 }
 
-}  // namespace
-
 UpdateStats ApplyObservations(const std::vector<ObjectObservation>& observations,
                               const SensorMount& mount, double gate_chi2, int group_size,
                               SlamState* state) {
   UpdateStats stats;
   const size_t group = static_cast<size_t>(std::max(1, group_size));
-  std::vector<Linearised> linearised;
+  std::vector<LinearisedObservation> linearised;
   for (size_t begin = 0; begin < observations.size(); begin += group) {
     const size_t end = std::min(observations.size(), begin + group);
     linearised.clear();
@@ -73,8 +59,7 @@ UpdateStats ApplyObservations(const std::vector<ObjectObservation>& observations
       const ObjectObservation& observation = observations[i];
       const StateObject& object = state->object(observation.object);
       const Eigen::Vector2d position = state->position(observation.object);
-      Linearised l;
-      l.object = observation.object;
+      LinearisedObservation l;
       l.position_index = object.position_index;
       const Eigen::Vector2d sensor = SensorPosition(robot, mount);
       if ((position - sensor).norm() < kMinPredictedRange_m) {
@@ -101,7 +86,7 @@ UpdateStats ApplyObservations(const std::vector<ObjectObservation>& observations
       linearised.push_back(l);
     }
     if (linearised.empty()) continue;
-    if (ApplyGroup(linearised, state)) {
+    if (ApplyLinearisedGroup(linearised, state)) {
       stats.applied += static_cast<int>(linearised.size());
     } else {
       stats.failed += static_cast<int>(linearised.size());

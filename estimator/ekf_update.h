@@ -35,6 +35,22 @@ struct UpdateStats {
   int failed = 0;     // numerically unusable (object at the sensor, S not positive definite)
 };
 
+// One observation linearised at the current state: h(x) depends on the robot pose (H_r, 2x3)
+// and on one slot of two states at position_index (an object's position, or a line landmark's
+// (rho, alpha): line_landmarks.h) (H_s, 2x2).
+struct LinearisedObservation {
+  int position_index = -1;
+  Eigen::Vector2d innovation = Eigen::Vector2d::Zero();  // z - h(x), angles wrapped
+  Eigen::Matrix<double, 2, 3> h_robot = Eigen::Matrix<double, 2, 3>::Zero();
+  Eigen::Matrix2d h_position = Eigen::Matrix2d::Zero();
+  Eigen::Matrix2d r = Eigen::Matrix2d::Identity();
+};
+
+// One batch update (eq. 22) of already linearised observations, in the factored form above;
+// the robot heading is wrapped after it. False (state unchanged) when S is not positive
+// definite.
+bool ApplyLinearisedGroup(const std::vector<LinearisedObservation>& group, SlamState* state);
+
 // Applies `observations` (each object at most once is the normal use). An observation whose
 // normalized innovation squared against the state at the start of its group is >= gate_chi2
 // is skipped (pass infinity to disable). group_size >= 1.

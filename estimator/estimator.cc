@@ -11,6 +11,7 @@
 #include "estimator/hits_and_misses.h"
 #include "estimator/level1.h"
 #include "estimator/level3.h"
+#include "estimator/line_model.h"
 #include "estimator/manoeuvres.h"
 #include "estimator/nearest_neighbour.h"
 #include "estimator/new_objects.h"
@@ -81,6 +82,7 @@ void Estimator::StartOver() {
   odometry_.Clear();
   last_finite_pose_ = state_.robot_pose();
   last_finite_pose_covariance_ = state_.robot_covariance();
+  line_candidates_.clear();
 }
 
 bool Estimator::AcceptTime(const char* what, int64_t utime, StreamClock* clock) {
@@ -160,12 +162,15 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
   auto lap = [observer](Substage s) { if (observer != nullptr) observer->SubstageDone(s); };
   if (!AcceptScanTime(scan.utime)) return result;
   const ScanInterval interval = IntervalTo(scan.utime);
-  const ValidatedFeatures features = TakeFeatures(scan.features, &counts);
+  ValidatedFeatures features = TakeFeatures(scan.features, &counts);
   const bool static_world = options_.mode == AssociationMode::kStaticNearestNeighbour;
 
   // 1. Predict (line 2).
   Predict(scan.utime, interval);
   last_scan_utime_ = scan.utime;
+  // 1b. The walls (line landmarks) correct the pose before the points are judged.
+  UpdateLines(scan, &counts);
+  DropPointsOnLines(&features, &counts);
   lap(Substage::kPredict);
 
   // 2, 3. Predict the observations, gate (lines 3-4), and the budget of landmark updates.
@@ -315,6 +320,54 @@ void Estimator::Predict(int64_t utime, const ScanInterval& interval) {
   }
 }
 
+void Estimator::UpdateLines(const ScanInput& scan, StepCounts* counts) {
+  counts->lines = static_cast<int>(scan.lines.size());
+  if (scan.lines.empty()) return;
+  const LineGates gates{options_.gate_d1_chi2, options_.new_object_gate_dn_chi2,
+                        options_.update_group_size};
+  const LineStepCounts lines = UpdateLineLandmarks(scan.lines, scan.utime, options_.lines, gates,
+                                                   options_.sensor, &next_id_, &state_,
+                                                   &line_candidates_);
+  counts->lines_rejected = lines.rejected;
+  counts->line_updates = lines.level1_updates + lines.level2_updates;
+  counts->lines_associated = lines.associated;
+  counts->line_updates_skipped = lines.updates_skipped;
+  counts->new_lines = lines.new_landmarks;
+  counts->lines_refused = lines.refused;
+  counts->updates_failed += lines.failed;
+  counters_.lines_rejected += lines.rejected;
+  counters_.lines_refused += lines.refused;
+  if (lines.rejected > 0) {
+    Event(std::to_string(lines.rejected) + " line feature(s) rejected, first: " +
+          lines.first_rejection);
+  }
+  if (lines.refused > 0) {
+    Event("scan at utime " + std::to_string(scan.utime) + ": " + std::to_string(lines.refused) +
+          " new line landmark(s) refused, cap of " +
+          std::to_string(options_.lines.max_landmarks) + " reached");
+  }
+}
+
+void Estimator::DropPointsOnLines(ValidatedFeatures* features, StepCounts* counts) const {
+  std::vector<Eigen::Vector2d> range_bearings;
+  range_bearings.reserve(features->measurements.size());
+  for (const PointMeasurement& m : features->measurements) {
+    range_bearings.push_back(m.range_bearing);
+  }
+  const std::vector<uint8_t> on_line =
+      PointsOnLineLandmarks(range_bearings, options_.lines, options_.sensor, state_);
+  size_t kept = 0;
+  for (size_t i = 0; i < on_line.size(); ++i) {
+    if (on_line[i]) continue;
+    features->measurements[kept] = features->measurements[i];
+    features->widths_m[kept] = features->widths_m[i];
+    ++kept;
+  }
+  counts->points_on_lines = static_cast<int>(on_line.size() - kept);
+  features->measurements.resize(kept);
+  features->widths_m.resize(kept);
+}
+
 void Estimator::ReportScanProblems(int64_t utime, const StepCounts& counts) {
   if (counts.objects_refused > 0) {
     counters_.object_cap_hits += counts.objects_refused;
@@ -353,6 +406,20 @@ void Estimator::ReportEstimate(int64_t utime, ScanResult* result) const {
     e.last_seen_utime = record.last_seen_utime;
     e.hits = record.hits;
     result->objects.push_back(e);
+  }
+  result->lines.reserve(static_cast<size_t>(state_.num_lines()));
+  for (int k = 0; k < state_.num_lines(); ++k) {
+    const LineRecord& record = state_.line(k).record;
+    LineEstimate e;
+    e.id = record.id;
+    e.line = state_.line_params(k);
+    e.covariance = state_.LineCovariance(k);
+    e.from_m = PointOnLine(e.line, record.extent_from_m);
+    e.to_m = PointOnLine(e.line, record.extent_to_m);
+    e.hits = record.hits;
+    e.first_seen_utime = record.first_seen_utime;
+    e.last_seen_utime = record.last_seen_utime;
+    result->lines.push_back(e);
   }
 }
 

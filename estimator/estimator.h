@@ -6,6 +6,9 @@
 //   1. predict                the whole state to the scan time: robot by eq. 1 along the
 //                             odometry since the previous scan (odometry_buffer.h), movers by
 //                             eqs. 6-8, landmarks unchanged (line 2: scan_prediction.h);
+//  1b. line landmarks        the scan's line features (walls) update the line landmarks and
+//                             the pose, and start new line landmarks; the point features on a
+//                             line landmark are dropped (line_landmarks.h);
 //   2. predict observations   of every object (eqs. 10-11, 20-21), once per state the scan
 //                             passes through (observation_predictions.h);
 //   3. gate                   Mahalanobis distances and the compatibility matrix J with gate d1
@@ -72,6 +75,7 @@ namespace slammtt {
 struct ScanInput {
   int64_t utime = 0;
   std::vector<FeatureReading> features;
+  std::vector<LineReading> lines;  // walls and furniture sides (line_landmarks.h)
 };
 
 // The six sub-stages of one scan, in order (the names of STAGE_TIMING).
@@ -104,12 +108,25 @@ struct ObjectEstimate {
   int hits = 0;
 };
 
+// A line landmark of the map frame (line_model.h), with its observed extent's end points.
+struct LineEstimate {
+  int64_t id = 0;
+  Eigen::Vector2d line = Eigen::Vector2d::Zero();  // (rho_m, alpha_rad)
+  Eigen::Matrix2d covariance = Eigen::Matrix2d::Zero();
+  Eigen::Vector2d from_m = Eigen::Vector2d::Zero();  // extent end points, map frame
+  Eigen::Vector2d to_m = Eigen::Vector2d::Zero();
+  int hits = 0;
+  int64_t first_seen_utime = 0;
+  int64_t last_seen_utime = 0;
+};
+
 struct ScanResult {
   bool processed = false;       // false: dropped (out of order)
   int64_t utime = 0;
   Eigen::Vector3d pose = Eigen::Vector3d::Zero();
   Eigen::Matrix3d pose_covariance = Eigen::Matrix3d::Zero();
   std::vector<ObjectEstimate> objects;
+  std::vector<LineEstimate> lines;
   StepCounts counts;
 };
 
@@ -132,6 +149,8 @@ struct EstimatorCounters {
   int64_t state_recoveries = 0;        // scans that ended non-finite and were recovered
   int64_t features_over_cap = 0;       // beyond max_features_per_scan, dropped
   int64_t ransac_budget_cuts = 0;      // scans whose RANSAC stopped at ransac_max_pair_tests
+  int64_t lines_rejected = 0;          // bad line features
+  int64_t lines_refused = 0;           // new line landmarks refused by lines_max_landmarks
 };
 
 class Estimator {
@@ -173,6 +192,11 @@ class Estimator {
   ValidatedFeatures TakeFeatures(const std::vector<FeatureReading>& features, StepCounts* counts);
   // Step 1 (scan_prediction.h), with what it made up for counted and described.
   void Predict(int64_t utime, const ScanInterval& interval);
+  // Step 1b (line_landmarks.h): the walls update the pose and the line landmarks.
+  void UpdateLines(const ScanInput& scan, StepCounts* counts);
+  // Takes the point features that lie on a line landmark out of the scan's measurements
+  // (line_landmarks.h: PointsOnLineLandmarks): pieces of walls are not point landmarks.
+  void DropPointsOnLines(ValidatedFeatures* features, StepCounts* counts) const;
   // The object cap and numerically unusable updates of the scan, counted and described.
   void ReportScanProblems(int64_t utime, const StepCounts& counts);
   // The pose and every object as the scan leaves them.
@@ -191,6 +215,7 @@ class Estimator {
   OdometryBuffer odometry_;
   Eigen::Vector3d last_finite_pose_;
   Eigen::Matrix3d last_finite_pose_covariance_ = Eigen::Matrix3d::Zero();
+  std::vector<LineCandidate> line_candidates_;  // straight runs not yet line landmarks
   int64_t next_id_ = 1;
 };
 

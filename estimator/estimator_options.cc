@@ -2,6 +2,19 @@
 
 namespace slammtt {
 
+FieldOfView FieldOfViewOf(const EstimatorOptions& options) {
+  FieldOfView view;
+  if (options.field_of_view_start_rad != 0.0 || options.field_of_view_end_rad != 0.0) {
+    view.start_rad = options.field_of_view_start_rad;
+    view.end_rad = options.field_of_view_end_rad;
+    view.symmetric = false;
+  } else {
+    view.start_rad = -0.5 * options.field_of_view_rad;
+    view.end_rad = 0.5 * options.field_of_view_rad;
+  }
+  return view;
+}
+
 const char* AssociationModeName(AssociationMode mode) {
   switch (mode) {
     case AssociationMode::kMlRansac:
@@ -23,6 +36,8 @@ void VisitSensorOptions(OptionVisitor* v, EstimatorOptions* o) {
   v->BeginGroup("sensor");
   v->Double("forward_m", &o->sensor.forward_m, R::Any(), "laser ahead of the axle centre (a)");
   v->Double("left_m", &o->sensor.left_m, R::Any(), "laser left of the axle centre (b)");
+  v->Double("yaw_rad", &o->sensor.yaw_rad, R::Between(-180, 180),
+            "the laser's heading, CCW from the robot's (a rotated mount)", deg);
   v->EndGroup();
   v->Double("default_range_sigma_m", &o->default_range_sigma_m, R::Above(0),
             "range noise of a feature without a covariance (paper 5.1: 0.2 m)");
@@ -39,6 +54,10 @@ void VisitSensorOptions(OptionVisitor* v, EstimatorOptions* o) {
             "farther features are rejected; the range of 'in view' (paper 5.1: 30 m)");
   v->Double("field_of_view_rad", &o->field_of_view_rad, R::AboveUpTo(0, 360),
             "the laser's field of view, centred ahead", deg);
+  v->Double("field_of_view_start_rad", &o->field_of_view_start_rad, R::Between(-360, 360),
+            "an asymmetric view from this bearing CCW (with _end; both 0: centred)", deg);
+  v->Double("field_of_view_end_rad", &o->field_of_view_end_rad, R::Between(-360, 360),
+            "...to this bearing (> start, at most 360 degrees after it)", deg);
   v->Double("detection_range_m", &o->detection_range_m, R::AtLeast(0),
             "range up to which a person-sized object gives a feature (0: max_range_m)");
   v->Double("edge_of_view_sigma_m", &o->edge_of_view_sigma_m, R::AtLeast(0),
@@ -126,6 +145,9 @@ void VisitAssociationOptions(OptionVisitor* v, EstimatorOptions* o) {
   v->BeginGroup("classifier");
   VisitMotionClassifierOptions(v, &o->classifier);
   v->EndGroup();
+  v->BeginGroup("lines");
+  VisitLineLandmarkOptions(v, &o->lines);
+  v->EndGroup();
 }
 
 }  // namespace
@@ -162,6 +184,15 @@ std::string CheckEstimatorOptions(const EstimatorOptions& options) {
   }
   if (o.level3 && !(o.gate_d2_chi2 > o.gate_d1_chi2)) {
     return "gate_d2_chi2 must be > gate_d1_chi2 (or level3 false)";
+  }
+  if (o.field_of_view_start_rad != 0.0 || o.field_of_view_end_rad != 0.0) {
+    if (!(o.field_of_view_end_rad > o.field_of_view_start_rad) ||
+        o.field_of_view_end_rad - o.field_of_view_start_rad > 2.0 * M_PI + 1e-12) {
+      return "field_of_view_end_deg must be > field_of_view_start_deg and at most 360 after it";
+    }
+    if (o.field_of_view_rad != 2.0 * M_PI) {
+      return "give field_of_view_deg or field_of_view_start_deg / _end_deg, not both";
+    }
   }
   return "";
 }

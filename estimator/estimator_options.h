@@ -8,6 +8,8 @@
 #include <string>
 
 #include "common/options_schema.h"
+#include "estimator/field_of_view.h"
+#include "estimator/line_landmarks.h"
 #include "estimator/ml_ransac.h"
 #include "estimator/motion_classifier.h"
 #include "estimator/odometry_plausibility.h"
@@ -39,6 +41,11 @@ struct EstimatorOptions {
   double min_range_m = 0.01;                     // features outside are rejected
   double max_range_m = 30.0;                     // paper 5.1: 30 m
   double field_of_view_rad = 2.0 * M_PI;         // for "in view" (static landmark pruning)
+  // An asymmetric field of view: the bearings from start CCW to end (sensor frame). Both 0: not
+  // given, the view is field_of_view_rad centred on the heading; given, field_of_view_rad must
+  // keep its default (field_of_view.h: FieldOfViewOf).
+  double field_of_view_start_rad = 0.0;
+  double field_of_view_end_rad = 0.0;
   // Range up to which a person-sized object is expected to produce a feature (0: max_range_m).
   // With raw scans the segmenter needs a few beams on an object, so a 0.5 m person is detected
   // up to about 0.5 m / (min_points * resolution): 19 m at 0.5 degrees and 3 points.
@@ -149,6 +156,9 @@ struct EstimatorOptions {
 
   TrackManagementOptions tracks;
   MotionClassifierOptions classifier;
+  // Walls and furniture sides as line landmarks (line_landmarks.h); gates d1 and dn and the
+  // update group size are the points'.
+  LineLandmarkOptions lines;
 };
 
 // The options schema of the estimator (common/options_schema.h): every option once, with its
@@ -166,6 +176,10 @@ std::string CheckEstimatorOptions(const EstimatorOptions& options);
 
 // The Markdown table of every option: key, default, valid values, one line.
 std::string EstimatorOptionsTable();
+
+// The field of view the options give (field_of_view_start_rad / end_rad when given, else
+// field_of_view_rad centred).
+FieldOfView FieldOfViewOf(const EstimatorOptions& options);
 
 const char* AssociationModeName(AssociationMode mode);
 

@@ -89,6 +89,18 @@ ScanInput ScanInputFromFeatures(const slammtt_msgs::features_t& message, bool pe
   for (size_t k = 0; k < num_points; ++k) {
     if (!is_leg[k]) scan.features.push_back(PointReading(message.features[k]));
   }
+  scan.lines.reserve(message.lines.size());
+  for (const slammtt_msgs::line_feature_t& l : message.lines) {
+    LineReading reading;
+    reading.rho_m = l.rho_m;
+    reading.alpha_rad = l.alpha_rad;
+    reading.rho_var_m2 = l.rho_var_m2;
+    reading.alpha_var_rad2 = l.alpha_var_rad2;
+    reading.rho_alpha_cov_m_rad = l.rho_alpha_cov_m_rad;
+    reading.first_m = Eigen::Vector2d(l.first_x_m, l.first_y_m);
+    reading.last_m = Eigen::Vector2d(l.last_x_m, l.last_y_m);
+    scan.lines.push_back(reading);
+  }
   return scan;
 }
 
@@ -228,7 +240,9 @@ void EstimatorStage::HandleFeatures(const void* data, int size, MessageSink& out
   timer.Count("updates", result.counts.level1_updates + result.counts.level2_updates +
                              result.counts.level3_updates);
   timer.Count("updates_skipped", result.counts.static_updates_skipped);
-  timer.Count("lines_unused", message.num_lines);
+  timer.Count("lines", result.counts.lines);
+  timer.Count("line_updates", result.counts.line_updates);
+  timer.Count("new_lines", result.counts.new_lines);
   timer.Count("features_over_cap", result.counts.features_over_cap);
   timer.Count("ransac_pair_tests", result.counts.ransac_pair_tests);
   timer.Count("ransac_budget_cut", result.counts.ransac_budget_cut);
@@ -281,8 +295,25 @@ void EstimatorStage::HandleFeatures(const void* data, int size, MessageSink& out
       map.landmarks.push_back(landmark);
     }
   }
+  for (const LineEstimate& e : result.lines) {
+    slammtt_msgs::line_landmark_t line;
+    line.id = e.id;
+    line.rho_m = e.line(0);
+    line.alpha_rad = e.line(1);
+    line.covariance[0] = e.covariance(0, 0);
+    line.covariance[1] = e.covariance(0, 1);
+    line.covariance[2] = e.covariance(1, 0);
+    line.covariance[3] = e.covariance(1, 1);
+    line.from_x_m = e.from_m(0);
+    line.from_y_m = e.from_m(1);
+    line.to_x_m = e.to_m(0);
+    line.to_y_m = e.to_m(1);
+    line.hits = e.hits;
+    map.lines.push_back(line);
+  }
   tracks.num_tracks = static_cast<int32_t>(tracks.tracks.size());
   map.num_landmarks = static_cast<int32_t>(map.landmarks.size());
+  map.num_lines = static_cast<int32_t>(map.lines.size());
   out.PublishMessage(pose_channel_, pose);
   out.PublishMessage(map_channel_, map);
   out.PublishMessage(tracks_channel_, tracks);

@@ -9,14 +9,16 @@
 // Per features_t: one step of Algorithm 2 (Estimator::ProcessScan), then, all with the FEATURES
 // message's utime and in this order:
 //  - pose_t (`pose`): robot pose in the map frame (the start pose) and its covariance;
-//  - map_t (`map`): every confirmed STATIC object that is not a person (a standing person);
+//  - map_t (`map`): every confirmed STATIC object that is not a person (a standing person), and
+//    every line landmark (walls);
 //  - tracks_t (`tracks`): every object, with its class (STATIC / MOVING / UNDECIDED), its kind
 //    (PERSON / OTHER), whether it is confirmed, measured in this scan, how long it has coasted
 //    and whether it is a reported track (track_management.h);
 //  - estimator_status_t (`estimator_status`): cumulative counters and the last unusual event;
 //  - stage_timing_t (`stage_timing`): stage "estimator", substages "predict", "gating",
 //    "level1", "ransac", "level2_3", "track_management"; counters "features" (received),
-//    "objects" (after the scan), "hypotheses" (RANSAC hypotheses of this scan).
+//    "objects" (after the scan), "hypotheses" (RANSAC hypotheses of this scan), "updates",
+//    "updates_skipped", "lines" (line features received), "line_updates", "new_lines".
 // A scan older than the last processed one is dropped: only estimator_status_t is published.
 // A message that cannot be decoded is counted (counters().messages_undecodable), logged (the
 // 1st, 10th, 100th, ... time) and nothing is published: it has no trustworthy utime.
@@ -43,7 +45,7 @@ struct EstimatorStageOptions {
   // estimator.person_features: a person feature of FEATURES becomes one measurement (its
   // centre and covariance) in place of the point features of its legs, so that a person on two
   // legs is one object to track, not two. false: every point feature is a measurement and
-  // person features are ignored. Line features are not used by this estimator (counted).
+  // person features are ignored. Line features update the line landmarks (line_landmarks.h).
   bool person_features = true;
 };
 

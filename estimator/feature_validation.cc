@@ -54,15 +54,16 @@ PointMeasurement MeasurementOf(const FeatureReading& f, const EstimatorOptions& 
 
 // Inflates R of a feature cut by the edge of a limited field of view; true when it did.
 bool InflateAtEdgeOfView(double width_m, const EstimatorOptions& options, PointMeasurement* m) {
-  if (!(options.edge_of_view_sigma_m > 0.0 && options.field_of_view_rad < 2.0 * M_PI)) {
-    return false;
-  }
+  const FieldOfView view = FieldOfViewOf(options);
+  if (!(options.edge_of_view_sigma_m > 0.0 && !view.full())) return false;
   const double range = m->range_bearing(0);
   const double extent = std::atan2(0.5 * width_m, range);
-  if (std::abs(m->range_bearing(1)) + extent + kEdgeOfViewMargin_rad <
-      0.5 * options.field_of_view_rad) {
-    return false;
-  }
+  // (A symmetric view: the expression of old, term for term, so the sums round the same.)
+  const bool inside =
+      view.symmetric
+          ? std::abs(m->range_bearing(1)) + extent + kEdgeOfViewMargin_rad < view.end_rad
+          : view.ContainsWithMargin(m->range_bearing(1), extent + kEdgeOfViewMargin_rad);
+  if (inside) return false;
   const double s = options.edge_of_view_sigma_m;
   // s across the line of sight is s / range in bearing, at most pi: a bearing cannot be more
   // uncertain than the half circle, and a feature at the sensor (min_range_m 0) must not get

@@ -23,6 +23,7 @@ void RecordHitsAndMisses(const ScanAssociation& scan, const std::vector<double>&
   const double detection_range =
       options.detection_range_m > 0.0 ? options.detection_range_m : options.max_range_m;
   const SlamState& now = *state;
+  const FieldOfView view = FieldOfViewOf(options);
   for (int j = 0; j < assignment.num_objects(); ++j) {
     ObjectRecord& record = state->object(j).record;
     if (!assignment.ObjectFree(j)) {
@@ -39,12 +40,10 @@ void RecordHitsAndMisses(const ScanAssociation& scan, const std::vector<double>&
         now.covariance().block<2, 2>(position_index, position_index);
     const double sigma = std::sqrt(std::max(position_cov(0, 0), position_cov(1, 1)));
     const bool in_geometry = p.valid && SurelyInGeometry(p.range_bearing, sigma,
-                                                         options.max_range_m,
-                                                         options.field_of_view_rad);
+                                                         options.max_range_m, view);
     RecordMiss(gap_s, in_geometry,
                in_geometry && ExpectedVisible(p.range_bearing, sigma, seen, detection_range,
-                                              options.field_of_view_rad,
-                                              options.tracks.shadow_radius_m),
+                                              view, options.tracks.shadow_radius_m),
                &record);
   }
 }

@@ -12,11 +12,12 @@ std::vector<int> ObjectsToPrune(int64_t utime, const EstimatorOptions& options,
                                 const SlamState& state, const Assignment& assignment) {
   std::vector<int> prune;
   if (options.mode == AssociationMode::kStaticNearestNeighbour) return prune;
+  const FieldOfView view = FieldOfViewOf(options);
   for (int j = 0; j < assignment.num_objects(); ++j) {
     const StateObject& object = state.object(j);
     const ObjectPrediction& p = after_updates[static_cast<size_t>(j)];
     const bool out_of_view = !p.valid || p.range_bearing(0) > options.max_range_m ||
-                             std::abs(p.range_bearing(1)) > 0.5 * options.field_of_view_rad;
+                             view.Excludes(p.range_bearing(1));
     const Eigen::Matrix2d position_cov =
         state.covariance().block<2, 2>(object.position_index, object.position_index);
     const double position_sigma = std::sqrt(std::max(position_cov(0, 0), position_cov(1, 1)));

@@ -36,9 +36,9 @@ Eigen::Vector2d PredictRangeBearing(const Eigen::Vector3d& robot_pose,
   if (jacobian_point != nullptr) *jacobian_point = wrt_point;
   if (jacobian_robot != nullptr) {
     *jacobian_robot = -wrt_point * sensor_jacobian;
-    (*jacobian_robot)(1, 2) -= 1.0;  // theta = ... - phi
+    (*jacobian_robot)(1, 2) -= 1.0;  // theta = ... - phi - psi
   }
-  return Eigen::Vector2d(r, WrapAngle(std::atan2(dy, dx) - robot_pose(2)));
+  return Eigen::Vector2d(r, WrapAngle(std::atan2(dy, dx) - robot_pose(2) - mount.yaw_rad));
 }
 
 Eigen::Vector2d PointFromRangeBearing(const Eigen::Vector3d& robot_pose,
@@ -49,7 +49,7 @@ Eigen::Vector2d PointFromRangeBearing(const Eigen::Vector3d& robot_pose,
   Eigen::Matrix<double, 2, 3> sensor_jacobian;
   const Eigen::Vector2d sensor = SensorPosition(robot_pose, mount, &sensor_jacobian);
   const double r = range_bearing(0);
-  const double angle = robot_pose(2) + range_bearing(1);
+  const double angle = robot_pose(2) + mount.yaw_rad + range_bearing(1);
   const double c = std::cos(angle);
   const double s = std::sin(angle);
   if (jacobian_robot != nullptr) {

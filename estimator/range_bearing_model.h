@@ -5,7 +5,9 @@
 //   x_v = x + a cos(phi) - b sin(phi),  y_v = y + a sin(phi) + b cos(phi).
 // Eq. 10 then predicts range and bearing of a point m = (x_m, y_m) from there:
 //   r = |m - v|,  theta = atan2(y_m - y_v, x_m - x_v) - phi   (wrapped to (-pi, pi]).
-// The sensor axes are the robot's axes (x forward, y left), as in the paper.
+// The sensor's axes are the robot's turned by the mount's yaw psi (0 in the paper): the sensor's
+// heading is phi + psi, and eq. 10's bearing is measured from it,
+//   theta = atan2(y_m - y_v, x_m - x_v) - phi - psi.
 // Jacobians follow GTSAM's Pose2::range/bearing convention: returned on request, tested
 // against numerical differentiation (tests/estimator/models_test.cc).
 #pragma once
@@ -18,6 +20,7 @@ namespace slammtt {
 struct SensorMount {
   double forward_m = 0.0;  // a
   double left_m = 0.0;     // b
+  double yaw_rad = 0.0;    // psi: the sensor's x axis, CCW from the robot's (a rotated laser)
 };
 
 // Eq. 11: the sensor position in the map frame, with its Jacobian wrt the robot pose (2x3).

@@ -62,14 +62,13 @@ Eigen::Matrix4d SlamState::ObjectCovariance(int k) const {
   return c;
 }
 
-int SlamState::AddObject(const Eigen::Vector2d& position,
-                         const Eigen::Matrix<double, 2, 3>& jacobian_robot,
-                         const Eigen::Matrix2d& independent_covariance,
-                         const ObjectRecord& record) {
+int SlamState::AppendCorrelatedPair(const Eigen::Vector2d& value,
+                                    const Eigen::Matrix<double, 2, 3>& jacobian_robot,
+                                    const Eigen::Matrix2d& independent_covariance) {
   ++revision_;
   const int old_dim = dim_;
   const int p = AppendStates(2);
-  mean_.segment<2>(p) = position;
+  mean_.segment<2>(p) = value;
   // Cross covariance with everything that was there, the heading drift included: G * P_r,x
   // (rows 0-2 of P: the pose).
   const Eigen::MatrixXd cross = jacobian_robot * cov_.topLeftCorner(kRobotPoseDim, old_dim);
@@ -79,11 +78,28 @@ int SlamState::AddObject(const Eigen::Vector2d& position,
                                   jacobian_robot.transpose() +
                               independent_covariance;
   cov_.block<2, 2>(p, p) = 0.5 * (own + own.transpose());
+  return p;
+}
+
+int SlamState::AddObject(const Eigen::Vector2d& position,
+                         const Eigen::Matrix<double, 2, 3>& jacobian_robot,
+                         const Eigen::Matrix2d& independent_covariance,
+                         const ObjectRecord& record) {
   StateObject object;
-  object.position_index = p;
+  object.position_index = AppendCorrelatedPair(position, jacobian_robot, independent_covariance);
   object.record = record;
   objects_.push_back(object);
   return num_objects() - 1;
+}
+
+int SlamState::AddLine(const Eigen::Vector2d& line,
+                       const Eigen::Matrix<double, 2, 3>& jacobian_robot,
+                       const Eigen::Matrix2d& independent_covariance, const LineRecord& record) {
+  StateLine added;
+  added.param_index = AppendCorrelatedPair(line, jacobian_robot, independent_covariance);
+  added.record = record;
+  lines_.push_back(added);
+  return num_lines() - 1;
 }
 
 void SlamState::AddVelocity(int k, const Eigen::Vector2d& velocity,
@@ -181,6 +197,7 @@ void SlamState::RemoveStates(const std::vector<int>& sorted_state_indices) {
     o.position_index = new_index[static_cast<size_t>(o.position_index)];
     if (o.has_velocity()) o.velocity_index = new_index[static_cast<size_t>(o.velocity_index)];
   }
+  for (StateLine& l : lines_) l.param_index = new_index[static_cast<size_t>(l.param_index)];
 }
 
 void SlamState::SubtractSymmetricProduct(const Eigen::MatrixXd& v_transposed) {

@@ -11,6 +11,9 @@
 // two slots of one object need not be adjacent: a landmark that starts to move gets its
 // velocity slot appended at the end, and removing states compacts the vector, so objects refer
 // to their slots by index. A static landmark (eq. 4) has no velocity slot.
+// Line landmarks (walls, furniture sides: line_model.h) have a slot of two states (rho, alpha)
+// each, in the same vector and covariance; they are never objects (a line never moves, is
+// never tracked nor classified) and only line_landmarks.h reads and writes them.
 //
 // The covariance is stored symmetric (both triangles valid) in a matrix with spare capacity so
 // that adding objects does not reallocate every time. Every operation keeps it symmetric; the
@@ -66,6 +69,25 @@ struct ObjectRecord {
   // A tentative object that may be a lost mover seen again: that track's id (0: none;
   // track_management.h, ChooseReacquisitions).
   int64_t continues_id = 0;
+};
+
+// Book-keeping of one line landmark (line_landmarks.h).
+struct LineRecord {
+  int64_t id = 0;                  // from the same counter as the objects' ids
+  int hits = 0;                    // scans in which a line feature was associated with it
+  int64_t first_seen_utime = 0;
+  int64_t last_seen_utime = 0;     // last scan with an associated line feature
+  int64_t last_update_utime = 0;   // last scan whose line feature updated the state
+  // The observed extent: the union of the associated features' extents, as coordinates along
+  // the line's direction (-sin alpha, cos alpha) [m], from <= to (line_model.h:
+  // PositionAlongLine). For association (overlap) and pictures; not part of the state.
+  double extent_from_m = 0.0;
+  double extent_to_m = 0.0;
+};
+
+struct StateLine {
+  int param_index = -1;  // rho at param_index, alpha at param_index + 1
+  LineRecord record;
 };
 
 struct StateObject {
@@ -138,6 +160,23 @@ class SlamState {
   int AddObject(const Eigen::Vector2d& position, const Eigen::Matrix<double, 2, 3>& jacobian_robot,
                 const Eigen::Matrix2d& independent_covariance, const ObjectRecord& record);
 
+  // Adds a line landmark (rho, alpha) (line_model.h) whose error is G (robot pose error) plus an
+  // independent error of covariance `independent_covariance`, as AddObject does for a point.
+  // Returns the new line's index.
+  int AddLine(const Eigen::Vector2d& line, const Eigen::Matrix<double, 2, 3>& jacobian_robot,
+              const Eigen::Matrix2d& independent_covariance, const LineRecord& record);
+
+  int num_lines() const { return static_cast<int>(lines_.size()); }
+  const std::vector<StateLine>& lines() const { return lines_; }
+  // For the record only: the slot index belongs to the state.
+  StateLine& line(int k) { return lines_[static_cast<size_t>(k)]; }
+  const StateLine& line(int k) const { return lines_[static_cast<size_t>(k)]; }
+  Eigen::Vector2d line_params(int k) const { return mean_.segment<2>(line(k).param_index); }
+  Eigen::Matrix2d LineCovariance(int k) const {
+    const int p = line(k).param_index;
+    return cov_.block<2, 2>(p, p);
+  }
+
   // Gives object k velocity states with the given mean and a covariance independent of
   // everything else (the prior of a landmark that starts to move). No-op if it has them.
   void AddVelocity(int k, const Eigen::Vector2d& velocity, const Eigen::Matrix2d& covariance);
@@ -167,12 +206,17 @@ class SlamState {
  private:
   void Reserve(int dim);
   int AppendStates(int count);  // uninitialised mean/covariance rows; returns first index
+  // Appends two states of mean `value` and error G (pose) + independent (AddObject, AddLine).
+  int AppendCorrelatedPair(const Eigen::Vector2d& value,
+                           const Eigen::Matrix<double, 2, 3>& jacobian_robot,
+                           const Eigen::Matrix2d& independent_covariance);
   void RemoveStates(const std::vector<int>& sorted_state_indices);
 
   Eigen::VectorXd mean_;
   Eigen::MatrixXd cov_;  // capacity x capacity; the top-left dim_ x dim_ block is the state's
   int dim_ = 0;
   std::vector<StateObject> objects_;
+  std::vector<StateLine> lines_;
   uint64_t revision_ = 0;
 };
 

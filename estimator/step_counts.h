@@ -30,6 +30,14 @@ struct StepCounts {
   int features_over_cap = 0;    // beyond max_features_per_scan, dropped (the farthest)
   int64_t ransac_pair_tests = 0;  // hypotheses x evaluation pairs (ml_ransac.h)
   int ransac_budget_cut = 0;    // 1: RANSAC stopped at ransac_max_pair_tests
+  int lines = 0;                // line features received
+  int lines_rejected = 0;
+  int line_updates = 0;         // line features that updated the state (levels 1 and 2)
+  int lines_associated = 0;     // with a line landmark (updating or left out by the budget)
+  int line_updates_skipped = 0;  // by the budget of line updates
+  int new_lines = 0;
+  int lines_refused = 0;        // by lines_max_landmarks
+  int points_on_lines = 0;      // point features on a line landmark, not measurements
   int observation_predictions = 0;  // times every object's observation was predicted (once
                                     // per state the scan passed through)
 };

@@ -86,20 +86,20 @@ bool ReportedTrack(const ObjectRecord& record, bool has_velocity, int64_t utime,
 }
 
 bool SurelyInGeometry(const Eigen::Vector2d& predicted, double sigma_m, double max_range_m,
-                      double field_of_view_rad) {
+                      const FieldOfView& view) {
   const double range = predicted(0);
   const double margin = 2.0 * sigma_m;
   if (!(range + margin <= max_range_m)) return false;
-  if (field_of_view_rad >= 2.0 * M_PI) return true;
+  if (view.full()) return true;
   const double angle_margin = range > margin ? std::asin(margin / range) : M_PI;
-  return std::abs(predicted(1)) + angle_margin <= 0.5 * field_of_view_rad;
+  return view.ContainsWithMargin(predicted(1), angle_margin);
 }
 
 bool ExpectedVisible(const Eigen::Vector2d& predicted, double sigma_m,
                      const std::vector<Eigen::Vector3d>& features_range_bearing_width,
-                     double max_range_m, double field_of_view_rad, double shadow_radius_m) {
+                     double max_range_m, const FieldOfView& view, double shadow_radius_m) {
   const double range = predicted(0);
-  if (!SurelyInGeometry(predicted, sigma_m, max_range_m, field_of_view_rad)) return false;
+  if (!SurelyInGeometry(predicted, sigma_m, max_range_m, view)) return false;
   constexpr double kObjectRadius_m = 0.3;
   constexpr double kRangeMargin_m = 1.0;
   for (const Eigen::Vector3d& f : features_range_bearing_width) {

@@ -28,6 +28,7 @@
 
 #include "common/options_schema.h"
 
+#include "estimator/field_of_view.h"
 #include "estimator/range_bearing_model.h"
 #include "estimator/slam_state.h"
 
@@ -101,7 +102,7 @@ bool ShouldPrune(const ObjectRecord& record, bool has_velocity, int64_t utime, b
 // the field of view and range with a margin of 2 sigma (the object is surely there, not merely
 // its estimate).
 bool SurelyInGeometry(const Eigen::Vector2d& predicted, double sigma_m, double max_range_m,
-                      double field_of_view_rad);
+                      const FieldOfView& view);
 
 // Whether an object predicted at `predicted` (range, bearing) should have produced a feature:
 // SurelyInGeometry up to max_range_m, and not behind any of the scan's features. A feature at
@@ -110,6 +111,6 @@ bool SurelyInGeometry(const Eigen::Vector2d& predicted, double sigma_m, double m
 // hides it too).
 bool ExpectedVisible(const Eigen::Vector2d& predicted, double sigma_m,
                      const std::vector<Eigen::Vector3d>& features_range_bearing_width,
-                     double max_range_m, double field_of_view_rad, double shadow_radius_m);
+                     double max_range_m, const FieldOfView& view, double shadow_radius_m);
 
 }  // namespace slammtt

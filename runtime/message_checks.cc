@@ -125,6 +125,8 @@ bool PlausibleMap(const void* data, int size) {
   w.Fixed(kFingerprint + kInt64);  // utime
   const int32_t landmarks = w.Count(kLandmark);
   w.Elements(landmarks, kLandmark);
+  const int32_t lines = w.Count(kLineLandmark);
+  w.Elements(lines, kLineLandmark);
   return w.End();
 }
 

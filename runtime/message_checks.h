@@ -85,6 +85,10 @@ inline constexpr int64_t kTrack = kInt64 + 4 * kDouble + 16 * kDouble + kInt8 + 
                                   kInt64 + kInt32 + kInt64 + kBoolean + kDouble + kBoolean + kInt8;
 // landmark_t: id, x_m, y_m, covariance[4].
 inline constexpr int64_t kLandmark = kInt64 + 2 * kDouble + 4 * kDouble;
+// line_landmark_t: id, rho_m, alpha_rad, covariance[4], from_x_m, from_y_m, to_x_m, to_y_m,
+// hits.
+inline constexpr int64_t kLineLandmark =
+    kInt64 + 2 * kDouble + 4 * kDouble + 4 * kDouble + kInt32;
 }  // namespace encoded_bytes
 
 // One function per type of lcmtypes/ with a variable-length array or a string; see above.

@@ -322,9 +322,9 @@ TEST(EstimatorStageTest, PublishesEveryOutputWithTheFeaturesUtime) {
                                                         "level2_3", "track_management"}));
   EXPECT_EQ(timing.counter_name,
             (std::vector<std::string>{"features", "objects", "hypotheses", "updates",
-                                      "updates_skipped", "lines_unused", "features_over_cap",
-                                      "ransac_pair_tests", "ransac_budget_cut",
-                                      "state_recovered"}));
+                                      "updates_skipped", "lines", "line_updates", "new_lines",
+                                      "features_over_cap", "ransac_pair_tests",
+                                      "ransac_budget_cut", "state_recovered"}));
   EXPECT_EQ(timing.counter_value[0], 2);
   EXPECT_EQ(timing.counter_value[1], 2);
   EXPECT_EQ(timing.counter_value[3], 0);  // two new objects, nothing to update yet
@@ -423,6 +423,63 @@ TEST(EstimatorStageTest, ACoastingTrackSaysSoAndIsNotReported) {
   EXPECT_NEAR(person_at(25).coasting_s, 0.6, 1e-9);
   EXPECT_FALSE(person_at(25).reported);
   EXPECT_TRUE(person_at(25).confirmed);  // a static track: its existence is not in doubt
+}
+
+// A wall 3 m ahead (x = 3, from y = -1 to 2) and one 2 m to the left (y = 2), as line features
+// of a robot standing at the origin.
+std::vector<uint8_t> WallFeaturesBytes(int64_t utime) {
+  slammtt_msgs::features_t m{};
+  m.utime = utime;
+  slammtt_msgs::line_feature_t ahead{};
+  ahead.rho_m = 3.0;
+  ahead.alpha_rad = 0.0;
+  ahead.rho_var_m2 = 1e-4;
+  ahead.alpha_var_rad2 = 1e-5;
+  ahead.first_x_m = 3.0;
+  ahead.first_y_m = -1.0;
+  ahead.last_x_m = 3.0;
+  ahead.last_y_m = 2.0;
+  ahead.num_points = 40;
+  slammtt_msgs::line_feature_t left = ahead;
+  left.rho_m = 2.0;
+  left.alpha_rad = M_PI / 2;
+  left.first_x_m = 3.0;
+  left.first_y_m = 2.0;
+  left.last_x_m = -1.0;
+  left.last_y_m = 2.0;
+  m.lines = {ahead, left};
+  m.num_lines = 2;
+  return Encode(m);
+}
+
+TEST(EstimatorStageTest, LineFeaturesBecomeTheLinesOfTheMap) {
+  EstimatorStage stage(EstimatorStageOptions{}, Channels());
+  RecordingSink out;
+  // Candidates for lines_confirm_scans scans, then landmarks seen twice more.
+  const int scans = EstimatorOptions().lines.confirm_scans + 2;
+  for (int k = 0; k < scans; ++k) {
+    const int64_t t = 100000 * (k + 1);
+    Feed(&stage, "ODOMETRY", OdometryBytes(t, 0.0, 0.0), out);
+    Feed(&stage, "FEATURES", WallFeaturesBytes(t), out);
+  }
+  const auto map = out.Get<slammtt_msgs::map_t>(out.messages.size() - 4);
+  EXPECT_EQ(map.num_landmarks, 0);
+  ASSERT_EQ(map.num_lines, 2);
+  EXPECT_NEAR(map.lines[0].rho_m, 3.0, 1e-6);
+  EXPECT_NEAR(map.lines[0].alpha_rad, 0.0, 1e-6);
+  EXPECT_NEAR(map.lines[1].rho_m, 2.0, 1e-6);
+  EXPECT_NEAR(map.lines[1].alpha_rad, M_PI / 2, 1e-6);
+  EXPECT_EQ(map.lines[0].hits, 3);
+  EXPECT_NEAR(map.lines[0].from_y_m, -1.0, 1e-6);
+  EXPECT_NEAR(map.lines[0].to_y_m, 2.0, 1e-6);
+  EXPECT_GT(map.lines[0].covariance[0], 0.0);
+  EXPECT_NE(map.lines[0].id, map.lines[1].id);
+  const auto tracks = out.Get<slammtt_msgs::tracks_t>(out.messages.size() - 3);
+  EXPECT_EQ(tracks.num_tracks, 0);  // a line is never a track
+  const auto timing = out.Get<slammtt_msgs::stage_timing_t>(out.messages.size() - 1);
+  EXPECT_EQ(timing.counter_value[5], 2);  // lines
+  EXPECT_EQ(timing.counter_value[6], 2);  // line_updates
+  EXPECT_EQ(timing.counter_value[7], 0);  // new_lines
 }
 
 TEST(EstimatorStageTest, BadMessagesAreCountedAndDroppedOnesReported) {

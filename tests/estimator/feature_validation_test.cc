@@ -85,6 +85,60 @@ TEST(FeatureValidationTest, AFeatureCutByTheEdgeOfALimitedViewGetsMoreUncertaint
             0);
 }
 
+TEST(FieldOfViewTest, AnAsymmetricViewHasItsOwnEdges) {
+  // A view from -120 to +90 degrees (the robot's body hides the rest).
+  const double deg = M_PI / 180.0;
+  const FieldOfView view{-120.0 * deg, 90.0 * deg, false};
+  EXPECT_FALSE(view.full());
+  EXPECT_TRUE(view.ContainsWithMargin(0.0, 0.0));
+  EXPECT_TRUE(view.ContainsWithMargin(-110.0 * deg, 5.0 * deg));
+  EXPECT_FALSE(view.ContainsWithMargin(-118.0 * deg, 5.0 * deg));
+  EXPECT_TRUE(view.Excludes(100.0 * deg));
+  EXPECT_FALSE(view.Excludes(89.0 * deg));
+  EXPECT_TRUE(view.Excludes(-150.0 * deg));
+  EXPECT_TRUE(view.Excludes(M_PI));
+  // A view across the back: from 150 to 250 degrees (= -110).
+  const FieldOfView back{150.0 * deg, 250.0 * deg, false};
+  EXPECT_TRUE(back.ContainsWithMargin(M_PI, 10.0 * deg));
+  EXPECT_TRUE(back.ContainsWithMargin(-115.0 * deg, 0.0));
+  EXPECT_TRUE(back.Excludes(0.0));
+  // The options: start and end given, or the width centred.
+  EstimatorOptions options;
+  options.field_of_view_start_rad = -120.0 * deg;
+  options.field_of_view_end_rad = 90.0 * deg;
+  EXPECT_EQ(CheckEstimatorOptions(options), "");
+  EXPECT_FALSE(FieldOfViewOf(options).symmetric);
+  EXPECT_EQ(FieldOfViewOf(options).start_rad, -120.0 * deg);
+  options.field_of_view_rad = M_PI;
+  EXPECT_EQ(CheckEstimatorOptions(options),
+            "give field_of_view_deg or field_of_view_start_deg / _end_deg, not both");
+  options.field_of_view_rad = 2.0 * M_PI;
+  options.field_of_view_end_rad = -130.0 * deg;
+  EXPECT_NE(CheckEstimatorOptions(options).find("field_of_view_end_deg must be >"),
+            std::string::npos);
+  EstimatorOptions centred;
+  centred.field_of_view_rad = M_PI;
+  EXPECT_TRUE(FieldOfViewOf(centred).symmetric);
+  EXPECT_EQ(FieldOfViewOf(centred).end_rad, 0.5 * M_PI);
+}
+
+TEST(FeatureValidationTest, AFeatureAtAnEdgeOfAnAsymmetricViewGetsMoreUncertainty) {
+  const double deg = M_PI / 180.0;
+  EstimatorOptions options;
+  options.field_of_view_start_rad = -120.0 * deg;
+  options.field_of_view_end_rad = 90.0 * deg;
+  // Near -120 degrees: at the edge; at +89.5 degrees: at the other edge; at -89.5 (an edge of
+  // a symmetric 180-degree view, well inside this one): not.
+  const ValidatedFeatures v = ValidateFeatures({Feature(4.0, -119.5 * deg, 0.01, 0.0001, 0.3),
+                                                Feature(4.0, 89.5 * deg, 0.01, 0.0001, 0.3),
+                                                Feature(4.0, -89.5 * deg, 0.01, 0.0001, 0.3)},
+                                               options);
+  EXPECT_EQ(v.at_edge_of_view, 2);
+  EXPECT_GT(v.measurements[0].covariance(0, 0), 0.01);
+  EXPECT_GT(v.measurements[1].covariance(0, 0), 0.01);
+  EXPECT_EQ(v.measurements[2].covariance(0, 0), 0.01);
+}
+
 TEST(ScanGatingTest, KeepsPairsUpToTheWidestGateAndJUnderD1) {
   testing::StepScene scene;
   const int landmark = scene.AddLandmark({5.0, 0.0}, 0.05);

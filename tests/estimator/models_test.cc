@@ -189,7 +189,7 @@ TEST(RangeBearingModelTest, PredictsEquationsTenAndEleven) {
 }
 
 TEST(RangeBearingModelTest, JacobiansMatchNumericalDerivatives) {
-  const std::vector<SensorMount> mounts = {{0.0, 0.0}, {0.15, -0.05}};
+  const std::vector<SensorMount> mounts = {{0.0, 0.0}, {0.15, -0.05}, {0.1, 0.05, 2.5}};
   const std::vector<Eigen::Vector3d> robots = {{0.0, 0.0, 0.0}, {2.0, -1.0, 2.9}, {-3.0, 4.0, -2.0}};
   const std::vector<Eigen::Vector2d> points = {{5.0, 0.5}, {-3.0, -0.2}, {1.0, 7.0}};
   for (const SensorMount& mount : mounts) {
@@ -232,6 +232,21 @@ TEST(RangeBearingModelTest, JacobiansMatchNumericalDerivatives) {
       }
     }
   }
+}
+
+TEST(RangeBearingModelTest, ARotatedSensorMeasuresBearingsFromItsOwnHeading) {
+  // Eq. 11 extended by the mount's yaw: the laser turned 90 degrees left of the robot sees a
+  // point straight ahead of the robot at -90 degrees; the inverse places it back.
+  const SensorMount rotated{0.2, 0.0, M_PI / 2};
+  const Eigen::Vector3d robot(1.0, 2.0, 0.3);
+  const Eigen::Vector2d ahead =
+      robot.head<2>() + 3.2 * Eigen::Vector2d(std::cos(0.3), std::sin(0.3));
+  const Eigen::Vector2d z = PredictRangeBearing(robot, ahead, rotated);
+  EXPECT_NEAR(z(0), 3.0, 1e-12);
+  EXPECT_NEAR(z(1), -M_PI / 2, 1e-12);
+  const Eigen::Vector2d straight = PredictRangeBearing(robot, ahead, {0.2, 0.0, 0.0});
+  EXPECT_NEAR(WrapAngle(straight(1) - z(1)), M_PI / 2, 1e-12);
+  EXPECT_LT((PointFromRangeBearing(robot, z, rotated) - ahead).norm(), 1e-12);
 }
 
 TEST(RangeBearingModelTest, BearingDifferentiatesAcrossTheSeam) {

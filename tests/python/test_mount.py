@@ -79,13 +79,15 @@ def test_tilt_is_reported():
     assert any("tilted by 5.73 deg" in line for line in mount.warnings(rotated_to_base=True))
 
 
-def test_yaw_warning_and_yaml():
+def test_yaw_goes_into_the_yaml():
     mount = Mount(forward_m=0.25, left_m=-0.05, yaw_rad=math.radians(90), source="test")
-    assert any("no sensor yaw" in line for line in mount.warnings(rotated_to_base=False))
+    assert not mount.warnings(rotated_to_base=False)  # the estimator takes the yaw
     assert not mount.warnings(rotated_to_base=True)
     text = mount.yaml(["header"], rotated_to_base=False)
     assert text == ("# header\nestimator:\n  sensor_forward_m: 0.25\n  sensor_left_m: -0.05\n"
-                    "# sensor yaw 90.0 deg (the estimator has no sensor yaw yet)\n")
+                    "  sensor_yaw_deg: 90.0\n")
+    rotated = mount.yaml(["header"], rotated_to_base=True)
+    assert "  sensor_yaw_deg: 0.0\n# sensor yaw 90.0 deg: already applied" in rotated
     assert Mount().warnings(rotated_to_base=False) == []
 
 

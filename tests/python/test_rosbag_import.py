@@ -133,10 +133,11 @@ def test_options_override_the_transform_with_a_warning(tmp_path):
     assert "mount: forward 0.5000 m, left 0.0500 m" in err
 
 
-def test_yawed_laser_warns_and_rotate_to_base_turns_the_beams(tmp_path):
+def test_yawed_laser_gives_the_estimator_its_yaw_or_rotate_to_base_turns_the_beams(tmp_path):
     path = robot_bag(mount_q=quaternion_yaw(math.pi / 2)).write(tmp_path / "yawed.bag")
     err = import_ok(path, "-o", tmp_path / "y.lcm")
-    assert "warning: the laser's yaw is 90.00 deg, and the estimator has no sensor yaw" in err
+    assert "yaw" not in "".join(l for l in err.splitlines() if "warning" in l)
+    assert "  sensor_yaw_deg: 90.0\n" in (tmp_path / "y.lcm.mount.yaml").read_text()
     plain = read_log(tmp_path / "y.lcm")["LASER_SCAN"][0]
     err = import_ok(path, "-o", tmp_path / "r.lcm", "--rotate-to-base")
     assert "yaw" not in "".join(l for l in err.splitlines() if "warning" in l)

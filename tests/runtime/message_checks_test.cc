@@ -243,6 +243,8 @@ TEST(MessageChecksCoverageTest, FixedElementSizesAreLcmGensOwn) {
             encoded_bytes::kSegmentTruth);
   EXPECT_EQ(slammtt_msgs::track_t{}._getEncodedSizeNoHash(), encoded_bytes::kTrack);
   EXPECT_EQ(slammtt_msgs::landmark_t{}._getEncodedSizeNoHash(), encoded_bytes::kLandmark);
+  EXPECT_EQ(slammtt_msgs::line_landmark_t{}._getEncodedSizeNoHash(),
+            encoded_bytes::kLineLandmark);
   slammtt_msgs::laser_scan_t scan = Sample<slammtt_msgs::laser_scan_t>::Make();
   const int with_beams = scan.getEncodedSize();
   scan.num_beams = 0;

@@ -266,13 +266,34 @@ struct Sample<slammtt_msgs::map_t> {
       l.covariance[3] = 0.02;
       m.landmarks.push_back(l);
     }
+    m.num_lines = 3;
+    for (int k = 0; k < m.num_lines; ++k) {
+      slammtt_msgs::line_landmark_t l{};
+      l.id = 20 + k;
+      l.rho_m = 1.5 * k - 1.0;
+      l.alpha_rad = 0.4 * k;
+      l.covariance[0] = 0.001;
+      l.covariance[1] = 0.0001 * k;
+      l.covariance[2] = 0.0001 * k;
+      l.covariance[3] = 0.0004;
+      l.from_x_m = k;
+      l.from_y_m = 2.0;
+      l.to_x_m = k + 1.5;
+      l.to_y_m = -1.0;
+      l.hits = 7 * k;
+      m.lines.push_back(l);
+    }
     return m;
   }
   static std::vector<CountField> Counts(const slammtt_msgs::map_t& m) {
-    return {{"num_landmarks", kFingerprint + 8, m.num_landmarks}};  // after utime
+    // utime, num_landmarks, then the landmarks (id, x, y, covariance[4]).
+    const size_t after_landmarks = kFingerprint + 8 + 4 + m.landmarks.size() * (8 + 6 * 8);
+    return {{"num_landmarks", kFingerprint + 8, m.num_landmarks},
+            {"num_lines", after_landmarks, m.num_lines}};
   }
   static bool ArraysMatchCounts(const slammtt_msgs::map_t& m) {
-    return m.num_landmarks >= 0 && m.landmarks.size() == static_cast<size_t>(m.num_landmarks);
+    return m.num_landmarks >= 0 && m.landmarks.size() == static_cast<size_t>(m.num_landmarks) &&
+           m.num_lines >= 0 && m.lines.size() == static_cast<size_t>(m.num_lines);
   }
 };
 

@@ -95,6 +95,18 @@ TEST(RayCasterTest, MountOffsetMovesTheBeamOriginPerPaperEq11) {
   EXPECT_NEAR(from_axle[0].range_m, 5.5 - std::sqrt(1.0 - 0.04), 1e-12);
 }
 
+TEST(RayCasterTest, MountYawTurnsTheSensorHeading) {
+  // The same mount turned 30 degrees CCW: same origin, heading 90 + 30 degrees; -170 degrees on
+  // a robot at 90 wraps to -80.
+  const Pose2D robot{1.0, 2.0, 90.0 * kDeg};
+  const Pose2D sensor = SensorPoseFromRobot(robot, 0.5, 0.2, 30.0 * kDeg);
+  EXPECT_NEAR(sensor.x_m, 0.8, 1e-12);
+  EXPECT_NEAR(sensor.y_m, 2.5, 1e-12);
+  EXPECT_NEAR(sensor.heading_rad, 120.0 * kDeg, 1e-12);
+  EXPECT_NEAR(SensorPoseFromRobot(robot, 0.0, 0.0, -170.0 * kDeg).heading_rad, -80.0 * kDeg,
+              1e-12);
+}
+
 TEST(RayCasterTest, SensorHeadingRotatesTheBeams) {
   // Sensor facing -x: its beam at +90 degrees points to world -y.
   const std::vector<BeamHit> hits =

@@ -116,6 +116,14 @@ TEST(WorldSimulatorTest, RobotTruthFollowsTheProfileAndTheSensorMount) {
     }
     EXPECT_NEAR(r.sensor_pose.x_m, r.pose.x_m + 0.2 * std::cos(r.pose.heading_rad), 1e-12);
     EXPECT_NEAR(r.sensor_pose.y_m, r.pose.y_m + 0.2 * std::sin(r.pose.heading_rad), 1e-12);
+    EXPECT_DOUBLE_EQ(r.sensor_pose.heading_rad, r.pose.heading_rad);
+  }
+  s.laser.mount_yaw_deg = -45.0;  // a laser turned to the right
+  for (const WorldEvent& e : RunAll(s, 1, SensorOutput::kScans)) {
+    if (e.kind != WorldEvent::Kind::kSensor) continue;
+    const RobotTruth& r = e.sensor.truth.robot;
+    EXPECT_NEAR(WrapAngle(r.sensor_pose.heading_rad - r.pose.heading_rad), -M_PI / 4, 1e-12);
+    EXPECT_NEAR(r.sensor_pose.x_m, r.pose.x_m + 0.2 * std::cos(r.pose.heading_rad), 1e-12);
   }
 }
 

@@ -109,6 +109,14 @@ struct LandmarkSample {
   Eigen::Matrix2d covariance = Eigen::Matrix2d::Zero();
 };
 
+// A line landmark of MAP (a wall or furniture side), in the estimator's map frame.
+struct LineLandmarkSample {
+  int64_t id = 0;
+  Eigen::Vector2d line = Eigen::Vector2d::Zero();  // (rho_m, alpha_rad)
+  Eigen::Vector2d from_m = Eigen::Vector2d::Zero();  // observed extent's end points
+  Eigen::Vector2d to_m = Eigen::Vector2d::Zero();
+};
+
 struct EvalInput {
   std::string source;                 // the log's path, for reports
   std::vector<TruthScan> truth;       // sorted by utime, unique utimes
@@ -119,6 +127,7 @@ struct EvalInput {
   std::vector<TimedPose> estimate;    // POSE, map frame, sorted, unique
   std::vector<TrackScan> tracks;      // sorted, unique
   std::optional<std::vector<LandmarkSample>> final_map;  // the last MAP message
+  std::vector<LineLandmarkSample> final_map_lines;       // its lines
   int64_t final_map_utime = 0;
   // LASER_SCAN messages in the log (counted, not decoded): a log with raw scans, whose features
   // come from the segmenter, so visibility is judged by beams_on_object (evaluation.h).

@@ -279,12 +279,23 @@ EvalInput ReadEvalInput(const std::string& path, const Channels& channels, LogRe
         sample.covariance << l.covariance[0], l.covariance[1], l.covariance[2], l.covariance[3];
         landmarks.push_back(sample);
       }
+      std::vector<LineLandmarkSample> lines;
+      for (const auto& l : msg.lines) {
+        ok = ok && Finite({l.rho_m, l.alpha_rad, l.from_x_m, l.from_y_m, l.to_x_m, l.to_y_m});
+        LineLandmarkSample sample;
+        sample.id = l.id;
+        sample.line = Eigen::Vector2d(l.rho_m, l.alpha_rad);
+        sample.from_m = Eigen::Vector2d(l.from_x_m, l.from_y_m);
+        sample.to_m = Eigen::Vector2d(l.to_x_m, l.to_y_m);
+        lines.push_back(sample);
+      }
       if (!ok || (input.final_map && msg.utime < input.final_map_utime)) {
         ++input.rejected["map"];
         return;
       }
       ++input.accepted["map"];
       input.final_map = std::move(landmarks);
+      input.final_map_lines = std::move(lines);
       input.final_map_utime = msg.utime;
     }
   });

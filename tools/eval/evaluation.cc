@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "common/angle.h"
 #include "tools/eval/log_only_scene.h"
 #include "tools/metrics/set_distance.h"
 
@@ -235,6 +236,37 @@ TrackingResult ScoreTracking(const EvalInput& input, const Pose2& anchor, bool s
   return tracking;
 }
 
+// The final map's lines in the truth frame, scored against the true surfaces; the point
+// landmarks on walls. Nothing when the log has neither lines nor surfaces.
+void ScoreLines(const EvalInput& input, const Pose2& anchor, EvaluationReport* report) {
+  if (input.final_map_lines.empty() && input.static_segments.empty()) return;
+  for (const LineLandmarkSample& l : input.final_map_lines) {
+    EstimatedLine e;
+    e.id = l.id;
+    // x' = R x + t: alpha' = alpha + theta, rho' = rho + t . n(alpha').
+    const double alpha = l.line(1) + anchor.heading_rad;
+    e.line = Eigen::Vector2d(l.line(0) + anchor.x_m * std::cos(alpha) +
+                                 anchor.y_m * std::sin(alpha),
+                             WrapAngle(alpha));
+    e.from_m = TransformPoint(anchor, l.from_m);
+    e.to_m = TransformPoint(anchor, l.to_m);
+    report->lines.push_back(e);
+  }
+  std::vector<TrueSurface> surfaces;
+  for (const TruthSegment& g : input.static_segments) {
+    surfaces.push_back({g.id, g.kind == TruthKind::kWall, g.from_m, g.to_m});
+  }
+  report->line_map = ScoreLineMap(report->lines, surfaces, kLineMatchMaxAngleDeg,
+                                  kLineMatchMaxDistance_m);
+  std::vector<int64_t> ids;
+  std::vector<Eigen::Vector2d> points;
+  for (const AnchoredLandmark& a : report->landmarks) {
+    ids.push_back(a.id);
+    points.push_back(a.position_m);
+  }
+  report->point_landmarks_on_walls = PointsOnWalls(ids, points, surfaces, kWallDistance_m);
+}
+
 }  // namespace
 
 EvaluationReport Evaluate(const EvalInput& input, const EvalOptions& options) {
@@ -356,6 +388,7 @@ EvaluationReport Evaluate(const EvalInput& input, const EvalOptions& options) {
                                          : AnchoredLandmark::Kind::kUnexplained;
       report.landmarks.push_back(a);
     }
+    ScoreLines(input, anchor, &report);
   }
 
   // Tracking and classification.

@@ -44,6 +44,7 @@
 #include "tools/metrics/classification_score.h"
 #include "tools/metrics/clear_mot.h"
 #include "tools/metrics/identity_metrics.h"
+#include "tools/metrics/line_map_score.h"
 #include "tools/metrics/map_score.h"
 #include "tools/metrics/trajectory_error.h"
 
@@ -68,6 +69,13 @@ struct EvalOptions {
   double sensor_forward_m = 0.0;
   double sensor_left_m = 0.0;
 };
+
+// Line landmarks (docs/evaluation.md, "Line landmarks"): a line matches a true surface within
+// these of its direction and its line; a point landmark within kWallDistance_m of a wall is a
+// piece of wall in the point map.
+inline constexpr double kLineMatchMaxAngleDeg = 10.0;
+inline constexpr double kLineMatchMaxDistance_m = 0.5;
+inline constexpr double kWallDistance_m = 0.2;
 
 // Upper bounds of the options, well beyond any use (a laser scan has a few thousand beams).
 inline constexpr int kMaxMinBeams = 100000;
@@ -190,6 +198,10 @@ struct EvaluationReport {
   std::optional<TrajectoryResult> robot;     // POSE
   std::optional<TrajectoryResult> odometry;  // ODOMETRY
   std::optional<MapScore> map;
+  // With a MAP and true surfaces (or line landmarks): the lines' score and the point landmarks
+  // on walls (ids).
+  std::optional<LineMapScore> line_map;
+  std::vector<int64_t> point_landmarks_on_walls;
   std::optional<TrackingResult> tracking;
   std::optional<TrackingResult> tracking_with_coasting;  // confirmed tracks, coasting included
   std::optional<TrackingResult> people_tracking;
@@ -203,6 +215,7 @@ struct EvaluationReport {
   std::vector<IdentifiedPoint> unseen_static_objects;     // never visible
   std::vector<TruthSegment> static_segments;              // walls and furniture sides
   std::vector<AnchoredLandmark> landmarks;                // final map
+  std::vector<EstimatedLine> lines;                       // final map's lines
   std::vector<TrackPath> track_paths;
   std::optional<ScanPicture> scan_picture;
   // Set when the log has no GROUND_TRUTH: then landmarks (kind kUnjudged), track_paths (every

@@ -143,6 +143,34 @@ json TrackingDetail(const TrackingResult& t) {
       {"per_scan", per_scan}};
 }
 
+// detail.map.lines: the line landmarks against the true surfaces (docs/evaluation.md).
+json LineMapJson(const EvaluationReport& report) {
+  const LineMapScore& l = *report.line_map;
+  json matches = json::array();
+  for (const LineMatch& m : l.matches) {
+    matches.push_back({{"line_id", m.line_id},
+                       {"surface_id", m.surface_id},
+                       {"wall", m.wall},
+                       {"angle_error_deg", m.angle_error_deg},
+                       {"distance_error_m", m.distance_error_m}});
+  }
+  return {{"lines", l.num_lines},
+          {"matched", static_cast<int64_t>(l.matches.size())},
+          {"unmatched_line_ids", l.unmatched_ids},
+          {"angle_error_deg",
+           {{"median", l.angle_error_median_deg},
+            {"p95", l.angle_error_p95_deg},
+            {"max", l.angle_error_max_deg}}},
+          {"distance_error_m",
+           {{"median", l.distance_error_median_m},
+            {"p95", l.distance_error_p95_m},
+            {"max", l.distance_error_max_m}}},
+          {"point_landmarks_on_walls",
+           static_cast<int64_t>(report.point_landmarks_on_walls.size())},
+          {"point_landmark_on_wall_ids", report.point_landmarks_on_walls},
+          {"matches", matches}};
+}
+
 }  // namespace
 
 const std::vector<std::string>& TopLevelMetricKeys() {
@@ -259,6 +287,7 @@ json ReportToJson(const EvalInput& input, const EvaluationReport& report,
                      {"mover_landmark_ids", m.mover_landmarks},
                      {"unexplained_landmark_ids", m.unexplained_landmarks},
                      {"matches", matches}};
+    if (report.line_map) detail["map"]["lines"] = LineMapJson(report);
   } else {
     detail["map"] = nullptr;
   }
@@ -352,6 +381,15 @@ std::string ReportSummaryText(const EvaluationReport& report,
         << FixedOr(m.static_recall, 3) << "), landmark RMSE " << FixedOr(m.landmark_rmse_m, 3, " m")
         << ", " << m.num_movers_in_static_map << " movers in the static map, "
         << m.num_unexplained << " other landmarks";
+    if (report.line_map) {
+      const LineMapScore& l = *report.line_map;
+      out << "\n  lines:          " << l.matches.size() << " of " << l.num_lines
+          << " line landmarks on a true surface, angle error median / max "
+          << Fixed(l.angle_error_median_deg, 2) << " / " << Fixed(l.angle_error_max_deg, 2)
+          << " deg, distance error median / max " << Fixed(l.distance_error_median_m, 3) << " / "
+          << Fixed(l.distance_error_max_m, 3) << " m, " << report.point_landmarks_on_walls.size()
+          << " point landmarks on walls";
+    }
   } else {
     out << "n/a";
   }

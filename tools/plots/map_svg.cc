@@ -15,6 +15,7 @@ const LineStyle kMover{"#d62728", 1.6};
 const LineStyle kOther{"#ff7f0e", 1.3};
 const LineStyle kUnjudged{"#3b6fb6", 1.3};
 const LineStyle kRobotPath{"#111111", 1.0, "3 3", 0.6};
+const LineStyle kLineLandmark{"#1f77b4", 1.4, "5 2", 1.0};
 constexpr int kLabelPx = 9;
 
 const LineStyle& LandmarkStyle(AnchoredLandmark::Kind kind) {
@@ -67,6 +68,8 @@ std::string MapSvg(const EvaluationReport& report) {
     panel.Dots({l.position_m}, 2.2, style);
   }
   DrawLandmarkIds(report, &panel);
+  // Line landmarks: the stretch of each the estimator saw, over the true surfaces.
+  for (const EstimatedLine& l : report.lines) panel.Polyline({l.from_m, l.to_m}, kLineLandmark);
   std::vector<LegendEntry> legend;
   if (truth) {
     legend = {{"true static object", kStaticTruth, LegendMark::kCross},
@@ -84,6 +87,7 @@ std::string MapSvg(const EvaluationReport& report) {
                LegendMark::kDot},
               {"robot path (estimate)", kRobotPath}};
   }
+  if (!report.lines.empty()) legend.push_back({"line landmark (seen extent)", kLineLandmark});
   legend.insert(legend.end(), segment_legend.begin(), segment_legend.end());
   const bool has_map = report.map || (report.log_only && report.log_only->has_map);
   if (!has_map) panel.Message("no MAP in the log");
@@ -94,6 +98,10 @@ std::string MapSvg(const EvaluationReport& report) {
                std::to_string(report.map->num_movers_in_static_map) + " movers in the map";
   } else if (report.log_only) {
     caption += ": " + std::to_string(report.landmarks.size()) + " landmarks in the last MAP";
+  }
+  if (report.line_map) {
+    caption += ", " + std::to_string(report.line_map->matches.size()) + "/" +
+               std::to_string(report.line_map->num_lines) + " line landmarks on a true surface";
   }
   AppendLegendAndCaption(&doc, panel, legend, caption);
   return doc.ToString();

@@ -4,11 +4,14 @@
 
 namespace slammtt {
 
-Pose2D SensorPoseFromRobot(const Pose2D& robot, double mount_a_m, double mount_b_m) {
+Pose2D SensorPoseFromRobot(const Pose2D& robot, double mount_a_m, double mount_b_m,
+                           double mount_yaw_rad) {
   const double c = std::cos(robot.heading_rad);
   const double s = std::sin(robot.heading_rad);
   return Pose2D{robot.x_m + mount_a_m * c - mount_b_m * s,
-                robot.y_m + mount_a_m * s + mount_b_m * c, robot.heading_rad};
+                robot.y_m + mount_a_m * s + mount_b_m * c,
+                mount_yaw_rad == 0.0 ? robot.heading_rad
+                                     : WrapAngle(robot.heading_rad + mount_yaw_rad)};
 }
 
 Pose2D MoveUnicycle(const Pose2D& start, double linear_mps, double angular_radps, double dt_s) {

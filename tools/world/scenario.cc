@@ -237,6 +237,7 @@ std::vector<std::string> FindScenarioProblems(const Scenario& s) {
   p.NonNegative("laser.range_noise_m", l.range_noise_m);
   p.Coordinate("laser.mount_a_m", l.mount_a_m);
   p.Coordinate("laser.mount_b_m", l.mount_b_m);
+  p.Between("laser.mount_yaw_deg", l.mount_yaw_deg, -180.0, 180.0);
   const LaserArtefactSpec& a = l.artefacts;
   p.Between("laser.mixed_pixel_probability", a.mixed_pixel_probability, 0.0, 1.0);
   if (!(a.beam_divergence_deg > 0.0 && a.beam_divergence_deg <= 10.0)) {

@@ -75,6 +75,7 @@ struct LaserSpec {
   double range_noise_m = 0.01;    // standard deviation of the Gaussian noise of each beam
   double mount_a_m = 0.0;         // sensor position on the robot, paper eq. 11: forward
   double mount_b_m = 0.0;         //   and left of the axle centre
+  double mount_yaw_deg = 0.0;     // the laser's heading, CCW from the robot's, [-180, 180]
   LaserArtefactSpec artefacts;    // all off by default
 };
 

@@ -139,7 +139,8 @@ class ScenarioReader {
 
   void ReadLaser(const Config& c, LaserSpec* l) {
     c.CheckKeysAmong({"fov_deg", "resolution_deg", "min_range_m", "max_range_m", "rate_hz",
-                      "range_noise_m", "mount_a_m", "mount_b_m", "mixed_pixel_probability",
+                      "range_noise_m", "mount_a_m", "mount_b_m", "mount_yaw_deg",
+                      "mixed_pixel_probability",
                       "beam_divergence_deg", "mixed_pixel_min_gap_m", "grazing_dropout_deg",
                       "range_noise_per_m", "sample_rate_hz", "rotation_jitter",
                       "angle_jitter_deg"});
@@ -160,6 +161,7 @@ class ScenarioReader {
     l->range_noise_m = Double(c, "range_noise_m", l->range_noise_m);
     l->mount_a_m = Double(c, "mount_a_m", l->mount_a_m);
     l->mount_b_m = Double(c, "mount_b_m", l->mount_b_m);
+    l->mount_yaw_deg = Double(c, "mount_yaw_deg", l->mount_yaw_deg);
   }
 
   void ReadLegs(const Config& c, LegSpec* legs) {

@@ -69,7 +69,8 @@ WorldSimulator::WorldSimulator(const Scenario& scenario, uint64_t seed, SensorOu
   robot_.pose = scenario_.robot.start;
   robot_.pose.heading_rad = WrapAngle(robot_.pose.heading_rad);
   robot_.sensor_pose =
-      SensorPoseFromRobot(robot_.pose, scenario_.laser.mount_a_m, scenario_.laser.mount_b_m);
+      SensorPoseFromRobot(robot_.pose, scenario_.laser.mount_a_m, scenario_.laser.mount_b_m,
+                          scenario_.laser.mount_yaw_deg * M_PI / 180.0);
 }
 
 bool WorldSimulator::Done() const {
@@ -111,7 +112,8 @@ void WorldSimulator::AdvanceRobotTo(int64_t time_us) {
   robot_.linear_mps = command_.linear_mps;
   robot_.angular_radps = command_.angular_radps;
   robot_.sensor_pose =
-      SensorPoseFromRobot(robot_.pose, scenario_.laser.mount_a_m, scenario_.laser.mount_b_m);
+      SensorPoseFromRobot(robot_.pose, scenario_.laser.mount_a_m, scenario_.laser.mount_b_m,
+                          scenario_.laser.mount_yaw_deg * M_PI / 180.0);
 }
 
 WorldEvent WorldSimulator::Next() {

@@ -1,9 +1,9 @@
 """Where the laser sits on the robot: from a bag's static transforms, or from options.
 
 The estimator models the laser at (sensor_forward_m, sensor_left_m) in the robot frame (paper
-eqs. 10-11: a, b), facing forward. A mount therefore has a forward and left offset, a yaw (the
-estimator has none yet: printed, and a warning when it is not 0), and two facts about the
-laser's axis: upside down (its z axis points down: beam angles turn the other way in the robot
+eqs. 10-11: a, b), turned by sensor_yaw_deg. A mount therefore has a forward and left offset, a
+yaw (written into the configuration snippet as sensor_yaw_deg), and two facts about the laser's
+axis: upside down (its z axis points down: beam angles turn the other way in the robot
 frame) and tilt (angle between its z axis and the robot's vertical; the scan is treated as
 planar).
 
@@ -77,10 +77,6 @@ class Mount:
     def warnings(self, rotated_to_base):
         """Lines the user must read about this mount."""
         lines = []
-        if not rotated_to_base and abs(self.yaw_rad) > YAW_ZERO_RAD:
-            lines.append(f"the laser's yaw is {math.degrees(self.yaw_rad):.2f} deg, and the "
-                         "estimator has no sensor yaw: its map turns by it; --rotate-to-base "
-                         "writes the beams in the robot's orientation")
         if not rotated_to_base and self.upside_down:
             lines.append("the laser is upside down: its beams turn clockwise in the robot "
                          "frame; --rotate-to-base writes them in the robot's orientation")
@@ -99,13 +95,15 @@ class Mount:
             f"  sensor_left_m: {_number(self.left_m)}",
         ]
         if rotated_to_base:
+            lines.append("  sensor_yaw_deg: 0.0")
             lines.append(f"# sensor yaw {_number(math.degrees(self.yaw_rad))} deg"
                          f"{' and upside down' if self.upside_down else ''}: already applied "
                          "to the beams (--rotate-to-base)")
         else:
-            lines.append(f"# sensor yaw {_number(math.degrees(self.yaw_rad))} deg"
-                         f"{', upside down' if self.upside_down else ''} (the estimator has no "
-                         "sensor yaw yet)")
+            lines.append(f"  sensor_yaw_deg: {_number(math.degrees(self.yaw_rad))}")
+            if self.upside_down:
+                lines.append("# upside down: the beams turn clockwise; import with "
+                             "--rotate-to-base")
         return "\n".join(lines) + "\n"
 
 
