@@ -61,6 +61,8 @@ def tracking_log(path, frames):
                 track.id, track.x_m, track.y_m, track.vx_mps = track_id, x_m, y_m, 1.0
                 track.covariance = [0.01 if i % 5 == 0 else 0.0 for i in range(16)]
                 track.object_class, track.confirmed, track.hits = 1, True, 5
+                # Measured in this scan, so a reported track (docs/evaluation.md).
+                track.measured, track.coasting_s, track.reported = True, 0.0, True
                 track.first_seen_utime = track.last_seen_utime = utime
                 t.tracks.append(track)
             t.num_tracks = len(t.tracks)

@@ -123,6 +123,7 @@ def tracks(utime, track_id, x_m, y_m):
     from slammtt_msgs import track_t, tracks_t
     t = track_t()
     t.id, t.x_m, t.y_m, t.vx_mps, t.object_class, t.confirmed = track_id, x_m, y_m, 1.0, 1, True
+    t.measured, t.reported = True, True
     t.covariance = [0.04 if i % 5 == 0 else 0.0 for i in range(16)]
     message = tracks_t()
     message.utime, message.tracks, message.num_tracks = utime, [t], 1
