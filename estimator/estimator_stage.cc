@@ -54,6 +54,14 @@ Eigen::Vector2d SensorPoint(const slammtt_msgs::feature_t& f) {
   return f.range_m * Eigen::Vector2d(std::cos(f.bearing_rad), std::sin(f.bearing_rad));
 }
 
+// A 2x2 covariance as the messages carry it: row-major, 4 doubles.
+void Write2x2(const Eigen::Matrix2d& m, double out[4]) {
+  out[0] = m(0, 0);
+  out[1] = m(0, 1);
+  out[2] = m(1, 0);
+  out[3] = m(1, 1);
+}
+
 }  // namespace
 
 ScanInput ScanInputFromFeatures(const slammtt_msgs::features_t& message, bool person_features) {
@@ -288,10 +296,7 @@ void EstimatorStage::HandleFeatures(const void* data, int size, MessageSink& out
       landmark.id = e.id;
       landmark.x_m = e.position(0);
       landmark.y_m = e.position(1);
-      landmark.covariance[0] = e.covariance(0, 0);
-      landmark.covariance[1] = e.covariance(0, 1);
-      landmark.covariance[2] = e.covariance(1, 0);
-      landmark.covariance[3] = e.covariance(1, 1);
+      Write2x2(e.covariance.topLeftCorner<2, 2>(), landmark.covariance);
       map.landmarks.push_back(landmark);
     }
   }
@@ -300,10 +305,7 @@ void EstimatorStage::HandleFeatures(const void* data, int size, MessageSink& out
     line.id = e.id;
     line.rho_m = e.line(0);
     line.alpha_rad = e.line(1);
-    line.covariance[0] = e.covariance(0, 0);
-    line.covariance[1] = e.covariance(0, 1);
-    line.covariance[2] = e.covariance(1, 0);
-    line.covariance[3] = e.covariance(1, 1);
+    Write2x2(e.covariance, line.covariance);
     line.from_x_m = e.from_m(0);
     line.from_y_m = e.from_m(1);
     line.to_x_m = e.to_m(0);
