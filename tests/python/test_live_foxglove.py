@@ -241,3 +241,23 @@ def test_command_line(tmp_path):
         done = subprocess.run([str(launcher), "--version"], capture_output=True, text=True,
                               timeout=60)
         assert done.returncode == 0 and done.stdout.startswith("slammtt-foxglove "), done.stderr
+
+
+def test_playback_wait_survives_a_due_time_passing_between_two_clock_reads(monkeypatch):
+    """The wait before each log message read the clock twice (test, then slice length); when
+    the due time passed in between, time.sleep got a negative length and the bridge died
+    (ValueError, seen once in CI). A clock that jumps past the due time at every read is that
+    race on every call."""
+    from slammtt.foxglove import bridge
+
+    readings = iter([0.0, 0.2, 0.4, 0.6])
+    slept = []
+    monkeypatch.setattr(bridge.time, "monotonic", lambda: next(readings))
+    monkeypatch.setattr(bridge.time, "sleep", slept.append)
+
+    class NoStop:
+        requested = False
+
+    bridge._sleep_until(0.1, NoStop())
+    assert slept == [0.05]
+    assert all(length >= 0 for length in slept)

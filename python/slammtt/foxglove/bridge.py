@@ -106,6 +106,19 @@ class Bridge:
             self.server.broadcast_time(outputs[-1].log_time_ns)
 
 
+def _sleep_until(due, stop):
+    """Sleeps until monotonic time `due` or a stop request, in slices of at most 50 ms.
+
+    The time left is read once per slice: reading the clock twice (once to test, once to
+    compute the slice) can give a negative slice when `due` passes in between.
+    """
+    while not stop.requested:
+        left = due - time.monotonic()
+        if left <= 0:
+            return
+        time.sleep(min(0.05, left))
+
+
 def _play(bridge, path, speed, loop, stop):
     while not stop.requested:
         reader = LogReader(path)
@@ -117,8 +130,7 @@ def _play(bridge, path, speed, loop, stop):
             if first_us is None:
                 first_us, start_wall = event.timestamp_us, time.monotonic()
             due = start_wall + (event.timestamp_us - first_us) * 1e-6 / speed
-            while not stop.requested and time.monotonic() < due:
-                time.sleep(min(0.05, due - time.monotonic()))
+            _sleep_until(due, stop)
             bridge.data(event.channel, event.data)
         if reader.damage:
             print(f"{PROGRAM}: warning: {path}: {reader.damage}", file=sys.stderr)
