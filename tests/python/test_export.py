@@ -225,3 +225,27 @@ def test_mot_files_read_by_trackeval_and_py_motmetrics(run, tmp_path):
     o = next(o for o in truth_at[utime_of[frame]].objects if o.id == object_id)
     assert row["X"] + 1 + 0.5 == pytest.approx(o.x_m, abs=1e-9)
     assert row["Y"] + 1 + 0.5 == pytest.approx(o.y_m, abs=1e-9)
+
+
+def test_mot_tracks_are_the_reported_ones_as_slammtt_eval_scores(run, tmp_path):
+    """The track rows are the tracks slammtt-eval scores: reported (measured within the
+    reporting time) and moving; a confirmed track that coasts is not one of them."""
+    export_ok(run.log, "--mot", tmp_path, "--mot-sequence", "seq", "--config", run.config)
+    frames = [line.split(",") for line in (tmp_path / "frames.csv").read_text().splitlines()[1:]]
+    frame_of = {int(u): int(f) for f, u in frames}
+    log = read_log(run.log)
+    reported, coasting = set(), 0
+    for m in log["TRACKS"]:
+        if m.utime not in frame_of:
+            continue
+        for t in m.tracks:
+            if t.object_class != 1:
+                continue
+            if t.reported:
+                reported.add((frame_of[m.utime], t.id))
+            elif t.confirmed:
+                coasting += 1
+    rows = (tmp_path / "trackers" / "slammtt" / "data" / "seq.txt").read_text().splitlines()
+    written = {(int(r.split(",")[0]), int(r.split(",")[1])) for r in rows}
+    assert coasting > 0, "the run has no coasting confirmed mover: nothing to tell apart"
+    assert written == reported and len(rows) == len(reported)

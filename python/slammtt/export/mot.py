@@ -24,7 +24,8 @@ mover (class MOVING; a person's legs are folded into the person, whose beams are
 better-seen leg); flag 1 (scored) when it is visible (LASER_SCAN logs: min_beams beams; feature
 logs: the world's flag) and not standing (true speed >= min_moving_speed_mps), flag 0 (ignored
 by MOTChallenge evaluations) when it is standing (visibility 1) or not visible (visibility 0);
-class 1 (pedestrian). Tracks: confirmed, labelled moving, anchored into the truth frame by
+class 1 (pedestrian). Tracks: reported (confirmed and measured within the estimator's
+tracks_report_measured_within_s; a coasting track is not written), labelled moving, anchored into the truth frame by
 slammtt-eval's anchoring. Unlike slammtt-eval, no evaluation of these files excuses a track
 near an invisible mover or on a standing one unless it applies MOTChallenge's ignore flag.
 """
@@ -113,7 +114,7 @@ def write_mot(data, directory, sequence, rules, box_m=1.0):
             counts["tracks_messages_outside_frames"] += 1
             continue
         for t in m.tracks:
-            if not t.confirmed or t.object_class != TRACK_CLASS_MOVING:
+            if not t.reported or t.object_class != TRACK_CLASS_MOVING:
                 continue
             x_m, y_m = transform.apply(t.x_m, t.y_m) if transform else (t.x_m, t.y_m)
             track_lines.append(",".join(number_text(v) for v in (

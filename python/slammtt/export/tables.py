@@ -9,6 +9,7 @@ import os
 from slammtt.export.files import write_csv
 
 TRACK_CLASSES = {0: "static", 1: "moving", 2: "undecided"}
+TRACK_KINDS = {0: "other", 1: "person"}
 TRUTH_CLASSES = {0: "static", 1: "moving"}
 TRUTH_KINDS = {0: "unknown", 1: "wall", 2: "furniture", 3: "post", 4: "disc", 5: "person",
                6: "leg"}
@@ -35,7 +36,8 @@ def _track_rows(data):
             c = list(t.covariance)
             yield (m.utime, t.id, TRACK_CLASSES.get(t.object_class, str(t.object_class)),
                    t.confirmed, t.x_m, t.y_m, t.vx_mps, t.vy_mps, c[0], c[1], c[5], c[10],
-                   c[15], t.hits, t.first_seen_utime, t.last_seen_utime)
+                   c[15], t.hits, t.first_seen_utime, t.last_seen_utime,
+                   TRACK_KINDS.get(t.kind, str(t.kind)), t.measured, t.coasting_s, t.reported)
 
 
 def _map_rows(data):
@@ -43,6 +45,14 @@ def _map_rows(data):
         for l in m.landmarks:
             c = list(l.covariance)
             yield (m.utime, l.id, l.x_m, l.y_m, c[0], c[1], c[3])
+
+
+def _map_line_rows(data):
+    for m in data["map"]:
+        for l in m.lines:
+            c = list(l.covariance)
+            yield (m.utime, l.id, l.rho_m, l.alpha_rad, c[0], c[1], c[3], l.from_x_m,
+                   l.from_y_m, l.to_x_m, l.to_y_m, l.hits)
 
 
 def _point_rows(data):
@@ -85,9 +95,13 @@ TABLES = {
                    "angular_velocity_radps"), _pose_rows),
     "tracks.csv": (("utime_us", "id", "class", "confirmed", "x_m", "y_m", "vx_mps", "vy_mps",
                     "var_x_m2", "cov_xy_m2", "var_y_m2", "var_vx_m2ps2", "var_vy_m2ps2", "hits",
-                    "first_seen_utime_us", "last_seen_utime_us"), _track_rows),
+                    "first_seen_utime_us", "last_seen_utime_us", "kind", "measured",
+                    "coasting_s", "reported"), _track_rows),
     "map.csv": (("utime_us", "id", "x_m", "y_m", "var_x_m2", "cov_xy_m2", "var_y_m2"),
                 _map_rows),
+    "map_lines.csv": (("utime_us", "id", "rho_m", "alpha_rad", "var_rho_m2", "cov_rho_alpha_m_rad",
+                       "var_alpha_rad2", "from_x_m", "from_y_m", "to_x_m", "to_y_m", "hits"),
+                      _map_line_rows),
     "features.csv": (("utime_us", "sequence", "index", "range_m", "bearing_rad", "x_m", "y_m",
                       "width_m", "num_points", "range_var_m2", "bearing_var_rad2",
                       "range_bearing_cov_m_rad", "leg_likeness"), _point_rows),

@@ -44,7 +44,8 @@ TOPICS = {
     "/smoothed_pose": (fc.PoseInFrameChannel, "SMOOTHED_POSE, frame map"),
     "/odometry": (fc.PoseInFrameChannel, "ODOMETRY, frame odom"),
     "/ground_truth/pose": (fc.PoseInFrameChannel, "GROUND_TRUTH robot pose, frame world"),
-    "/map": (fc.SceneUpdateChannel, "MAP: landmarks with 2-sigma ellipses and ids, frame map"),
+    "/map": (fc.SceneUpdateChannel,
+             "MAP: landmarks with 2-sigma ellipses and ids, line landmarks, frame map"),
     "/tracks": (fc.SceneUpdateChannel,
                 "TRACKS: tracks with 2-sigma ellipses, velocity arrows, ids, frame map"),
     "/features": (fc.SceneUpdateChannel,
@@ -364,6 +365,23 @@ class Converter:
                 lines=_ellipse(l.x_m, l.y_m, c[0], c[1], c[3], color),
                 texts=[_text(l.x_m, l.y_m, str(l.id), color)],
                 metadata=_metadata(id=l.id, x_m=l.x_m, y_m=l.y_m)))
+        for l in m.lines:
+            ends = (l.from_x_m, l.from_y_m, l.to_x_m, l.to_y_m)
+            if not _finite(l.rho_m, l.alpha_rad, *ends):
+                raise _Skip()
+            entity_id = f"line/{l.id}"
+            ids.add(entity_id)
+            color = _color(LINE_COLOR)
+            entities.append(fm.SceneEntity(
+                timestamp=stamp, frame_id=MAP, id=entity_id,
+                lines=[fm.LinePrimitive(
+                    type=fm.LinePrimitiveLineType.LineList, pose=_pose(), thickness=0.06,
+                    color=color,
+                    points=[fm.Point3(x=ends[0], y=ends[1]), fm.Point3(x=ends[2], y=ends[3])])],
+                texts=[_text((ends[0] + ends[2]) / 2, (ends[1] + ends[3]) / 2, str(l.id),
+                             color)],
+                metadata=_metadata(id=l.id, rho_m=l.rho_m, alpha_rad=l.alpha_rad,
+                                   hits=l.hits)))
         deletions = self._deletions(stamp, self._landmark_ids, ids)
         self._landmark_ids = ids
         return [Output("/map", fm.SceneUpdate(deletions=deletions, entities=entities),
