@@ -8,7 +8,8 @@
 //                             eqs. 6-8, landmarks unchanged (line 2: scan_prediction.h);
 //  1b. line landmarks        the scan's line features (walls) update the line landmarks and
 //                             the pose, and start new line landmarks; the point features on a
-//                             line landmark are dropped (line_landmarks.h);
+//                             line landmark are dropped (line_landmarks.h; new walls start
+//                             as candidate lines, line_candidates.h);
 //   2. predict observations   of every object (eqs. 10-11, 20-21), once per state the scan
 //                             passes through (observation_predictions.h);
 //   3. gate                   Mahalanobis distances and the compatibility matrix J with gate d1
