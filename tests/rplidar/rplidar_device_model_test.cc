@@ -113,7 +113,7 @@ TEST(RplidarDeviceModelTest, ExpressScanDecodesToTheAnglesThatWereRayCast) {
   int revolutions = 0;
   for (const ScanSample& sample : samples) {
     revolutions += sample.start_of_revolution ? 1 : 0;
-    const std::optional<double> range = options.room.CastDeviceRay(sample.AngleDeg());
+    const std::optional<double> range = EmulatedRoom::Default().CastDeviceRay(sample.AngleDeg());
     if (!range) {
       EXPECT_EQ(sample.distance_q2, 0);
       continue;
@@ -131,7 +131,7 @@ TEST(RplidarDeviceModelTest, StandardScanMatchesTheRoomWithinNoise) {
   double sum_squares = 0.0;
   int hits = 0;
   for (const ScanSample& sample : samples) {
-    const std::optional<double> range = options.room.CastDeviceRay(sample.AngleDeg());
+    const std::optional<double> range = EmulatedRoom::Default().CastDeviceRay(sample.AngleDeg());
     if (!range) continue;
     const double error_m = sample.DistanceMm() / 1000.0 - *range;
     sum_squares += error_m * error_m;
