@@ -181,6 +181,9 @@ int Run(int argc, char** argv) {
   // The whole profile is read and checked before anything is sent.
   std::vector<VelocityProfileStep> profile;
   if (auto path = cl.Value("profile")) profile = ParseVelocityProfile(ReadTextFile(*path), *path);
+  if (profile.empty() && !isatty(STDIN_FILENO)) {
+    throw UsageError("keyboard mode needs a terminal on stdin (or --profile FILE)");
+  }
 
   const CommandKey key = LoadCommandKeyFile(*key_path);
   std::unique_ptr<lcm::LCM> lcm = OpenLcm(settings.lcm_url);

@@ -127,14 +127,16 @@ TEST(SimRobotStackTest, TeleopDrivesTheSimulatedRobotAndEvalScoresTheRecordedRun
   // Every ground-truth scan has the estimator's POSE of the same utime.
   EXPECT_EQ(detail.at("robot").at("scans").get<int>(),
             detail.at("input").at("ground_truth_scans").get<int>());
-  // Measured on this test (office seed 1, 10 runs): ATE RMSE 0.008-0.013 m (the base's
-  // odometry 0.001-0.002 m: the office's slip is small). The bound is about 4 times that: it
-  // holds with the machine's scheduling delays (a late world step leaves the laser's pose a few
-  // milliseconds old) and fails when the laser, the truth and the estimator disagree about
-  // where the robot is (a laser mount of 0.05 m left out is 0.05 m; a truth 0.1 s off its scan
-  // 0.03 m at 0.3 m/s).
-  EXPECT_LE(report.at("ate_rmse_m").get<double>(), 0.04) << eval.out;
-  EXPECT_LE(report.at("odometry_ate_rmse_m").get<double>(), 0.04) << eval.out;
+  // Measured on this test (office seed 1, 7 runs while other builds loaded the machine): ATE
+  // RMSE 0.008-0.013 m, the base's odometry 0.001-0.002 m (the office's wheel slip is small).
+  // The bound, about 2.5 times that, leaves room for scheduling delays (a late world step or a
+  // late read makes the laser's pose or a scan's stamp a few milliseconds old: a few mm at
+  // 0.3 m/s) and fails when the laser, the truth and the estimator disagree about the robot's
+  // frame or clock (a scan stamped 0.1 s off its truth is 0.03 m; a laser angle of the wrong
+  // sense or a truth in another frame, metres). It does not catch a laser mount left out of
+  // the estimator's configuration: the same run without sensor_forward_m measured 0.027 m.
+  EXPECT_LE(report.at("ate_rmse_m").get<double>(), 0.03) << eval.out;
+  EXPECT_LE(report.at("odometry_ate_rmse_m").get<double>(), 0.03) << eval.out;
   // The walls of the corridor and of room A are mapped, each on a true surface.
   const nlohmann::json& lines = detail.at("map").at("lines");
   EXPECT_GE(lines.at("lines").get<int>(), 5) << eval.out;
