@@ -2,7 +2,6 @@
 //   slammtt-world --scenario s1-crossing --seed 7 --log OUT.lcm   # as fast as possible
 //   slammtt-world --scenario rplidar-a2                            # live, real time
 #include <algorithm>
-#include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
