@@ -25,12 +25,12 @@
 // 360 degrees (clockwise) at time epoch + k * sample_time (epoch: when the data stream started);
 // its distance is what `scene` has along that angle at that time plus Gaussian noise (and no
 // return with the surface's dropout probability), drawn from a hash of (seed, k) so that the
-// bytes of a scan
-// do not depend on how the transport paced them (as long as it polls within the backlog the
-// device keeps: one revolution; beyond, samples are skipped and the next express capsule
-// carries the S bit, so the host restarts its interpolation instead of bridging the gap). Express capsules carry per-sample angle
-// corrections dtheta drawn the same way, and the distance of each sample is measured at the
-// corrected angle, so a correct decoder recovers exactly the angles that were ray-cast.
+// bytes of a scan do not depend on how the transport paced them (as long as it polls within
+// the backlog the device keeps: one revolution; beyond, samples are skipped and the next
+// express capsule carries the S bit, so the host restarts its interpolation instead of
+// bridging the gap). Express capsules carry per-sample angle corrections dtheta drawn the same
+// way, and the distance of each sample is measured at the corrected angle, so a correct
+// decoder recovers exactly the angles that were ray-cast.
 #pragma once
 
 #include <cstddef>

@@ -1,6 +1,8 @@
 #include "drivers/sim_robot/simulated_robot.h"
 
+#include <algorithm>
 #include <chrono>
+#include <stdexcept>
 #include <thread>
 #include <vector>
 
@@ -111,9 +113,26 @@ void SimulatedRobot::Run(const std::function<bool()>& stop_requested) {
         robot->OnLaserScan(buffer);
       },
       this);
-  while (!stop_requested()) {
-    Step();
-    lcm_->handleTimeout(options_.step_ms);
+  try {
+    // handleTimeout fails once when a signal interrupts it (the SIGINT that stops us); a bus
+    // that fails for a whole second is broken.
+    const int max_failures = std::max(1, 1000 / options_.step_ms);
+    int failures = 0;
+    while (!stop_requested()) {
+      Step();
+      if (lcm_->handleTimeout(options_.step_ms) >= 0) {
+        failures = 0;
+        continue;
+      }
+      if (stop_requested()) break;
+      if (++failures >= max_failures) {
+        throw std::runtime_error("LCM stopped receiving (handleTimeout failed for 1 s)");
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(options_.step_ms));
+    }
+  } catch (...) {
+    lcm_->unsubscribe(subscription);  // no handler left pointing at this robot
+    throw;
   }
   lcm_->unsubscribe(subscription);
 }

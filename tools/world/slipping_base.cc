@@ -49,8 +49,8 @@ void SlippingBase::MoveTruth(double distance_m, double rotation_rad) {
   const double left_m = counted.left_rad * r * left_factor_;
   const double right_m = counted.right_rad * r * right_factor_;
   // The true step as one arc: MoveUnicycle over 1 s with speed = distance, rate = rotation.
-  pose_ = MoveUnicycle(pose_, 0.5 * (left_m + right_m), (right_m - left_m) / odometry_.axle_length_m,
-                       1.0);
+  pose_ = MoveUnicycle(pose_, 0.5 * (left_m + right_m),
+                       (right_m - left_m) / odometry_.axle_length_m, 1.0);
 }
 
 void SlippingBase::Advance(int64_t time_us, const Pose2D& encoder_pose) {
