@@ -64,6 +64,9 @@ int Run(int argc, char** argv) {
   // SIGINT/SIGTERM (ProcessMain's handlers): stop at the next event, leave no output.
   options.should_stop = [] { return ShutdownRequested(); };
   std::vector<ReplayStage> stages = CreateStackStages(settings, enabled);
+  if (settings.config_path.empty()) {
+    LogInfo() << DefaultsLine(ScanLogFile(input), settings.channels, enabled);
+  }
   const ReplayFileResult result = ReplayLogFile(input, *output, std::move(stages), options);
   for (const StageReplayStats& s : result.stages) {
     if (!s.runs) {
