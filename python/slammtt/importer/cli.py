@@ -163,9 +163,11 @@ def _scan_stream(channel, scans, mount, rotate):
     return stream
 
 
-def _geometry_stream(channel, scans, mount, rotate, source):
+def _geometry_stream(channel, scans, mount, rotate, laser_name):
+    """LASER_GEOMETRY; its source names the laser, not the input file, so that a bag and its
+    ROS 2 conversion import to the same bytes."""
     stream = Stream(channel)
-    text = f"slammtt-import, {source}; mount from {mount.source}"
+    text = f"slammtt-import, {laser_name}; mount from {mount.source}"
     for utime, message in laser_geometry.geometry_messages(scans, mount, rotate, text):
         stream.add(utime, message.encode())
     return stream
@@ -216,14 +218,14 @@ def _import_rosbag(args, channels, report):
     for what, (count, first) in sorted(content.skipped.items()):
         report.warning(f"skipped {count} {what} (first: {first})")
     mount = _choose_mount(args, content.tf_mount, report)
-    source = f"{pathlib.Path(args.input).name}, laser topic {content.laser_topic} " \
-             f"(frame {content.laser_frame})"
+    laser_name = f"laser topic {content.laser_topic} (frame {content.laser_frame})"
+    source = f"{pathlib.Path(args.input).name}, {laser_name}"
     # The scans first: --rotate-to-base turns their beams, which gives the geometry's view.
     scans = _scan_stream(channels["laser_scan"], content.scans, mount, args.rotate_to_base)
     # Stream order is the tie order at equal utimes: the geometry before the scan it holds for.
     streams = [_odometry_stream(channels["odometry"], content.odometry),
                _geometry_stream(channels["laser_geometry"], content.scans, mount,
-                                args.rotate_to_base, source),
+                                args.rotate_to_base, laser_name),
                scans]
     if content.odometry:
         report.info(f"{channels['odometry']}: {len(content.odometry)} messages")
@@ -262,7 +264,7 @@ def _import_breezyslam(args, channels, report):
     streams = [_odometry_stream(channels["odometry"], [] if args.no_odometry
                                 else odometry_readings),
                _geometry_stream(channels["laser_geometry"], scans, mount, args.rotate_to_base,
-                                pathlib.Path(args.input).name),
+                                "BreezySLAM log"),
                scan_stream]
     if not args.no_odometry:
         path_m = sum(math.hypot(b.x_m - a.x_m, b.y_m - a.y_m)
