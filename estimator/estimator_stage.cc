@@ -57,6 +57,16 @@ Eigen::Vector2d SensorPoint(const slammtt_msgs::feature_t& f) {
   return f.range_m * Eigen::Vector2d(std::cos(f.bearing_rad), std::sin(f.bearing_rad));
 }
 
+// Text from a message, fit for one log line: control characters become '?', and at most 200
+// bytes are kept.
+std::string OneLine(const std::string& text) {
+  std::string line = text.substr(0, 200);
+  for (char& c : line) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F) c = '?';
+  }
+  return line;
+}
+
 // A 2x2 covariance as the messages carry it: row-major, 4 doubles.
 void Write2x2(const Eigen::Matrix2d& m, double out[4]) {
   out[0] = m(0, 0);
@@ -267,7 +277,7 @@ void EstimatorStage::HandleLaserGeometry(const void* data, int size) {
     return;
   }
   log_geometry_ = values;
-  const std::string source = message.source.empty() ? "" : " (" + message.source + ")";
+  const std::string source = message.source.empty() ? "" : " (" + OneLine(message.source) + ")";
   const GeometryReconciliation r = ReconcileLaserGeometry(configured_, geometry_given_, log);
   if (!r.problem.empty()) {
     ++counters_.geometry_rejected;
@@ -282,8 +292,8 @@ void EstimatorStage::HandleLaserGeometry(const void* data, int size) {
                  << "; the configuration's is used";
   }
   if (!r.taken.empty()) {
-    LogInfo() << "estimator: laser geometry from " << laser_geometry_channel_ << source
-              << " (the configuration does not give it): " << r.taken;
+    LogInfo() << "estimator: laser geometry the configuration does not give, taken from "
+              << laser_geometry_channel_ << source << ": " << r.taken;
   }
   estimator_.SetLaserGeometry(r.options);
 }

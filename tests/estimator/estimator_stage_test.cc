@@ -617,8 +617,8 @@ TEST(EstimatorGeometryTest, WithoutTheKeysTakesTheLogsGeometryAndSaysSoOnce) {
   EstimatorStage stage(EstimatorStageOptions{}, Channels());
   const std::vector<std::string> lines = GeometryLines(&stage, LobbyGeometryBytes(0), 3);
   ASSERT_EQ(lines.size(), 1u);
-  EXPECT_NE(lines[0].find("estimator: laser geometry from LASER_GEOMETRY (slammtt-world, "
-                          "scenario s2-lobby) (the configuration does not give it): mount "
+  EXPECT_NE(lines[0].find("estimator: laser geometry the configuration does not give, taken from "
+                          "LASER_GEOMETRY (slammtt-world, scenario s2-lobby): mount "
                           "forward 0.1 m, left 0 m, yaw 0 deg; field of view -90 to 90 deg; "
                           "max range 30 m"),
             std::string::npos)
@@ -663,10 +663,12 @@ TEST(EstimatorGeometryTest, AnUnusableGeometryIsCountedWarnedOnceAndNotUsed) {
   m.view_start_rad = -1.0;
   m.view_end_rad = 1.0;
   m.range_max_m = 30.0;
+  m.source = "two\nlines";  // stays one line
   EstimatorStage stage(EstimatorStageOptions{}, Channels());
   const std::vector<std::string> lines = GeometryLines(&stage, Encode(m), 3);
   ASSERT_EQ(lines.size(), 1u);
-  EXPECT_NE(lines[0].find("not used: a value is not a finite number"), std::string::npos)
+  EXPECT_NE(lines[0].find("(two?lines) not used: a value is not a finite number"),
+            std::string::npos)
       << lines[0];
   EXPECT_EQ(stage.counters().geometry_rejected, 1);
   EXPECT_EQ(stage.estimator().options().sensor.forward_m, 0.0);
