@@ -93,6 +93,7 @@ function(slammtt_executable name)
   target_link_libraries(${name} PRIVATE ${ARG_LIBS})
   slammtt_warnings(${name})
   install(TARGETS ${name} RUNTIME DESTINATION bin)
+  set_property(GLOBAL APPEND PROPERTY SLAMMTT_PROGRAMS ${name})
 endfunction()
 
 # slammtt_test(<name> SOURCES ... [LIBS ...] [LABELS ...] [NETNS] [TIMEOUT s])

@@ -75,6 +75,103 @@ void Write2x2(const Eigen::Matrix2d& m, double out[4]) {
   out[3] = m(1, 1);
 }
 
+// The counters of stage_timing_t for one processed scan.
+void CountScanWork(const ScanResult& result, StageTimer* timer) {
+  const StepCounts& counts = result.counts;
+  timer->Count("features", counts.features);
+  timer->Count("objects", static_cast<int64_t>(result.objects.size()));
+  timer->Count("hypotheses", counts.hypotheses);
+  timer->Count("updates", counts.level1_updates + counts.level2_updates + counts.level3_updates);
+  timer->Count("updates_skipped", counts.static_updates_skipped);
+  timer->Count("lines", counts.lines);
+  timer->Count("line_updates", counts.line_updates);
+  timer->Count("new_lines", counts.new_lines);
+  timer->Count("features_over_cap", counts.features_over_cap);
+  timer->Count("ransac_pair_tests", counts.ransac_pair_tests);
+  timer->Count("ransac_budget_cut", counts.ransac_budget_cut);
+  timer->Count("state_recovered", counts.state_recovered);
+}
+
+slammtt_msgs::pose_t PoseMessage(int64_t utime, const ScanResult& result) {
+  slammtt_msgs::pose_t pose;
+  pose.utime = utime;
+  pose.x_m = result.pose(0);
+  pose.y_m = result.pose(1);
+  pose.heading_rad = result.pose(2);
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) pose.covariance[3 * r + c] = result.pose_covariance(r, c);
+  }
+  return pose;
+}
+
+slammtt_msgs::track_t TrackMessage(const ObjectEstimate& e) {
+  slammtt_msgs::track_t track;
+  track.id = e.id;
+  track.x_m = e.position(0);
+  track.y_m = e.position(1);
+  track.vx_mps = e.velocity(0);
+  track.vy_mps = e.velocity(1);
+  for (int r = 0; r < 4; ++r) {
+    for (int c = 0; c < 4; ++c) track.covariance[4 * r + c] = e.covariance(r, c);
+  }
+  track.object_class = ClassCode(e.object_class);
+  track.confirmed = e.confirmed;
+  track.first_seen_utime = e.first_seen_utime;
+  track.hits = e.hits;
+  track.last_seen_utime = e.last_seen_utime;
+  track.measured = e.measured;
+  track.coasting_s = e.coasting_s;
+  track.reported = e.reported;
+  track.kind = e.kind == ObjectKind::kPerson ? slammtt_msgs::track_t::KIND_PERSON
+                                             : slammtt_msgs::track_t::KIND_OTHER;
+  return track;
+}
+
+// Every object, in the estimator's order.
+slammtt_msgs::tracks_t TracksMessage(int64_t utime, const ScanResult& result) {
+  slammtt_msgs::tracks_t tracks;
+  tracks.utime = utime;
+  for (const ObjectEstimate& e : result.objects) tracks.tracks.push_back(TrackMessage(e));
+  tracks.num_tracks = static_cast<int32_t>(tracks.tracks.size());
+  return tracks;
+}
+
+slammtt_msgs::line_landmark_t LineLandmarkMessage(const LineEstimate& e) {
+  slammtt_msgs::line_landmark_t line;
+  line.id = e.id;
+  line.rho_m = e.line(0);
+  line.alpha_rad = e.line(1);
+  Write2x2(e.covariance, line.covariance);
+  line.from_x_m = e.from_m(0);
+  line.from_y_m = e.from_m(1);
+  line.to_x_m = e.to_m(0);
+  line.to_y_m = e.to_m(1);
+  line.hits = e.hits;
+  return line;
+}
+
+// The confirmed static objects that are not people, and every line landmark.
+slammtt_msgs::map_t MapMessage(int64_t utime, const ScanResult& result) {
+  slammtt_msgs::map_t map;
+  map.utime = utime;
+  for (const ObjectEstimate& e : result.objects) {
+    // A standing person is a STATIC object of kind PERSON: tracked, never part of the map.
+    if (e.object_class != ObjectClass::kStatic || !e.confirmed || e.kind == ObjectKind::kPerson) {
+      continue;
+    }
+    slammtt_msgs::landmark_t landmark;
+    landmark.id = e.id;
+    landmark.x_m = e.position(0);
+    landmark.y_m = e.position(1);
+    Write2x2(e.covariance.topLeftCorner<2, 2>(), landmark.covariance);
+    map.landmarks.push_back(landmark);
+  }
+  for (const LineEstimate& e : result.lines) map.lines.push_back(LineLandmarkMessage(e));
+  map.num_landmarks = static_cast<int32_t>(map.landmarks.size());
+  map.num_lines = static_cast<int32_t>(map.lines.size());
+  return map;
+}
+
 }  // namespace
 
 ScanInput ScanInputFromFeatures(const slammtt_msgs::features_t& message, bool person_features) {
@@ -312,83 +409,11 @@ void EstimatorStage::HandleFeatures(const void* data, int size, MessageSink& out
     PublishStatus(message.utime, out);
     return;
   }
-  timer.Count("features", result.counts.features);
-  timer.Count("objects", static_cast<int64_t>(result.objects.size()));
-  timer.Count("hypotheses", result.counts.hypotheses);
-  timer.Count("updates", result.counts.level1_updates + result.counts.level2_updates +
-                             result.counts.level3_updates);
-  timer.Count("updates_skipped", result.counts.static_updates_skipped);
-  timer.Count("lines", result.counts.lines);
-  timer.Count("line_updates", result.counts.line_updates);
-  timer.Count("new_lines", result.counts.new_lines);
-  timer.Count("features_over_cap", result.counts.features_over_cap);
-  timer.Count("ransac_pair_tests", result.counts.ransac_pair_tests);
-  timer.Count("ransac_budget_cut", result.counts.ransac_budget_cut);
-  timer.Count("state_recovered", result.counts.state_recovered);
+  CountScanWork(result, &timer);
   const slammtt_msgs::stage_timing_t timing = timer.Finish();
-
-  slammtt_msgs::pose_t pose;
-  pose.utime = message.utime;
-  pose.x_m = result.pose(0);
-  pose.y_m = result.pose(1);
-  pose.heading_rad = result.pose(2);
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) pose.covariance[3 * r + c] = result.pose_covariance(r, c);
-  }
-  slammtt_msgs::map_t map;
-  map.utime = message.utime;
-  slammtt_msgs::tracks_t tracks;
-  tracks.utime = message.utime;
-  for (const ObjectEstimate& e : result.objects) {
-    slammtt_msgs::track_t track;
-    track.id = e.id;
-    track.x_m = e.position(0);
-    track.y_m = e.position(1);
-    track.vx_mps = e.velocity(0);
-    track.vy_mps = e.velocity(1);
-    for (int r = 0; r < 4; ++r) {
-      for (int c = 0; c < 4; ++c) track.covariance[4 * r + c] = e.covariance(r, c);
-    }
-    track.object_class = ClassCode(e.object_class);
-    track.confirmed = e.confirmed;
-    track.first_seen_utime = e.first_seen_utime;
-    track.hits = e.hits;
-    track.last_seen_utime = e.last_seen_utime;
-    track.measured = e.measured;
-    track.coasting_s = e.coasting_s;
-    track.reported = e.reported;
-    track.kind = e.kind == ObjectKind::kPerson ? slammtt_msgs::track_t::KIND_PERSON
-                                               : slammtt_msgs::track_t::KIND_OTHER;
-    tracks.tracks.push_back(track);
-    // A standing person is a STATIC object of kind PERSON: tracked, never part of the map.
-    if (e.object_class == ObjectClass::kStatic && e.confirmed && e.kind != ObjectKind::kPerson) {
-      slammtt_msgs::landmark_t landmark;
-      landmark.id = e.id;
-      landmark.x_m = e.position(0);
-      landmark.y_m = e.position(1);
-      Write2x2(e.covariance.topLeftCorner<2, 2>(), landmark.covariance);
-      map.landmarks.push_back(landmark);
-    }
-  }
-  for (const LineEstimate& e : result.lines) {
-    slammtt_msgs::line_landmark_t line;
-    line.id = e.id;
-    line.rho_m = e.line(0);
-    line.alpha_rad = e.line(1);
-    Write2x2(e.covariance, line.covariance);
-    line.from_x_m = e.from_m(0);
-    line.from_y_m = e.from_m(1);
-    line.to_x_m = e.to_m(0);
-    line.to_y_m = e.to_m(1);
-    line.hits = e.hits;
-    map.lines.push_back(line);
-  }
-  tracks.num_tracks = static_cast<int32_t>(tracks.tracks.size());
-  map.num_landmarks = static_cast<int32_t>(map.landmarks.size());
-  map.num_lines = static_cast<int32_t>(map.lines.size());
-  out.PublishMessage(pose_channel_, pose);
-  out.PublishMessage(map_channel_, map);
-  out.PublishMessage(tracks_channel_, tracks);
+  out.PublishMessage(pose_channel_, PoseMessage(message.utime, result));
+  out.PublishMessage(map_channel_, MapMessage(message.utime, result));
+  out.PublishMessage(tracks_channel_, TracksMessage(message.utime, result));
   PublishStatus(message.utime, out);
   out.PublishMessage(timing_channel_, timing);
   ++counters_.scans_published;

@@ -9,9 +9,12 @@
 
 namespace slammtt {
 
+const char* SlammttVersion() { return SLAMMTT_VERSION; }
+
 CommandLine::CommandLine(std::string program, std::string usage, std::string description)
     : program_(std::move(program)), usage_(std::move(usage)), description_(std::move(description)) {
   AddFlag("help", "print this help and exit", 'h');
+  AddFlag("version", "print the program's name and version and exit");
 }
 
 void CommandLine::AddFlag(const std::string& name, const std::string& help, char short_name) {
@@ -99,6 +102,10 @@ bool CommandLine::Parse(int argc, const char* const* argv) {
   }
   if (Flag("help")) {
     std::cout << Help();
+    return false;
+  }
+  if (Flag("version")) {
+    std::cout << program_ << " " << SlammttVersion() << "\n";
     return false;
   }
   for (size_t k = next_positional; k < positional_specs_.size(); ++k) {

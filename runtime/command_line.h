@@ -1,5 +1,5 @@
 // Command-line options for every slammtt program: GNU-style long options (--name VALUE or
-// --name=VALUE), short aliases, positional arguments and a generated --help.
+// --name=VALUE), short aliases, positional arguments, a generated --help and --version.
 #pragma once
 
 #include <map>
@@ -15,6 +15,9 @@ class UsageError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+// The project's version (CMake's PROJECT_VERSION, as the Python tools' slammtt.__version__).
+const char* SlammttVersion();
 
 class CommandLine {
  public:
@@ -32,8 +35,9 @@ class CommandLine {
   // Positional arguments, in order; the last may be optional.
   void AddPositional(const std::string& name, const std::string& help, bool required = true);
 
-  // Parses argv. Returns false when --help was asked for (the help is already printed on
-  // stdout: the caller exits 0). Throws UsageError for anything it does not understand.
+  // Parses argv. Returns false when --help or --version was asked for (the help, or the line
+  // "PROGRAM VERSION", is already printed on stdout: the caller exits 0). Throws UsageError for
+  // anything it does not understand.
   bool Parse(int argc, const char* const* argv);
 
   bool Flag(const std::string& name) const;

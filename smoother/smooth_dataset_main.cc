@@ -15,24 +15,49 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
-#include <iostream>
+#include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
-#include "common/number_text.h"
+#include "runtime/command_line.h"
 #include "runtime/output_file.h"
+#include "runtime/process.h"
 #include "smoother/pose_landmark_dataset.h"
 #include "smoother/smoother.h"
 
+namespace slammtt {
 namespace {
 
-int Usage(const std::string& why) {
-  std::cerr << "slammtt-smooth-dataset: " << why << "\n"
-            << "usage: slammtt-smooth-dataset FILE [--mode batch|incremental]"
-               " [--reading bearing-range|relative] [--max-keyframes N] [--method lm|gn]"
-               " [--solution OUT]\n";
-  return 2;
+using Clock = std::chrono::steady_clock;
+
+double SecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
 }
+
+struct DatasetRunOptions {
+  std::string file;
+  bool incremental = false;
+  std::string reading_name = "bearing-range";
+  LandmarkReading reading = LandmarkReading::kBearingRange;
+  SmootherOptions::Method method = SmootherOptions::Method::kLevenbergMarquardt;
+  std::string solution_path;
+  std::string initial_path;
+  int64_t max_keyframes = -1;
+  bool trace = false;
+  bool polish = false;
+};
+
+// What one run measured, for the JSON line.
+struct DatasetRunFigures {
+  size_t keyframes = 0;
+  SolveReport report;
+  double solve_seconds = 0.0;
+  double total_seconds = 0.0;
+  std::vector<double> step_seconds;
+  double polished_chi_square = 0.0;
+  double polish_seconds = 0.0;
+};
 
 double Percentile(std::vector<double> values, double q) {
   if (values.empty()) return 0.0;
@@ -41,148 +66,125 @@ double Percentile(std::vector<double> values, double q) {
   return values[index];
 }
 
-}  // namespace
+// Empty when --help or --version was asked for (already printed).
+std::optional<DatasetRunOptions> ParseArguments(int argc, char** argv) {
+  CommandLine cl("slammtt-smooth-dataset", "[options] FILE",
+                 "Solves a pose-landmark text file with the sparse smoother (batch or "
+                 "incremental) and prints one JSON object of its figures.");
+  cl.AddPositional("FILE", "a pose-landmark file (Victoria Park's format, docs/smoother.md)");
+  cl.AddOption("mode", "batch|incremental", "solve once at the end, or keyframe by keyframe");
+  cl.AddOption("reading", "bearing-range|relative", "how the file's landmark lines read");
+  cl.AddOption("method", "lm|gn", "Levenberg-Marquardt (default) or Gauss-Newton");
+  cl.AddOption("max-keyframes", "N", "only the first N keyframes");
+  cl.AddOption("solution", "OUT", "write the solution (POSE / POINT lines) to OUT");
+  cl.AddOption("initial", "SOLUTION", "batch: start from a solution file, not the odometry");
+  cl.AddFlag("polish", "incremental: one batch solve from the incremental estimate at the end");
+  cl.AddFlag("trace", "stderr: every re-factorising or slow (> 50 ms) update");
+  if (!cl.Parse(argc, argv)) return std::nullopt;
+  DatasetRunOptions o;
+  o.file = *cl.Positional("FILE");
+  const std::string mode = cl.ValueOr("mode", "batch");
+  if (mode != "batch" && mode != "incremental") throw UsageError("--mode batch or incremental");
+  o.incremental = mode == "incremental";
+  o.reading_name = cl.ValueOr("reading", o.reading_name);
+  if (o.reading_name != "bearing-range" && o.reading_name != "relative") {
+    throw UsageError("--reading bearing-range or relative");
+  }
+  if (o.reading_name == "relative") o.reading = LandmarkReading::kRelativePosition;
+  const std::string method = cl.ValueOr("method", "lm");
+  if (method != "lm" && method != "gn") throw UsageError("--method lm or gn");
+  if (method == "gn") o.method = SmootherOptions::Method::kGaussNewton;
+  if (const std::optional<int64_t> n = cl.IntValue("max-keyframes")) {
+    if (*n < 1) throw UsageError("--max-keyframes takes a positive number");
+    o.max_keyframes = *n;
+  }
+  o.solution_path = cl.ValueOr("solution", "");
+  o.initial_path = cl.ValueOr("initial", "");
+  o.polish = cl.Flag("polish");
+  o.trace = cl.Flag("trace");
+  return o;
+}
 
-int main(int argc, char** argv) {
-  using Clock = std::chrono::steady_clock;
-  std::string file;
-  std::string mode = "batch";
-  std::string reading_name = "bearing-range";
-  std::string method = "lm";
-  std::string solution_path;
-  int64_t max_keyframes = -1;
-  bool trace = false;
-  bool polish = false;
-  std::string initial_path;
-  for (int k = 1; k < argc; ++k) {
-    const std::string arg = argv[k];
-    const auto value = [&]() -> std::string { return k + 1 < argc ? argv[++k] : ""; };
-    if (arg == "--mode") {
-      mode = value();
-    } else if (arg == "--reading") {
-      reading_name = value();
-    } else if (arg == "--method") {
-      method = value();
-    } else if (arg == "--trace") {
-      trace = true;  // stderr: every re-factorising or slow (> 50 ms) update
-    } else if (arg == "--polish") {
-      polish = true;
-    } else if (arg == "--initial") {
-      initial_path = value();
-    } else if (arg == "--solution") {
-      solution_path = value();
-    } else if (arg == "--max-keyframes") {
-      const auto parsed = slammtt::ParseWholeNumber(value());
-      if (!parsed || *parsed < 1) return Usage("--max-keyframes takes a positive number");
-      max_keyframes = *parsed;
-    } else if (!arg.empty() && arg[0] == '-') {
-      return Usage("unknown option " + arg);
-    } else if (file.empty()) {
-      file = arg;
+PoseLandmarkDataset ReadDataset(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw UsageError("cannot open " + path);
+  DatasetParseResult parsed = ParsePoseLandmarkDataset(in);
+  if (!parsed.dataset) throw std::runtime_error(path + ": " + parsed.error);
+  return std::move(*parsed.dataset);
+}
+
+void AddKeyframeOrThrow(const PoseLandmarkDataset& dataset, size_t k, LandmarkReading reading,
+                        Smoother* smoother) {
+  if (auto error = AddKeyframe(dataset, k, reading, smoother)) {
+    throw std::runtime_error("keyframe " + std::to_string(k) + ": " + *error);
+  }
+}
+
+// POSE id x y theta / POINT id x y lines, as --solution writes them.
+void SetInitialSolution(const std::string& path, Smoother* smoother) {
+  std::ifstream initial(path);
+  if (!initial) throw UsageError("cannot open " + path);
+  std::string tag;
+  int64_t id = 0;
+  double x = 0.0;
+  double y = 0.0;
+  double theta = 0.0;
+  while (initial >> tag >> id >> x >> y) {
+    std::optional<std::string> error;
+    if (tag == "POSE" && initial >> theta) {
+      error = smoother->SetPoseEstimate(id, Eigen::Vector3d(x, y, theta));
+    } else if (tag == "POINT") {
+      error = smoother->SetLandmarkEstimate(id, Eigen::Vector2d(x, y));
     } else {
-      return Usage("one FILE only");
+      error = "bad line " + tag;
     }
+    if (error) throw std::runtime_error(path + ": " + *error);
   }
-  if (file.empty()) return Usage("no FILE");
-  if (mode != "batch" && mode != "incremental") return Usage("--mode batch or incremental");
-  if (reading_name != "bearing-range" && reading_name != "relative") {
-    return Usage("--reading bearing-range or relative");
+  if (!initial.eof()) {
+    throw std::runtime_error(path + ": unreadable line after " + tag + " " +
+                             std::to_string(id));
   }
-  if (method != "lm" && method != "gn") return Usage("--method lm or gn");
-  const slammtt::LandmarkReading reading = reading_name == "relative"
-                                               ? slammtt::LandmarkReading::kRelativePosition
-                                               : slammtt::LandmarkReading::kBearingRange;
-  std::ifstream in(file);
-  if (!in) return Usage("cannot open " + file);
-  const slammtt::DatasetParseResult parsed = slammtt::ParsePoseLandmarkDataset(in);
-  if (!parsed.dataset) {
-    std::cerr << "slammtt-smooth-dataset: " << file << ": " << parsed.error << "\n";
-    return 1;
-  }
-  const slammtt::PoseLandmarkDataset& dataset = *parsed.dataset;
-  size_t keyframes = dataset.keyframes.size();
-  if (max_keyframes > 0) keyframes = std::min<size_t>(keyframes, max_keyframes);
+}
 
-  slammtt::SmootherOptions options;
-  if (method == "gn") options.method = slammtt::SmootherOptions::Method::kGaussNewton;
-  slammtt::Smoother smoother(options);
-  std::vector<double> step_seconds;
-  slammtt::SolveReport report;
+void SolveBatch(const PoseLandmarkDataset& dataset, const DatasetRunOptions& o,
+                Smoother* smoother, DatasetRunFigures* figures) {
+  for (size_t k = 0; k < figures->keyframes; ++k) {
+    AddKeyframeOrThrow(dataset, k, o.reading, smoother);
+  }
+  if (!o.initial_path.empty()) SetInitialSolution(o.initial_path, smoother);
+  const Clock::time_point solve_start = Clock::now();
+  figures->report = smoother->Optimize();
+  figures->solve_seconds = SecondsSince(solve_start);
+}
+
+void SolveIncrementally(const PoseLandmarkDataset& dataset, const DatasetRunOptions& o,
+                        Smoother* smoother, DatasetRunFigures* figures) {
   const Clock::time_point start = Clock::now();
-  double solve_seconds = 0.0;
-  if (mode == "batch") {
-    for (size_t k = 0; k < keyframes; ++k) {
-      if (auto error = slammtt::AddKeyframe(dataset, k, reading, &smoother)) {
-        std::cerr << "slammtt-smooth-dataset: keyframe " << k << ": " << *error << "\n";
-        return 1;
-      }
+  for (size_t k = 0; k < figures->keyframes; ++k) {
+    const Clock::time_point step_start = Clock::now();
+    AddKeyframeOrThrow(dataset, k, o.reading, smoother);
+    figures->report = smoother->Update();
+    figures->step_seconds.push_back(SecondsSince(step_start));
+    if (o.trace && (figures->report.refactorized || figures->step_seconds.back() > 0.05)) {
+      std::fprintf(stderr, "k %zu refactor %d relin %d nnz %.0f t %.4f\n", k,
+                   figures->report.refactorized, figures->report.relinearized_variables,
+                   smoother->factor_nonzeros(), figures->step_seconds.back());
     }
-    if (!initial_path.empty()) {
-      std::ifstream initial(initial_path);
-      if (!initial) return Usage("cannot open " + initial_path);
-      std::string tag;
-      int64_t id = 0;
-      double x = 0.0;
-      double y = 0.0;
-      double theta = 0.0;
-      while (initial >> tag >> id >> x >> y) {
-        std::optional<std::string> error;
-        if (tag == "POSE" && initial >> theta) {
-          error = smoother.SetPoseEstimate(id, Eigen::Vector3d(x, y, theta));
-        } else if (tag == "POINT") {
-          error = smoother.SetLandmarkEstimate(id, Eigen::Vector2d(x, y));
-        } else {
-          error = "bad line " + tag;
-        }
-        if (error) {
-          std::cerr << "slammtt-smooth-dataset: " << initial_path << ": " << *error << "\n";
-          return 1;
-        }
-      }
-      if (!initial.eof()) {
-        std::cerr << "slammtt-smooth-dataset: " << initial_path << ": unreadable line after "
-                  << tag << " " << id << "\n";
-        return 1;
-      }
-    }
-    const Clock::time_point solve_start = Clock::now();
-    report = smoother.Optimize();
-    solve_seconds = std::chrono::duration<double>(Clock::now() - solve_start).count();
-  } else {
-    for (size_t k = 0; k < keyframes; ++k) {
-      const Clock::time_point step_start = Clock::now();
-      if (auto error = slammtt::AddKeyframe(dataset, k, reading, &smoother)) {
-        std::cerr << "slammtt-smooth-dataset: keyframe " << k << ": " << *error << "\n";
-        return 1;
-      }
-      report = smoother.Update();
-      step_seconds.push_back(std::chrono::duration<double>(Clock::now() - step_start).count());
-      if (trace && (report.refactorized || step_seconds.back() > 0.05)) {
-        std::fprintf(stderr, "k %zu refactor %d relin %d nnz %.0f t %.4f\n", k,
-                     report.refactorized, report.relinearized_variables,
-                     smoother.factor_nonzeros(), step_seconds.back());
-      }
-      if (!report.ok) break;
-    }
-    solve_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    if (!figures->report.ok) break;
   }
-  const double total_seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  double polished_chi_square = report.chi_square;
-  double polish_seconds = 0.0;
-  if (polish && report.ok && mode == "incremental") {
-    const Clock::time_point polish_start = Clock::now();
-    const slammtt::SolveReport polished = smoother.Optimize();
-    polish_seconds = std::chrono::duration<double>(Clock::now() - polish_start).count();
-    if (!polished.ok) {
-      std::cerr << "slammtt-smooth-dataset: polish: " << polished.error << "\n";
-      return 1;
-    }
-    polished_chi_square = polished.chi_square;
-  }
-  if (!report.ok) {
-    std::cerr << "slammtt-smooth-dataset: " << report.error << "\n";
-    return 1;
-  }
+  figures->solve_seconds = SecondsSince(start);
+}
+
+void Polish(Smoother* smoother, DatasetRunFigures* figures) {
+  const Clock::time_point polish_start = Clock::now();
+  const SolveReport polished = smoother->Optimize();
+  figures->polish_seconds = SecondsSince(polish_start);
+  if (!polished.ok) throw std::runtime_error("polish: " + polished.error);
+  figures->polished_chi_square = polished.chi_square;
+}
+
+void PrintFigures(const DatasetRunOptions& o, const Smoother& smoother,
+                  const DatasetRunFigures& f) {
   struct rusage usage {};
   getrusage(RUSAGE_SELF, &usage);
   std::printf(
@@ -192,32 +194,62 @@ int main(int argc, char** argv) {
       "\"solve_seconds\": %.6f, \"total_seconds\": %.6f, \"step_p50_seconds\": %.6g, "
       "\"step_p99_seconds\": %.6g, \"step_max_seconds\": %.6g, \"polished_chi_square\": %.17g, "
       "\"polish_seconds\": %.6f, \"peak_rss_kib\": %ld}\n",
-      mode.c_str(), reading_name.c_str(), keyframes, smoother.num_poses(),
-      smoother.num_landmarks(), smoother.num_factors(), report.chi_square,
-      report.initial_chi_square, report.iterations, report.converged ? "true" : "false",
-      solve_seconds, total_seconds, Percentile(step_seconds, 0.5),
-      Percentile(step_seconds, 0.99), Percentile(step_seconds, 1.0), polished_chi_square,
-      polish_seconds, usage.ru_maxrss);
-  if (!solution_path.empty()) {
-    // Written like every tool output (runtime/output_file.h): complete or absent, never
-    // through a link planted at its name.
-    try {
-      slammtt::OutputFile out(solution_path);
-      for (const slammtt::PoseId id : smoother.PoseIds()) {
-        const Eigen::Vector3d pose = *smoother.PoseEstimate(id);
-        std::fprintf(out.stream(), "POSE %lld %.17g %.17g %.17g\n", static_cast<long long>(id), pose(0),
-                     pose(1), pose(2));
-      }
-      for (const slammtt::LandmarkId id : smoother.LandmarkIds()) {
-        const Eigen::Vector2d point = *smoother.LandmarkEstimate(id);
-        std::fprintf(out.stream(), "POINT %lld %.17g %.17g\n", static_cast<long long>(id), point(0),
-                     point(1));
-      }
-      out.Commit();
-    } catch (const std::exception& error) {
-      std::fprintf(stderr, "slammtt-smooth-dataset: %s\n", error.what());
-      return 1;
-    }
+      o.incremental ? "incremental" : "batch", o.reading_name.c_str(), f.keyframes,
+      smoother.num_poses(), smoother.num_landmarks(), smoother.num_factors(),
+      f.report.chi_square, f.report.initial_chi_square, f.report.iterations,
+      f.report.converged ? "true" : "false", f.solve_seconds, f.total_seconds,
+      Percentile(f.step_seconds, 0.5), Percentile(f.step_seconds, 0.99),
+      Percentile(f.step_seconds, 1.0), f.polished_chi_square, f.polish_seconds,
+      usage.ru_maxrss);
+}
+
+// Written like every tool output (runtime/output_file.h): complete or absent, never through a
+// link planted at its name.
+void WriteSolution(const std::string& path, const Smoother& smoother) {
+  OutputFile out(path);
+  for (const PoseId id : smoother.PoseIds()) {
+    const Eigen::Vector3d pose = *smoother.PoseEstimate(id);
+    std::fprintf(out.stream(), "POSE %lld %.17g %.17g %.17g\n", static_cast<long long>(id),
+                 pose(0), pose(1), pose(2));
   }
+  for (const LandmarkId id : smoother.LandmarkIds()) {
+    const Eigen::Vector2d point = *smoother.LandmarkEstimate(id);
+    std::fprintf(out.stream(), "POINT %lld %.17g %.17g\n", static_cast<long long>(id), point(0),
+                 point(1));
+  }
+  out.Commit();
+}
+
+int Run(int argc, char** argv) {
+  const std::optional<DatasetRunOptions> o = ParseArguments(argc, argv);
+  if (!o) return 0;
+  const PoseLandmarkDataset dataset = ReadDataset(o->file);
+  DatasetRunFigures figures;
+  figures.keyframes = dataset.keyframes.size();
+  if (o->max_keyframes > 0) {
+    figures.keyframes = std::min<size_t>(figures.keyframes, o->max_keyframes);
+  }
+  SmootherOptions options;
+  options.method = o->method;
+  Smoother smoother(options);
+  const Clock::time_point start = Clock::now();
+  if (o->incremental) {
+    SolveIncrementally(dataset, *o, &smoother, &figures);
+  } else {
+    SolveBatch(dataset, *o, &smoother, &figures);
+  }
+  figures.total_seconds = SecondsSince(start);
+  figures.polished_chi_square = figures.report.chi_square;
+  if (o->polish && figures.report.ok && o->incremental) Polish(&smoother, &figures);
+  if (!figures.report.ok) throw std::runtime_error(figures.report.error);
+  PrintFigures(*o, smoother, figures);
+  if (!o->solution_path.empty()) WriteSolution(o->solution_path, smoother);
   return 0;
+}
+
+}  // namespace
+}  // namespace slammtt
+
+int main(int argc, char** argv) {
+  return slammtt::ProcessMain(argc, argv, "slammtt-smooth-dataset", slammtt::Run);
 }

@@ -62,7 +62,10 @@ def test_breezyslam_mines_log(shared_real, tmp_path):
     assert ("world", "map") not in frames                 # no truth to anchor to
     assert {("map", "base_link"), ("base_link", "laser"), ("map", "odom")} <= frames
     final = messages["MAP"][-1]
-    assert len(mcap["/map"][-1][1].entities) == len(final.landmarks) > 0
+    ids = sorted(e.id for e in mcap["/map"][-1][1].entities)
+    assert len(final.landmarks) > 0 and len(final.lines) > 0     # the mine's walls are lines
+    assert ids == sorted([f"landmark/{l.id}" for l in final.landmarks] +
+                         [f"line/{l.id}" for l in final.lines])
 
 
 def test_leg_tracker_bag_with_labels(tmp_path):

@@ -59,6 +59,15 @@ TEST(CommandLineTest, HelpReturnsFalse) {
   EXPECT_NE(help.find("--seed N"), std::string::npos);
 }
 
+TEST(CommandLineTest, VersionPrintsTheProgramAndTheProjectVersionAndReturnsFalse) {
+  CommandLine cl = MakeCommandLine();
+  const char* argv[] = {"prog", "--version"};
+  testing::internal::CaptureStdout();
+  EXPECT_FALSE(cl.Parse(2, argv));
+  EXPECT_EQ(testing::internal::GetCapturedStdout(), cl.program() + " " + SlammttVersion() + "\n");
+  EXPECT_STREQ(SlammttVersion(), SLAMMTT_TEST_PROJECT_VERSION);
+}
+
 TEST(LogTest, RepeatedProblemsAreReportedAtPowersOfTen) {
   std::vector<int64_t> reported;
   for (int64_t n = -1; n <= 1000; ++n) {
