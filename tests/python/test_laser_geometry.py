@@ -99,3 +99,25 @@ def test_rotate_to_base_turns_the_view_and_leaves_no_yaw(tmp_path):
     assert turned.mount_yaw_rad == 0.0
     assert turned.view_start_rad == pytest.approx(plain.view_start_rad + math.pi / 2, abs=1e-6)
     assert turned.view_end_rad == pytest.approx(plain.view_end_rad + math.pi / 2, abs=1e-6)
+
+
+
+def test_the_foxglove_converter_takes_the_mount_from_the_stream_when_told():
+    from slammtt.foxglove.convert import Converter
+    from slammtt.stackconfig import CHANNEL_DEFAULTS
+    from slammtt_msgs import laser_geometry_t
+    m = laser_geometry_t()
+    m.utime = 5_000_000
+    m.mount_forward_m, m.mount_left_m, m.mount_yaw_rad = 0.2, -0.1, math.pi / 2
+    m.view_start_rad, m.view_end_rad, m.range_max_m = -math.pi, math.pi, 12.0
+    configured = Converter(CHANNEL_DEFAULTS, (0.05, 0.0))
+    configured.convert("LASER_GEOMETRY", m)
+    assert configured.mount == (0.05, 0.0, 0.0)   # the configuration's stays
+    logged = Converter(CHANNEL_DEFAULTS, mount_from_log=True)
+    first = logged.convert("LASER_GEOMETRY", m)
+    assert logged.mount == (0.2, -0.1, math.pi / 2)
+    # The new base_link -> laser goes out at once, as a /tf message; the same geometry again
+    # sends nothing more (the constants are republished once a second).
+    assert [o.topic for o in first] == ["/tf"]
+    m.utime += 100_000
+    assert logged.convert("LASER_GEOMETRY", m) == []
