@@ -68,6 +68,16 @@ Estimator::Estimator(const EstimatorOptions& options)
       state_(InitialState(options)),
       last_finite_pose_(state_.robot_pose()) {}
 
+void Estimator::SetLaserGeometry(const EstimatorOptions& options) {
+  EstimatorOptions next = options_;
+  next.sensor = options.sensor;
+  next.field_of_view_rad = options.field_of_view_rad;
+  next.field_of_view_start_rad = options.field_of_view_start_rad;
+  next.field_of_view_end_rad = options.field_of_view_end_rad;
+  next.max_range_m = options.max_range_m;
+  options_ = Checked(next);
+}
+
 TimeJumpLimits Estimator::time_jump_limits() const {
   return TimeJumpLimits{options_.time_jump_back_restart_s, options_.time_jump_forward_s,
                         options_.time_jump_confirm_messages};

@@ -170,6 +170,12 @@ class Estimator {
   ScanResult ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
                          StepObserver* observer = nullptr);
 
+  // From the next scan on, the laser geometry of `options` (sensor mount, field of view,
+  // max_range_m; laser_geometry.h) replaces the one the estimator was built with; nothing else
+  // of `options` is read, and the state is kept (landmarks live in the map frame). Throws
+  // std::invalid_argument with CheckEstimatorOptions()'s message for unusable options.
+  void SetLaserGeometry(const EstimatorOptions& options);
+
   const EstimatorCounters& counters() const { return counters_; }
   // Description of the last unusual event ("" if none yet).
   const std::string& last_event() const { return last_event_; }

@@ -1,13 +1,16 @@
 #include "estimator/estimator_stage.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstring>
 #include <utility>
 
 #include "runtime/config_options.h"
 #include "runtime/log.h"
 #include "slammtt_msgs/estimator_status_t.hpp"
 #include "slammtt_msgs/features_t.hpp"
+#include "slammtt_msgs/laser_geometry_t.hpp"
 #include "slammtt_msgs/map_t.hpp"
 #include "slammtt_msgs/odometry_t.hpp"
 #include "slammtt_msgs/pose_t.hpp"
@@ -52,6 +55,16 @@ FeatureReading PointReading(const slammtt_msgs::feature_t& f) {
 // Position of a point feature in the sensor frame.
 Eigen::Vector2d SensorPoint(const slammtt_msgs::feature_t& f) {
   return f.range_m * Eigen::Vector2d(std::cos(f.bearing_rad), std::sin(f.bearing_rad));
+}
+
+// Text from a message, fit for one log line: control characters become '?', and at most 200
+// bytes are kept.
+std::string OneLine(const std::string& text) {
+  std::string line = text.substr(0, 200);
+  for (char& c : line) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F) c = '?';
+  }
+  return line;
 }
 
 // A 2x2 covariance as the messages carry it: row-major, 4 doubles.
@@ -262,6 +275,12 @@ void VisitEstimatorStageOptions(OptionVisitor* v, EstimatorStageOptions* o) {
 EstimatorStageOptions ReadEstimatorOptions(const Config& s) {
   RejectRenamedKeys(s, RenamedEstimatorKeys(), "docs/estimator.md, \"Migration\"");
   EstimatorStageOptions stage;
+  stage.geometry_given.mount =
+      s.Has("sensor_forward_m") || s.Has("sensor_left_m") || s.Has("sensor_yaw_deg");
+  stage.geometry_given.field_of_view = s.Has("field_of_view_deg") ||
+                                       s.Has("field_of_view_start_deg") ||
+                                       s.Has("field_of_view_end_deg");
+  stage.geometry_given.max_range = s.Has("max_range_m");
   ConfigOptionReader reader(s);
   VisitEstimatorStageOptions(&reader, &stage);
   s.CheckUnused();
@@ -281,8 +300,11 @@ EstimatorStage::EstimatorStage(const EstimatorStageOptions& options, const Chann
     : estimator_(options.estimator),
       rng_(options.seed),
       person_features_(options.person_features),
+      configured_(options.estimator),
+      geometry_given_(options.geometry_given),
       odometry_channel_(channels.Get("odometry")),
       features_channel_(channels.Get("features")),
+      laser_geometry_channel_(channels.Get("laser_geometry")),
       pose_channel_(channels.Get("pose")),
       map_channel_(channels.Get("map")),
       tracks_channel_(channels.Get("tracks")),
@@ -293,7 +315,7 @@ EstimatorStage::EstimatorStage(const ProcessSettings& settings)
     : EstimatorStage(ReadEstimatorOptions(settings.config.Child("estimator")), settings.channels) {}
 
 std::vector<std::string> EstimatorStage::InputChannels() const {
-  return {odometry_channel_, features_channel_};
+  return {odometry_channel_, features_channel_, laser_geometry_channel_};
 }
 
 void EstimatorStage::Handle(const std::string& channel, const void* data, int size,
@@ -302,6 +324,8 @@ void EstimatorStage::Handle(const std::string& channel, const void* data, int si
     HandleOdometry(data, size, out);
   } else if (channel == features_channel_) {
     HandleFeatures(data, size, out);
+  } else if (channel == laser_geometry_channel_) {
+    HandleLaserGeometry(data, size);
   }
 }
 
@@ -323,6 +347,52 @@ void EstimatorStage::HandleOdometry(const void* data, int size, MessageSink& out
   reading.linear_mps = message.linear_velocity_mps;
   reading.angular_radps = message.angular_velocity_radps;
   if (!estimator_.AddOdometry(reading)) PublishStatus(message.utime, out);
+}
+
+void EstimatorStage::HandleLaserGeometry(const void* data, int size) {
+  slammtt_msgs::laser_geometry_t message;
+  if (!Decode(data, size, &message)) {
+    Undecodable("undecodable laser_geometry_t message dropped");
+    return;
+  }
+  ++counters_.geometry_messages;
+  LaserGeometry log;
+  log.mount.forward_m = message.mount_forward_m;
+  log.mount.left_m = message.mount_left_m;
+  log.mount.yaw_rad = message.mount_yaw_rad;
+  log.view.start_rad = message.view_start_rad;
+  log.view.end_rad = message.view_end_rad;
+  log.view.symmetric = message.view_start_rad == -message.view_end_rad;
+  log.max_range_m = message.range_max_m;
+  // Publishers repeat their geometry about once a second: only a new one is reconciled and
+  // reported. Compared bit for bit, so that a repeated NaN is the same geometry too.
+  const std::array<double, 6> values = {log.mount.forward_m, log.mount.left_m,
+                                        log.mount.yaw_rad,   log.view.start_rad,
+                                        log.view.end_rad,    log.max_range_m};
+  if (log_geometry_ &&
+      std::memcmp(log_geometry_->data(), values.data(), sizeof(double) * values.size()) == 0) {
+    return;
+  }
+  log_geometry_ = values;
+  const std::string source = message.source.empty() ? "" : " (" + OneLine(message.source) + ")";
+  const GeometryReconciliation r = ReconcileLaserGeometry(configured_, geometry_given_, log);
+  if (!r.problem.empty()) {
+    ++counters_.geometry_rejected;
+    LogWarning() << "estimator: laser geometry of " << laser_geometry_channel_ << source
+                 << " not used: " << r.problem;
+    return;
+  }
+  if (!r.disagreement.empty()) {
+    ++counters_.geometry_disagreements;
+    LogWarning() << "estimator: the configuration's laser geometry disagrees with "
+                 << laser_geometry_channel_ << source << ": " << r.disagreement
+                 << "; the configuration's is used";
+  }
+  if (!r.taken.empty()) {
+    LogInfo() << "estimator: laser geometry the configuration does not give, taken from "
+              << laser_geometry_channel_ << source << ": " << r.taken;
+  }
+  estimator_.SetLaserGeometry(r.options);
 }
 
 void EstimatorStage::HandleFeatures(const void* data, int size, MessageSink& out) {

@@ -1,6 +1,7 @@
 #include "drivers/rplidar/rplidar_driver.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <utility>
 
@@ -35,15 +36,32 @@ std::string Hex4(int value) {
 
 }  // namespace
 
+slammtt_msgs::laser_geometry_t LaserGeometryMessage(const RplidarDriverOptions& options,
+                                                    int64_t utime) {
+  slammtt_msgs::laser_geometry_t msg{};
+  msg.utime = utime;
+  msg.mount_forward_m = options.mount_forward_m;
+  msg.mount_left_m = options.mount_left_m;
+  msg.mount_yaw_rad = options.mount_yaw_deg * M_PI / 180.0;
+  msg.view_start_rad = -M_PI;  // a full revolution (rplidar_beams.h: angles in (-pi, pi])
+  msg.view_end_rad = M_PI;
+  msg.range_min_m = options.beams.range_min_m;
+  msg.range_max_m = options.beams.range_max_m;
+  msg.source = "slammtt-rplidar, rplidar: section";
+  return msg;
+}
+
 RplidarDriver::RplidarDriver(const RplidarDriverOptions& options, StreamFactory open_stream,
                              DriverClock* clock, MessageSink* sink,
-                             std::string laser_scan_channel, std::string lidar_status_channel)
+                             std::string laser_scan_channel, std::string lidar_status_channel,
+                             std::string laser_geometry_channel)
     : options_(options),
       open_stream_(std::move(open_stream)),
       clock_(clock),
       sink_(sink),
       laser_scan_channel_(std::move(laser_scan_channel)),
       lidar_status_channel_(std::move(lidar_status_channel)),
+      laser_geometry_channel_(std::move(laser_geometry_channel)),
       backoff_(options.reconnect_initial_ms, options.reconnect_max_ms),
       standard_decoder_(options.decoder) {
   status_.connected = false;
@@ -428,6 +446,9 @@ void RplidarDriver::MaybePublishStatus(bool force) {
   if (status_.state != "scanning") status_.scan_rate_hz = 0.0;
   status_.utime = clock_->NowUtime();
   sink_->PublishMessage(lidar_status_channel_, status_);
+  if (!laser_geometry_channel_.empty()) {
+    sink_->PublishMessage(laser_geometry_channel_, LaserGeometryMessage(options_, status_.utime));
+  }
 }
 
 }  // namespace rplidar

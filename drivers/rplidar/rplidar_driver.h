@@ -1,5 +1,6 @@
 // The RPLIDAR A2 driver: one device link, from open to a clean stop, publishing LASER_SCAN per
-// revolution and LIDAR_STATUS about once a second and on every change of state.
+// revolution and LIDAR_STATUS about once a second and on every change of state, each
+// LIDAR_STATUS followed by a LASER_GEOMETRY (LaserGeometryMessage) when that channel is given.
 //
 // Lifecycle (protocol document "Communication mechanism"; the SDK's order, our notes in
 // ../shared/design/protocols/rplidar.md):
@@ -41,11 +42,17 @@
 #include "drivers/rplidar/rplidar_protocol.h"
 #include "drivers/rplidar/rplidar_scan_decoder.h"
 #include "runtime/lcm_io.h"
+#include "slammtt_msgs/laser_geometry_t.hpp"
 #include "slammtt_msgs/laser_scan_t.hpp"
 #include "slammtt_msgs/lidar_status_t.hpp"
 
 namespace slammtt {
 namespace rplidar {
+
+// The geometry of the scans the driver publishes: the options' mount, 360 degrees, the
+// options' ranges.
+slammtt_msgs::laser_geometry_t LaserGeometryMessage(const RplidarDriverOptions& options,
+                                                    int64_t utime);
 
 class RplidarDriver {
  public:
@@ -54,7 +61,7 @@ class RplidarDriver {
 
   RplidarDriver(const RplidarDriverOptions& options, StreamFactory open_stream,
                 DriverClock* clock, MessageSink* sink, std::string laser_scan_channel,
-                std::string lidar_status_channel);
+                std::string lidar_status_channel, std::string laser_geometry_channel = "");
 
   // Runs until should_stop() returns true (checked at least every 50 ms), then stops the scan
   // and the motor if the link is up. Never throws for device or link trouble: it reports and
@@ -86,6 +93,7 @@ class RplidarDriver {
   MessageSink* sink_;
   std::string laser_scan_channel_;
   std::string lidar_status_channel_;
+  std::string laser_geometry_channel_;  // "": no LASER_GEOMETRY
 
   ReconnectBackoff backoff_;
   bool reset_done_ = false;      // one RESET per health problem, until health is good again

@@ -101,6 +101,7 @@ int Run(int argc, char** argv) {
   channels.odometry = settings.channels.Get("odometry");
   channels.ground_truth = settings.channels.Get("ground_truth");
   channels.laser_scan = settings.channels.Get("laser_scan");
+  channels.laser_geometry = settings.channels.Get("laser_geometry");
   channels.features = settings.channels.Get("features");
 
   slammtt::WorldRunSummary summary;
