@@ -72,7 +72,8 @@ int P3dxSession::MillisecondsUntilDue() const {
   const int64_t due_us = link_ ? NextTimerUs() : std::min(next_attempt_us_, next_status_us_);
   const int64_t wait_us = due_us - clock_->NowMonotonicUs();
   if (wait_us <= 0) return 0;
-  return static_cast<int>(std::min<int64_t>((wait_us + 999) / 1000, std::numeric_limits<int>::max()));
+  return static_cast<int>(
+      std::min<int64_t>((wait_us + 999) / 1000, std::numeric_limits<int>::max()));
 }
 
 void P3dxSession::Poll(int max_wait_ms) {
@@ -183,7 +184,9 @@ int64_t P3dxSession::NextTimerUs() const {
     case State::kRunning:
       next = std::min(next, last_sip_us_ + Seconds(options_.sip_timeout_s));
       next = std::min(next, last_write_us_ + Seconds(options_.pulse_interval_s));
-      if (have_command_) next = std::min(next, last_command_us_ + Seconds(options_.command_timeout_s));
+      if (have_command_) {
+        next = std::min(next, last_command_us_ + Seconds(options_.command_timeout_s));
+      }
       break;
     case State::kDisconnected:
     case State::kStopped:
@@ -453,7 +456,8 @@ void P3dxSession::HandleCommand(const BaseCommand& command) {
     }
     return;
   }
-  const double linear = std::clamp(command.linear_mps, -options_.max_linear_mps, options_.max_linear_mps);
+  const double linear =
+      std::clamp(command.linear_mps, -options_.max_linear_mps, options_.max_linear_mps);
   const double angular =
       std::clamp(command.angular_radps, -options_.max_angular_radps, options_.max_angular_radps);
   target_vel_mmps_ = static_cast<int>(std::lround(linear * 1000.0));
@@ -466,7 +470,8 @@ void P3dxSession::HandleCommand(const BaseCommand& command) {
     PublishStatus();
   }
   if (state_ == State::kRunning &&
-      (!sent_once_ || target_vel_mmps_ != sent_vel_mmps_ || target_rvel_degps_ != sent_rvel_degps_)) {
+      (!sent_once_ || target_vel_mmps_ != sent_vel_mmps_ ||
+       target_rvel_degps_ != sent_rvel_degps_)) {
     SendVelocity();
   }
 }

@@ -93,9 +93,11 @@ TEST(RplidarMessagesTest, HealthIsUnknownBeforeTheFirstAnswer) {
   EXPECT_FALSE(message.connected);
   EXPECT_EQ(message.scan_mode, "express");
   status.health = DeviceHealth{HealthStatus::kGood, 0};
-  EXPECT_EQ(int{LidarStatusMessage(status).health}, int{slammtt_msgs::lidar_status_t::HEALTH_GOOD});
+  EXPECT_EQ(int{LidarStatusMessage(status).health},
+            int{slammtt_msgs::lidar_status_t::HEALTH_GOOD});
   status.health = DeviceHealth{HealthStatus::kError, 0x0042};
-  EXPECT_EQ(int{LidarStatusMessage(status).health}, int{slammtt_msgs::lidar_status_t::HEALTH_ERROR});
+  EXPECT_EQ(int{LidarStatusMessage(status).health},
+            int{slammtt_msgs::lidar_status_t::HEALTH_ERROR});
   EXPECT_EQ(LidarStatusMessage(status).health_error_code, 0x0042);
 }
 
