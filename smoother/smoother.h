@@ -45,6 +45,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "common/options_schema.h"
 #include "estimator/range_bearing_model.h"
 #include "smoother/sparse_cholesky.h"
 
@@ -88,6 +89,15 @@ struct SmootherOptions {
   int min_free_slots = 64;          // variables' room reserved at the end of the ordering
 };
 
+// The schema of SmootherOptions (common/options_schema.h): every field with its range and one
+// line of documentation (docs/smoother.md, "Options").
+void VisitSmootherOptions(OptionVisitor* visitor, SmootherOptions* options);
+
+// "" when the options are usable, else one line naming the first problem: a value outside its
+// range (VisitSmootherOptions), or max_lambda < initial_lambda. (A lambda_factor of at most 1 or
+// an initial_lambda of 0 would let Levenberg-Marquardt reject steps for ever.)
+std::string CheckSmootherOptions(const SmootherOptions& options);
+
 struct SolveReport {
   bool ok = false;
   std::string error;                // one line when !ok
@@ -103,6 +113,7 @@ struct SolveReport {
 
 class Smoother {
  public:
+  // Throws std::invalid_argument with CheckSmootherOptions()'s message for unusable options.
   explicit Smoother(const SmootherOptions& options = {});
   ~Smoother();
   Smoother(const Smoother&) = delete;

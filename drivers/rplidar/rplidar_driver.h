@@ -1,7 +1,8 @@
 // The RPLIDAR driver as the program runs it: the device session (rplidar_session.h, pure)
-// publishing its reports as LASER_SCAN and LIDAR_STATUS on a MessageSink (rplidar_messages.h)
-// and its log lines to the process log. Everything the driver does is the session's; this is
-// the bus around it.
+// publishing its reports as LASER_SCAN and LIDAR_STATUS on a MessageSink (rplidar_messages.h),
+// each LIDAR_STATUS followed by a LASER_GEOMETRY (the options' mount) when that channel is
+// given, and its log lines to the process log. Everything the driver does is the session's;
+// this is the bus around it.
 #pragma once
 
 #include <functional>
@@ -10,16 +11,19 @@
 #include "drivers/common/runtime_driver_log.h"
 #include "drivers/rplidar/rplidar_session.h"
 #include "runtime/lcm_io.h"
+#include "slammtt_msgs/laser_geometry_t.hpp"
 #include "slammtt_msgs/lidar_status_t.hpp"
 
 namespace slammtt {
 namespace rplidar {
 
-// Publishes a session's reports on a bus.
+// Publishes a session's reports on a bus; after each LIDAR_STATUS, the scans' geometry with
+// the status's time (the estimator takes the mount from there: docs/estimator.md).
 class RplidarMessagePublisher : public RplidarSessionOutput {
  public:
-  RplidarMessagePublisher(MessageSink* sink, std::string laser_scan_channel,
-                          std::string lidar_status_channel);
+  RplidarMessagePublisher(const RplidarDriverOptions& options, MessageSink* sink,
+                          std::string laser_scan_channel, std::string lidar_status_channel,
+                          std::string laser_geometry_channel);
   void OnLaserScan(const LaserScan& scan) override;
   void OnLidarStatus(const LidarStatus& status) override;
 
@@ -27,6 +31,8 @@ class RplidarMessagePublisher : public RplidarSessionOutput {
   MessageSink* sink_;
   std::string laser_scan_channel_;
   std::string lidar_status_channel_;
+  std::string laser_geometry_channel_;  // "": no LASER_GEOMETRY
+  slammtt_msgs::laser_geometry_t geometry_;  // the options', stamped per status
 };
 
 class RplidarDriver {
@@ -35,7 +41,7 @@ class RplidarDriver {
 
   RplidarDriver(const RplidarDriverOptions& options, StreamFactory open_stream,
                 DriverClock* clock, MessageSink* sink, std::string laser_scan_channel,
-                std::string lidar_status_channel);
+                std::string lidar_status_channel, std::string laser_geometry_channel = "");
 
   // RplidarSession::Run: until should_stop(), publishing as it goes.
   void Run(const std::function<bool()>& should_stop) { session_.Run(should_stop); }

@@ -74,6 +74,19 @@ RplidarDriverOptions ReadRplidarDriverOptions(const Config& section) {
   if (options.reconnect_max_ms < options.reconnect_initial_ms) {
     section.FailKey("reconnect_max_ms", "must be at least reconnect_initial_ms");
   }
+  options.mount_forward_m = section.GetDouble("mount_forward_m", options.mount_forward_m);
+  options.mount_left_m = section.GetDouble("mount_left_m", options.mount_left_m);
+  // A scanner on a robot of a few metres at most: anything beyond is a typo.
+  if (!(std::abs(options.mount_forward_m) <= 10.0)) {
+    section.FailKey("mount_forward_m", "must be within [-10, 10] m");
+  }
+  if (!(std::abs(options.mount_left_m) <= 10.0)) {
+    section.FailKey("mount_left_m", "must be within [-10, 10] m");
+  }
+  options.mount_yaw_deg = section.GetDouble("mount_yaw_deg", options.mount_yaw_deg);
+  if (!(std::abs(options.mount_yaw_deg) <= 180.0)) {
+    section.FailKey("mount_yaw_deg", "must be within [-180, 180] degrees");
+  }
   options.status_period_s = section.GetDouble("status_period_s", options.status_period_s);
   // Becomes microseconds in int64_t: an hour is far beyond any sensible period.
   if (options.status_period_s <= 0.0 || options.status_period_s > 3600.0) {

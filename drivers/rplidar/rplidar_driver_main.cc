@@ -52,7 +52,8 @@ int main(int argc, char** argv) {
         [&options] {
           return OpenByteStream(options.port, options.baud, options.connect_timeout_ms);
         },
-        &clock, &sink, settings.channels.Get("laser_scan"), settings.channels.Get("lidar_status"));
+        &clock, &sink, settings.channels.Get("laser_scan"), settings.channels.Get("lidar_status"),
+        settings.channels.Get("laser_geometry"));
     driver.Run([] { return ShutdownRequested(); });
     return 0;
   });

@@ -35,6 +35,13 @@ struct RplidarDriverOptions {
   int reconnect_initial_ms = 200;     // backoff between reopen attempts, doubling ...
   int reconnect_max_ms = 5000;        // ... up to this
   double status_period_s = 1.0;       // LIDAR_STATUS period (also sent on every change)
+  // Where the scanner sits on the robot (paper eq. 11: a, b, from the middle of the wheel
+  // axle, x forward, y left) and the heading of the scans' frame (after angle_offset_deg), CCW
+  // from the robot's: published on LASER_GEOMETRY with LIDAR_STATUS, so that the estimator
+  // takes them from here (docs/estimator.md, "Laser geometry").
+  double mount_forward_m = 0.0;
+  double mount_left_m = 0.0;
+  double mount_yaw_deg = 0.0;
 };
 
 // "standard" / "express"; std::invalid_argument otherwise.

@@ -1,5 +1,7 @@
 #include "drivers/rplidar/rplidar_messages.h"
 
+#include <cmath>
+
 namespace slammtt {
 namespace rplidar {
 
@@ -40,6 +42,21 @@ slammtt_msgs::lidar_status_t LidarStatusMessage(const LidarStatus& status) {
   message.checksum_errors = status.checksum_errors;
   message.reconnects = status.reconnects;
   message.last_error = status.last_error;
+  return message;
+}
+
+slammtt_msgs::laser_geometry_t LaserGeometryMessage(const RplidarDriverOptions& options,
+                                                    int64_t utime) {
+  slammtt_msgs::laser_geometry_t message{};
+  message.utime = utime;
+  message.mount_forward_m = options.mount_forward_m;
+  message.mount_left_m = options.mount_left_m;
+  message.mount_yaw_rad = options.mount_yaw_deg * M_PI / 180.0;
+  message.view_start_rad = -M_PI;  // a full revolution (rplidar_beams.h: angles in (-pi, pi])
+  message.view_end_rad = M_PI;
+  message.range_min_m = options.beams.range_min_m;
+  message.range_max_m = options.beams.range_max_m;
+  message.source = "slammtt-rplidar, rplidar: section";
   return message;
 }
 

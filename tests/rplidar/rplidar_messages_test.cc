@@ -1,8 +1,10 @@
-// The RPLIDAR session's plain reports become LASER_SCAN and LIDAR_STATUS field for field.
+// The RPLIDAR session's plain reports become LASER_SCAN and LIDAR_STATUS field for field, and
+// the options' mount and range become LASER_GEOMETRY.
 #include "drivers/rplidar/rplidar_messages.h"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -111,6 +113,25 @@ TEST(RplidarMessagesTest, StateNamesAreTheMessagesSpelling) {
     status.state = state;
     EXPECT_EQ(LidarStatusMessage(status).state, name);
   }
+}
+
+TEST(RplidarMessagesTest, LaserGeometryIsTheOptionsMountAndRange) {
+  RplidarDriverOptions options;
+  options.mount_forward_m = 0.12;
+  options.mount_left_m = -0.03;
+  options.mount_yaw_deg = -90.0;
+  options.beams.range_min_m = 0.2;
+  options.beams.range_max_m = 16.0;
+  const slammtt_msgs::laser_geometry_t message = LaserGeometryMessage(options, 1700000000000042);
+  EXPECT_EQ(message.utime, 1700000000000042);
+  EXPECT_EQ(message.mount_forward_m, 0.12);
+  EXPECT_EQ(message.mount_left_m, -0.03);
+  EXPECT_EQ(message.mount_yaw_rad, -M_PI / 2.0);
+  EXPECT_EQ(message.view_start_rad, -M_PI);
+  EXPECT_EQ(message.view_end_rad, M_PI);
+  EXPECT_EQ(message.range_min_m, 0.2);
+  EXPECT_EQ(message.range_max_m, 16.0);
+  EXPECT_EQ(message.source, "slammtt-rplidar, rplidar: section");
 }
 
 }  // namespace

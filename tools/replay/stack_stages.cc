@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "estimator/estimator_stage.h"
+#include "estimator/laser_geometry.h"
 #include "perception/segmenter_stage.h"
 
 namespace slammtt {
@@ -37,6 +38,21 @@ std::vector<ReplayStage> CreateStackStages(const ProcessSettings& settings,
                                   channels.Get("tracks"), channels.Get("estimator_status")}});
   }
   return stages;
+}
+
+std::string DefaultsLine(const LogScan& input, const Channels& channels,
+                         const std::vector<std::string>& enabled) {
+  std::string line = "no --config: every stage runs with its defaults";
+  if (std::find(enabled.begin(), enabled.end(), "estimator") == enabled.end()) return line;
+  const std::string& geometry_channel = channels.Get("laser_geometry");
+  if (input.channels.count(geometry_channel) > 0) {
+    return line + ", except the estimator's laser geometry: the log's " + geometry_channel +
+           " gives it";
+  }
+  const EstimatorStageOptions defaults;
+  return line + ", the estimator's laser geometry too (the log has no " + geometry_channel +
+         "): " + DescribeLaserGeometry(LaserGeometryOf(defaults.estimator)) +
+         "; give the sensor's with --config (docs/estimator.md, \"Laser geometry\")";
 }
 
 }  // namespace slammtt
