@@ -5,6 +5,7 @@
 #include "drivers/common/byte_stream.h"
 #include "drivers/common/driver_clock.h"
 #include "drivers/rplidar/rplidar_driver.h"
+#include "drivers/rplidar/rplidar_driver_config.h"
 #include "runtime/lcm_io.h"
 #include "runtime/process.h"
 #include "runtime/shutdown.h"

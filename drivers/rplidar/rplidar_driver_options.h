@@ -1,12 +1,12 @@
-// Options of the RPLIDAR driver (`rplidar:` section of the stack configuration; --port,
-// --baud and --mode on the command line win). Defaults are the A2M8's (datasheet, SDK).
+// Options of the RPLIDAR driver (`rplidar:` section of the stack configuration, read by
+// rplidar_driver_config.h; --port, --baud and --mode on the command line win). Defaults are the
+// A2M8's (datasheet, SDK). Pure: the device session (rplidar_session.h) takes them as they are.
 #pragma once
 
 #include <string>
 
 #include "drivers/rplidar/rplidar_beams.h"
 #include "drivers/rplidar/rplidar_scan_decoder.h"
-#include "runtime/config.h"
 
 namespace slammtt {
 namespace rplidar {
@@ -44,13 +44,8 @@ struct RplidarDriverOptions {
   double mount_yaw_deg = 0.0;
 };
 
-// Reads the `rplidar:` section; ConfigError naming file, line and key on a bad value. The
-// caller calls CheckUnused() on the section afterwards.
-RplidarDriverOptions ReadRplidarDriverOptions(const Config& section);
 // "standard" / "express"; std::invalid_argument otherwise.
 ScanMode ParseScanMode(const std::string& text);
-// Throws std::invalid_argument with a one-line reason when options contradict each other.
-void CheckRplidarDriverOptions(const RplidarDriverOptions& options);
 
 }  // namespace rplidar
 }  // namespace slammtt

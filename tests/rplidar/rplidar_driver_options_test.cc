@@ -1,4 +1,4 @@
-#include "drivers/rplidar/rplidar_driver_options.h"
+#include "drivers/rplidar/rplidar_driver_config.h"
 
 #include <gtest/gtest.h>
 
