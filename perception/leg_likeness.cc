@@ -66,14 +66,14 @@ double LegLikeness(const ClusterShape& shape, const LegLikenessOptions& options,
     return 0.0;
   }
   // Width: mean of the trapezoid over the interval holding the diameter (8 midpoints).
-  const double margin = options.leg_diameter_margin_m;
+  const double margin = options.diameter_margin_m;
   const double low = shape.diameter_low_m;
   const double high = std::max(shape.diameter_high_m, low);
   constexpr int kSamples = 8;
   double width = 0.0;
   for (int k = 0; k < kSamples; ++k) {
     const double d = low + (high - low) * (k + 0.5) / kSamples;
-    width += Trapezoid(d, options.leg_min_diameter_m, options.leg_max_diameter_m, margin,
+    width += Trapezoid(d, options.min_diameter_m, options.max_diameter_m, margin,
                        3.0 * margin);
   }
   width /= kSamples;

@@ -13,8 +13,8 @@
 //  - width: the object's diameter is not the first-to-last distance: each true edge lies
 //    between the edge beam and the next beam, which missed, so the diameter is somewhere in
 //    [r extent, r (extent + 2 spacing)] (r the cluster's mean range). The factor is the mean,
-//    over that interval, of a trapezoid that is 1 on [leg_min_diameter_m, leg_max_diameter_m]
-//    and falls linearly to 0 over leg_diameter_margin_m below and 3 leg_diameter_margin_m above
+//    over that interval, of a trapezoid that is 1 on [min_diameter_m, max_diameter_m]
+//    and falls linearly to 0 over diameter_margin_m below and 3 diameter_margin_m above
 //    (two legs side by side or overlapping make one wider cluster). At 0.35 degrees and 2 m the
 //    interval is 2.4 cm long and the factor sharp; at 0.9 degrees and 4 m (a leg is one or two
 //    beams) it is 13 cm long and the factor says "possibly": the rule follows range and beam
@@ -45,11 +45,11 @@ struct LegLikenessOptions {
   // Diameters of a leg at the laser's height (calf to knee, trousers): the score's width factor
   // is 1 between these. People's legs are about 0.1-0.15 m across; chair and table legs
   // 0.03-0.06 m, which the factor rejects where the beam spacing allows.
-  double leg_min_diameter_m = 0.08;
-  double leg_max_diameter_m = 0.3;
+  double min_diameter_m = 0.08;
+  double max_diameter_m = 0.3;
   // The factor falls to 0 over this margin below the minimum and three times it above the
   // maximum.
-  double leg_diameter_margin_m = 0.03;
+  double diameter_margin_m = 0.03;
   // The convexity factor's value for a clearly flat or concave cluster (b below): how much the
   // shape may count against the width.
   double convexity_floor = 0.6;

@@ -1,5 +1,7 @@
 // slammtt-segmenter: LASER_SCAN in, FEATURES out (paper Algorithm 1). Thin: the work is in
 // SegmenterStage (perception/segmenter_stage.h), which slammtt-replay runs too.
+#include <iostream>
+
 #include "perception/segmenter_stage.h"
 #include "runtime/command_line.h"
 #include "runtime/lcm_io.h"
@@ -15,7 +17,14 @@ int main(int argc, char** argv) {
         "(paper section 3, Algorithm 1). Subscribes laser_scan, publishes features and "
         "stage_timing; options in the `segmenter:` section of --config (docs/perception.md).");
     slammtt::AddStandardOptions(&command_line);
+    command_line.AddFlag("options-table",
+                         "print the table of every key of the segmenter: section (Markdown, "
+                         "docs/perception.md) and exit");
     if (!command_line.Parse(c, v)) return 0;
+    if (command_line.Flag("options-table")) {
+      std::cout << slammtt::SegmenterOptionsTable();
+      return 0;
+    }
     const slammtt::ProcessSettings settings = slammtt::LoadProcessSettings(command_line);
     slammtt::SegmenterStage stage(settings);
     const std::unique_ptr<lcm::LCM> lcm = slammtt::OpenLcm(settings.lcm_url);

@@ -1,17 +1,8 @@
 #include "perception/segmenter_options.h"
 
-#include <sstream>
+#include <limits>
 
 namespace slammtt {
-namespace {
-
-std::string Bad(const char* field, const char* requirement, double value) {
-  std::ostringstream out;
-  out << field << " must be " << requirement << ", got " << value;
-  return out.str();
-}
-
-}  // namespace
 
 const char* CentreRuleName(CentreRule rule) {
   switch (rule) {
@@ -56,105 +47,119 @@ bool ParseLegClassifier(const std::string& name, LegClassifier* classifier) {
   return false;
 }
 
-std::string CheckSegmenterOptions(const SegmenterOptions& o) {
-  // Written as !(x > 0) so that NaN fails every check.
-  if (!(o.lambda_rad > 0.0 && o.lambda_rad < 0.5 * M_PI)) {
-    return Bad("lambda_rad", "in (0, pi/2)", o.lambda_rad);
+void VisitSegmenterOptions(OptionVisitor* v, SegmenterOptions* o) {
+  using R = OptionRange;
+  const OptionUnit deg = OptionUnit::kDegrees;
+  v->Double("lambda_rad", &o->lambda_rad, R::Open(0, 90),
+            "lambda of eq. 15 (paper: 20 degrees)", deg);
+  v->Double("sigma_r_m", &o->sigma_r_m, R::Above(0),
+            "sigma of eq. 15 (3 sigma term) and the range noise of the covariance (paper: 0.03)");
+  v->Int("max_dropped_beams", &o->max_dropped_beams, R::Between(0, 100000),
+         "more no-return beams in a row between two valid beams always split");
+  v->Double("max_beam_gap_rad", &o->max_beam_gap_rad, R::Above(0),
+            "valid beams further apart always split (the bound when gaps cannot be counted)",
+            deg);
+  v->Double("duplicate_angle_tolerance_rad", &o->duplicate_angle_tolerance_rad,
+            R{0, 0.5, true, false},
+            "closer beams are one direction (RPLIDAR quantises to 1/64 degree)", deg);
+  v->Int("max_beams_per_scan", &o->max_beams_per_scan, R::Between(16, 10000000),
+         "a scan with more keeps every k-th beam, k = ceil(beams / cap); the rest counted "
+         "(`beams_over_cap`) and reported (\"Hostile sizes\")");
+  v->Double("min_range_m", &o->min_range_m, R::AtLeast(0),
+            "with the scan's `range_min_m`, the tighter wins");
+  // The field's +infinity (no limit) is written 0, as a configuration cannot write infinity.
+  double max_range_m = o->max_range_m == std::numeric_limits<double>::infinity()
+                           ? 0.0
+                           : o->max_range_m;
+  v->Double("max_range_m", &max_range_m, R::AtLeast(0),
+            "with the scan's `range_max_m`, the tighter wins (0: no limit)");
+  o->max_range_m = max_range_m == 0.0 ? std::numeric_limits<double>::infinity() : max_range_m;
+  v->Int("min_points", &o->min_points, R::Between(1, 100000),
+         "points for a feature (the targets count objects seen by >= 3 beams)");
+  v->Double("max_width_m", &o->max_width_m, R::Above(0),
+            "wider clusters (walls) are not point features; people are about 0.5 m wide");
+  int centre_rule = static_cast<int>(o->centre_rule);
+  v->Choice("centre_rule", &centre_rule, {"middle_point", "radius_corrected", "circle_fit"},
+            "the feature's centre (\"Centre rules\")");
+  o->centre_rule = static_cast<CentreRule>(centre_rule);
+  v->Double("max_object_radius_m", &o->max_object_radius_m, R::Above(0),
+            "radius bound of the corrected rules");
+  v->Double("bearing_sigma_rad", &o->bearing_sigma_rad, R::Above(0),
+            "angular noise of one beam, for the covariance", deg);
+  v->Double("shape_sigma_fraction", &o->shape_sigma_fraction, R::AtLeast(0),
+            "shape term of the covariance, fraction of the radius");
+  v->Bool("extract_lines", &o->extract_lines,
+          "line features and the structure tests; false: the paper's algorithm");
+  v->Double("straight_piece_width_m", &o->straight_piece_width_m, R::Above(0),
+            "straight or corner pieces at least this wide are structure, not points");
+  v->Double("line_split_distance_m", &o->line_split_distance_m, R::Above(0),
+            "split-and-merge distance at range 0");
+  v->Double("line_split_range_fraction", &o->line_split_range_fraction, R{0, 1, true, false},
+            "...plus this fraction of the cluster's mean range");
+  v->Int("min_line_points", &o->min_line_points, R::Between(3, 100000),
+         "points of a line feature");
+  v->Double("min_line_length_m", &o->min_line_length_m, R::Above(0),
+            "end-to-end length of a line feature");
+  int leg_classifier = static_cast<int>(o->leg_classifier);
+  v->Choice("leg_classifier", &leg_classifier, {"trained", "shape"},
+            "`trained`: P(leg) of the learned model; `shape`: the hand-written score");
+  o->leg_classifier = static_cast<LegClassifier>(leg_classifier);
+  v->BeginGroup("leg");
+  v->Double("min_diameter_m", &o->leg.min_diameter_m, R::Above(0),
+            "smallest diameter where the width factor is 1 (`shape` only)");
+  v->Double("max_diameter_m", &o->leg.max_diameter_m, R::Above(0),
+            "largest diameter where the width factor is 1 (`shape` only)");
+  v->Double("diameter_margin_m", &o->leg.diameter_margin_m, R::Above(0),
+            "the width factor falls to 0 over this below, three times this above");
+  v->Double("convexity_floor", &o->leg.convexity_floor, R::Between(0, 1),
+            "convexity factor of a flat or concave cluster (`shape` only)");
+  v->EndGroup();
+  v->Bool("detect_people", &o->detect_people, "person features");
+  v->Double("leg_threshold", &o->leg_threshold, R::Between(0, 1),
+            "leg-likeness of a leg candidate (the trained model's; the shape score: 0.65)");
+  v->Double("leg_nominal_diameter_m", &o->leg_nominal_diameter_m, R::Above(0),
+            "decides where two-beam clusters are provisional legs");
+  v->BeginGroup("person");
+  v->Double("min_leg_separation_m", &o->person.min_leg_separation_m, R::AtLeast(0),
+            "least distance between the two legs of a person");
+  v->Double("max_leg_separation_m", &o->person.max_leg_separation_m, R::Above(0),
+            "largest distance between the two legs of a person");
+  v->Double("single_leg_threshold", &o->person.single_leg_threshold, R::Between(0, 1),
+            "leg-likeness of a one-leg person");
+  v->Double("pair_centre_sigma_m", &o->person.pair_centre_sigma_m, R::Above(0),
+            "body centre vs midpoint of the legs, in the covariance");
+  v->Double("single_leg_offset_sigma_m", &o->person.single_leg_offset_sigma_m, R::Above(0),
+            "centre vs the one visible leg, in the covariance");
+  v->EndGroup();
+  v->Double("depth_edge_m", &o->depth_edge_m, R::Above(0),
+            "range jump of a depth edge (mixed pixels, `depth_edges`)");
+}
+
+std::string CheckSegmenterOptions(const SegmenterOptions& options) {
+  SegmenterOptions o = options;
+  OptionRangeCheck check;
+  VisitSegmenterOptions(&check, &o);
+  if (!check.problem().empty()) return check.problem();
+  // Conditions between options, on the fields as given (the schema wrote 0 for infinity).
+  o = options;
+  if (!(o.max_range_m > o.min_range_m)) return "max_range_m must be > min_range_m";
+  if (!(o.leg.max_diameter_m >= o.leg.min_diameter_m)) {
+    return "leg_max_diameter_m must be >= leg_min_diameter_m";
   }
-  if (!(o.sigma_r_m > 0.0) || !std::isfinite(o.sigma_r_m)) {
-    return Bad("sigma_r_m", "positive and finite", o.sigma_r_m);
-  }
-  if (!(o.max_beam_gap_rad > 0.0) || !std::isfinite(o.max_beam_gap_rad)) {
-    return Bad("max_beam_gap_rad", "positive and finite", o.max_beam_gap_rad);
-  }
-  if (o.max_dropped_beams < 0) return Bad("max_dropped_beams", "at least 0", o.max_dropped_beams);
-  if (!(o.duplicate_angle_tolerance_rad >= 0.0 && o.duplicate_angle_tolerance_rad < 0.01)) {
-    return Bad("duplicate_angle_tolerance_rad", "in [0, 0.01)", o.duplicate_angle_tolerance_rad);
-  }
-  if (!(o.min_range_m >= 0.0) || !std::isfinite(o.min_range_m)) {
-    return Bad("min_range_m", "non-negative and finite", o.min_range_m);
-  }
-  if (!(o.max_range_m > o.min_range_m)) {
-    return Bad("max_range_m", "greater than min_range_m", o.max_range_m);
-  }
-  if (o.min_points < 1) return Bad("min_points", "at least 1", o.min_points);
-  if (o.max_beams_per_scan < 16) {
-    return Bad("max_beams_per_scan", "at least 16", o.max_beams_per_scan);
-  }
-  if (!(o.max_width_m > 0.0) || !std::isfinite(o.max_width_m)) {
-    return Bad("max_width_m", "positive and finite", o.max_width_m);
-  }
-  if (!(o.max_object_radius_m > 0.0) || !std::isfinite(o.max_object_radius_m)) {
-    return Bad("max_object_radius_m", "positive and finite", o.max_object_radius_m);
-  }
-  if (!(o.bearing_sigma_rad > 0.0) || !std::isfinite(o.bearing_sigma_rad)) {
-    return Bad("bearing_sigma_rad", "positive and finite", o.bearing_sigma_rad);
-  }
-  if (!(o.shape_sigma_fraction >= 0.0) || !std::isfinite(o.shape_sigma_fraction)) {
-    return Bad("shape_sigma_fraction", "non-negative and finite", o.shape_sigma_fraction);
-  }
-  if (!(o.line_split_distance_m > 0.0) || !std::isfinite(o.line_split_distance_m)) {
-    return Bad("line_split_distance_m", "positive and finite", o.line_split_distance_m);
-  }
-  if (!(o.line_split_range_fraction >= 0.0 && o.line_split_range_fraction < 1.0)) {
-    return Bad("line_split_range_fraction", "in [0, 1)", o.line_split_range_fraction);
-  }
-  if (!(o.straight_piece_width_m > 0.0) || !std::isfinite(o.straight_piece_width_m)) {
-    return Bad("straight_piece_width_m", "positive and finite", o.straight_piece_width_m);
-  }
-  if (o.min_line_points < 3) return Bad("min_line_points", "at least 3", o.min_line_points);
-  if (!(o.min_line_length_m > 0.0) || !std::isfinite(o.min_line_length_m)) {
-    return Bad("min_line_length_m", "positive and finite", o.min_line_length_m);
-  }
-  if (!(o.leg.leg_min_diameter_m > 0.0) || !std::isfinite(o.leg.leg_min_diameter_m)) {
-    return Bad("leg_min_diameter_m", "positive and finite", o.leg.leg_min_diameter_m);
-  }
-  if (!(o.leg.leg_max_diameter_m >= o.leg.leg_min_diameter_m) ||
-      !std::isfinite(o.leg.leg_max_diameter_m)) {
-    return Bad("leg_max_diameter_m", "finite and at least leg_min_diameter_m",
-               o.leg.leg_max_diameter_m);
-  }
-  if (!(o.leg.leg_diameter_margin_m > 0.0) || !std::isfinite(o.leg.leg_diameter_margin_m)) {
-    return Bad("leg_diameter_margin_m", "positive and finite", o.leg.leg_diameter_margin_m);
-  }
-  if (!(o.leg.convexity_floor >= 0.0 && o.leg.convexity_floor <= 1.0)) {
-    return Bad("convexity_floor", "in [0, 1]", o.leg.convexity_floor);
+  if (!(o.person.max_leg_separation_m > o.person.min_leg_separation_m)) {
+    return "person_max_leg_separation_m must be > person_min_leg_separation_m";
   }
   if (o.leg_model != nullptr && *CheckLegModel(*o.leg_model) != '\0') {
     return CheckLegModel(*o.leg_model);
   }
-  if (!(o.leg_threshold >= 0.0 && o.leg_threshold <= 1.0)) {
-    return Bad("leg_threshold", "in [0, 1]", o.leg_threshold);
-  }
-  if (!(o.leg_nominal_diameter_m > 0.0) || !std::isfinite(o.leg_nominal_diameter_m)) {
-    return Bad("leg_nominal_diameter_m", "positive and finite", o.leg_nominal_diameter_m);
-  }
-  const PersonDetectionOptions& p = o.person;
-  if (!(p.min_leg_separation_m >= 0.0) || !std::isfinite(p.min_leg_separation_m)) {
-    return Bad("min_leg_separation_m", "non-negative and finite", p.min_leg_separation_m);
-  }
-  if (!(p.max_leg_separation_m > p.min_leg_separation_m) ||
-      !std::isfinite(p.max_leg_separation_m)) {
-    return Bad("max_leg_separation_m", "finite and greater than min_leg_separation_m",
-               p.max_leg_separation_m);
-  }
-  if (!(p.single_leg_threshold >= 0.0 && p.single_leg_threshold <= 1.0)) {
-    return Bad("single_leg_threshold", "in [0, 1]", p.single_leg_threshold);
-  }
-  if (!(p.pair_centre_sigma_m > 0.0) || !std::isfinite(p.pair_centre_sigma_m)) {
-    return Bad("pair_centre_sigma_m", "positive and finite", p.pair_centre_sigma_m);
-  }
-  if (!(p.single_leg_offset_sigma_m > 0.0) || !std::isfinite(p.single_leg_offset_sigma_m)) {
-    return Bad("single_leg_offset_sigma_m", "positive and finite", p.single_leg_offset_sigma_m);
-  }
-  if (!(o.depth_edge_m > 0.0) || !std::isfinite(o.depth_edge_m)) {
-    return Bad("depth_edge_m", "positive and finite", o.depth_edge_m);
-  }
-  if (o.centre_rule != CentreRule::kMiddlePoint && o.centre_rule != CentreRule::kRadiusCorrected &&
-      o.centre_rule != CentreRule::kCircleFit) {
-    return "centre_rule is not one of middle_point, radius_corrected, circle_fit";
-  }
   return "";
+}
+
+std::string SegmenterOptionsTable() {
+  SegmenterOptions defaults;
+  OptionsMarkdownTable table;
+  VisitSegmenterOptions(&table, &defaults);
+  return table.Table();
 }
 
 }  // namespace slammtt

@@ -2,14 +2,17 @@
 // point feature made from each cluster. Defaults are the paper's where it gives one (lambda,
 // sigma_r); the others are ours, chosen and justified in docs/perception.md.
 //
-// Reading these from the stack configuration (`segmenter:` section) is not done here: see
-// ReadSegmenterOptions() in perception/segmenter_stage.h.
+// VisitSegmenterOptions lists every option once (key, range, unit, doc; common/options_schema.h):
+// the reader of the stack configuration's `segmenter:` section (ReadSegmenterOptions() in
+// perception/segmenter_stage.h), CheckSegmenterOptions and the table of docs/perception.md
+// come from it.
 #pragma once
 
 #include <cmath>
 #include <limits>
 #include <string>
 
+#include "common/options_schema.h"
 #include "perception/leg_classifier.h"
 #include "perception/leg_likeness.h"
 #include "perception/person_detection.h"
@@ -162,9 +165,22 @@ struct SegmenterOptions {
   double depth_edge_m = 0.3;
 };
 
-// Empty when the options are usable; otherwise one line naming the first bad field
-// ("lambda_rad must be in (0, pi/2), got 2"). Every numeric field must be finite except
-// max_range_m, which may be +infinity.
+// The options schema of the segmenter: every option once, with its range (in the unit of the
+// configuration), unit and doc, in the order of SegmenterOptions. Keys: the field's name, the
+// nested structs' names in front (leg_min_diameter_m, person_max_leg_separation_m), angles in
+// degrees (lambda_deg). max_range_m's +infinity (no limit) is written 0. leg_model is not an
+// option (a pointer; CheckSegmenterOptions checks it).
+void VisitSegmenterOptions(OptionVisitor* visitor, SegmenterOptions* options);
+
+// Empty when the options are usable; otherwise one line naming the first bad option by its key
+// ("lambda_deg = 100: must be in (0, 90)"): each value within its range (the schema), then the
+// conditions between options (max_range_m > min_range_m, leg_max_diameter_m >=
+// leg_min_diameter_m, person_max_leg_separation_m > person_min_leg_separation_m) and a given
+// leg_model's own check.
 std::string CheckSegmenterOptions(const SegmenterOptions& options);
+
+// The Markdown table of every key of the `segmenter:` section: key, default, valid values,
+// one line (docs/perception.md, "Options"; printed by slammtt-segmenter --options-table).
+std::string SegmenterOptionsTable();
 
 }  // namespace slammtt

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <utility>
 
+#include "runtime/config_options.h"
 #include "runtime/lcm_io.h"
 #include "runtime/log.h"
 #include "runtime/message_checks.h"
@@ -13,8 +14,6 @@
 
 namespace slammtt {
 namespace {
-
-constexpr double kDegToRad = M_PI / 180.0;
 
 // The scan's utime is the big-endian int64 right after the 8-byte type fingerprint
 // (lcmtypes/laser_scan_t.lcm; LCM type specification). The stage reads it before decoding, so
@@ -28,114 +27,25 @@ int64_t BigEndianInt64(const uint8_t* bytes) {
   return static_cast<int64_t>(value);
 }
 
-double PositiveDouble(const Config& section, const std::string& key, double fallback) {
-  const double value = section.GetDouble(key, fallback);
-  if (!(value > 0.0)) section.FailKey(key, "must be positive");
-  return value;
-}
-
-double NonNegativeDouble(const Config& section, const std::string& key, double fallback) {
-  const double value = section.GetDouble(key, fallback);
-  if (!(value >= 0.0)) section.FailKey(key, "must not be negative");
-  return value;
-}
-
-double UnitInterval(const Config& section, const std::string& key, double fallback) {
-  const double value = section.GetDouble(key, fallback);
-  if (!(value >= 0.0 && value <= 1.0)) section.FailKey(key, "must be in [0, 1]");
-  return value;
-}
-
 }  // namespace
 
+const std::vector<RenamedKey>& RenamedSegmenterKeys() {
+  static const std::vector<RenamedKey> renamed = {
+      {"convexity_floor", "leg_convexity_floor"},
+      {"min_leg_separation_m", "person_min_leg_separation_m"},
+      {"max_leg_separation_m", "person_max_leg_separation_m"},
+      {"single_leg_threshold", "person_single_leg_threshold"},
+      {"pair_centre_sigma_m", "person_pair_centre_sigma_m"},
+      {"single_leg_offset_sigma_m", "person_single_leg_offset_sigma_m"},
+  };
+  return renamed;
+}
+
 SegmenterOptions ReadSegmenterOptions(const Config& section) {
+  RejectRenamedKeys(section, RenamedSegmenterKeys(), "docs/perception.md, \"Migration\"");
   SegmenterOptions o;
-  const double lambda_deg = section.GetDouble("lambda_deg", o.lambda_rad / kDegToRad);
-  if (!(lambda_deg > 0.0 && lambda_deg < 90.0)) {
-    section.FailKey("lambda_deg", "must be in (0, 90) degrees");
-  }
-  o.lambda_rad = lambda_deg * kDegToRad;
-  o.sigma_r_m = PositiveDouble(section, "sigma_r_m", o.sigma_r_m);
-  o.max_beam_gap_rad =
-      PositiveDouble(section, "max_beam_gap_deg", o.max_beam_gap_rad / kDegToRad) * kDegToRad;
-  const int64_t max_beams = section.GetInt("max_beams_per_scan", o.max_beams_per_scan);
-  if (max_beams < 16 || max_beams > 10000000) {
-    section.FailKey("max_beams_per_scan", "must be between 16 and 10000000");
-  }
-  o.max_beams_per_scan = static_cast<int>(max_beams);
-  const int64_t max_dropped = section.GetInt("max_dropped_beams", o.max_dropped_beams);
-  if (max_dropped < 0 || max_dropped > 100000) {
-    section.FailKey("max_dropped_beams", "must be between 0 and 100000");
-  }
-  o.max_dropped_beams = static_cast<int>(max_dropped);
-  const double duplicate_deg = NonNegativeDouble(section, "duplicate_angle_tolerance_deg",
-                                                 o.duplicate_angle_tolerance_rad / kDegToRad);
-  if (!(duplicate_deg < 0.5)) {
-    section.FailKey("duplicate_angle_tolerance_deg", "must be below 0.5 degrees");
-  }
-  o.duplicate_angle_tolerance_rad = duplicate_deg * kDegToRad;
-  o.min_range_m = NonNegativeDouble(section, "min_range_m", o.min_range_m);
-  if (section.Has("max_range_m")) {
-    o.max_range_m = section.GetDouble("max_range_m", 0.0);
-    if (!(o.max_range_m > o.min_range_m)) {
-      section.FailKey("max_range_m", "must be greater than min_range_m");
-    }
-  }
-  const int64_t min_points = section.GetInt("min_points", o.min_points);
-  if (min_points < 1 || min_points > 100000) {
-    section.FailKey("min_points", "must be between 1 and 100000");
-  }
-  o.min_points = static_cast<int>(min_points);
-  o.max_width_m = PositiveDouble(section, "max_width_m", o.max_width_m);
-  const std::string rule = section.GetString("centre_rule", CentreRuleName(o.centre_rule));
-  if (!ParseCentreRule(rule, &o.centre_rule)) {
-    section.FailKey("centre_rule", "expected circle_fit, radius_corrected or middle_point, got '" +
-                                       rule + "'");
-  }
-  const std::string classifier =
-      section.GetString("leg_classifier", LegClassifierName(o.leg_classifier));
-  if (!ParseLegClassifier(classifier, &o.leg_classifier)) {
-    section.FailKey("leg_classifier", "expected trained or shape, got '" + classifier + "'");
-  }
-  o.max_object_radius_m = PositiveDouble(section, "max_object_radius_m", o.max_object_radius_m);
-  o.bearing_sigma_rad =
-      PositiveDouble(section, "bearing_sigma_deg", o.bearing_sigma_rad / kDegToRad) * kDegToRad;
-  o.shape_sigma_fraction =
-      NonNegativeDouble(section, "shape_sigma_fraction", o.shape_sigma_fraction);
-  o.extract_lines = section.GetBool("extract_lines", o.extract_lines);
-  o.line_split_distance_m =
-      PositiveDouble(section, "line_split_distance_m", o.line_split_distance_m);
-  o.line_split_range_fraction =
-      NonNegativeDouble(section, "line_split_range_fraction", o.line_split_range_fraction);
-  o.straight_piece_width_m =
-      PositiveDouble(section, "straight_piece_width_m", o.straight_piece_width_m);
-  const int64_t min_line_points = section.GetInt("min_line_points", o.min_line_points);
-  if (min_line_points < 3 || min_line_points > 100000) {
-    section.FailKey("min_line_points", "must be between 3 and 100000");
-  }
-  o.min_line_points = static_cast<int>(min_line_points);
-  o.min_line_length_m = PositiveDouble(section, "min_line_length_m", o.min_line_length_m);
-  o.leg.leg_min_diameter_m =
-      PositiveDouble(section, "leg_min_diameter_m", o.leg.leg_min_diameter_m);
-  o.leg.leg_max_diameter_m =
-      PositiveDouble(section, "leg_max_diameter_m", o.leg.leg_max_diameter_m);
-  o.leg.leg_diameter_margin_m =
-      PositiveDouble(section, "leg_diameter_margin_m", o.leg.leg_diameter_margin_m);
-  o.leg.convexity_floor = UnitInterval(section, "convexity_floor", o.leg.convexity_floor);
-  o.detect_people = section.GetBool("detect_people", o.detect_people);
-  o.leg_threshold = UnitInterval(section, "leg_threshold", o.leg_threshold);
-  o.leg_nominal_diameter_m =
-      PositiveDouble(section, "leg_nominal_diameter_m", o.leg_nominal_diameter_m);
-  PersonDetectionOptions& p = o.person;
-  p.min_leg_separation_m =
-      NonNegativeDouble(section, "min_leg_separation_m", p.min_leg_separation_m);
-  p.max_leg_separation_m =
-      PositiveDouble(section, "max_leg_separation_m", p.max_leg_separation_m);
-  p.single_leg_threshold = UnitInterval(section, "single_leg_threshold", p.single_leg_threshold);
-  p.pair_centre_sigma_m = PositiveDouble(section, "pair_centre_sigma_m", p.pair_centre_sigma_m);
-  p.single_leg_offset_sigma_m =
-      PositiveDouble(section, "single_leg_offset_sigma_m", p.single_leg_offset_sigma_m);
-  o.depth_edge_m = PositiveDouble(section, "depth_edge_m", o.depth_edge_m);
+  ConfigOptionReader reader(section);
+  VisitSegmenterOptions(&reader, &o);
   section.CheckUnused();
   const std::string problem = CheckSegmenterOptions(o);
   if (!problem.empty()) section.Fail(problem);

@@ -31,29 +31,22 @@
 #include "perception/segmenter.h"
 #include "perception/segmenter_options.h"
 #include "runtime/config.h"
+#include "runtime/config_options.h"
 #include "runtime/process.h"
 #include "runtime/stage.h"
 
 namespace slammtt {
 
-// Reads the `segmenter:` section of the stack configuration; absent keys keep the defaults of
-// SegmenterOptions. Keys (units in the names):
-//   lambda_deg (20), sigma_r_m (0.03), max_beams_per_scan (8192), max_dropped_beams (1),
-//   max_beam_gap_deg (5),
-//   duplicate_angle_tolerance_deg (0.001), min_range_m (0), max_range_m (no limit),
-//   min_points (3), max_width_m (1.5),
-//   centre_rule (circle_fit | radius_corrected | middle_point), max_object_radius_m (1.0),
-//   bearing_sigma_deg (0.5), shape_sigma_fraction (0.3);
-//   classification (docs/perception.md): extract_lines (true), line_split_distance_m (0.05),
-//   line_split_range_fraction (0.005), min_line_points (5), min_line_length_m (0.4),
-//   straight_piece_width_m (0.2), leg_min_diameter_m (0.08), leg_max_diameter_m (0.3),
-//   leg_diameter_margin_m (0.03), convexity_floor (0.6), detect_people (true),
-//   leg_classifier (trained | shape), leg_threshold (the trained model's threshold; 0.65 was
-//   the shape score's), leg_nominal_diameter_m (0.12), min_leg_separation_m (0.1),
-//   max_leg_separation_m (0.6), single_leg_threshold (0.65), pair_centre_sigma_m (0.05),
-//   single_leg_offset_sigma_m (0.15), depth_edge_m (0.3).
-// Throws ConfigError naming file, line and key for a wrong type, a bad value or an unknown key
-// (CheckUnused()).
+// Keys of earlier versions of the `segmenter:` section and their new names (the migration
+// note of docs/perception.md lists the same).
+const std::vector<RenamedKey>& RenamedSegmenterKeys();
+
+// Reads the `segmenter:` section of the stack configuration through the schema
+// (VisitSegmenterOptions, segmenter_options.h; the keys are in docs/perception.md, "Options",
+// and slammtt-segmenter --options-table prints them); absent keys keep the defaults of
+// SegmenterOptions. Throws ConfigError naming file, line and key for a renamed key (with its
+// new name), a wrong type, a value out of its range, an unknown key (CheckUnused()) or options
+// that do not fit together (CheckSegmenterOptions).
 SegmenterOptions ReadSegmenterOptions(const Config& section);
 
 struct SegmenterStageCounters {

@@ -5,8 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
+#include <fstream>
+#include <limits>
 #include <random>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -289,15 +293,15 @@ TEST(SegmenterStageTest, ReadsTheClassificationOptions) {
       "  leg_min_diameter_m: 0.07\n"
       "  leg_max_diameter_m: 0.2\n"
       "  leg_diameter_margin_m: 0.02\n"
-      "  convexity_floor: 0.3\n"
+      "  leg_convexity_floor: 0.3\n"
       "  detect_people: false\n"
       "  leg_threshold: 0.7\n"
       "  leg_nominal_diameter_m: 0.1\n"
-      "  min_leg_separation_m: 0.05\n"
-      "  max_leg_separation_m: 0.7\n"
-      "  single_leg_threshold: 0.8\n"
-      "  pair_centre_sigma_m: 0.04\n"
-      "  single_leg_offset_sigma_m: 0.2\n"
+      "  person_min_leg_separation_m: 0.05\n"
+      "  person_max_leg_separation_m: 0.7\n"
+      "  person_single_leg_threshold: 0.8\n"
+      "  person_pair_centre_sigma_m: 0.04\n"
+      "  person_single_leg_offset_sigma_m: 0.2\n"
       "  depth_edge_m: 0.5\n",
       "stack.yaml");
   const SegmenterOptions o = ReadSegmenterOptions(config.Child("segmenter"));
@@ -307,9 +311,9 @@ TEST(SegmenterStageTest, ReadsTheClassificationOptions) {
   EXPECT_EQ(o.min_line_points, 7);
   EXPECT_DOUBLE_EQ(o.min_line_length_m, 0.6);
   EXPECT_DOUBLE_EQ(o.straight_piece_width_m, 0.25);
-  EXPECT_DOUBLE_EQ(o.leg.leg_min_diameter_m, 0.07);
-  EXPECT_DOUBLE_EQ(o.leg.leg_max_diameter_m, 0.2);
-  EXPECT_DOUBLE_EQ(o.leg.leg_diameter_margin_m, 0.02);
+  EXPECT_DOUBLE_EQ(o.leg.min_diameter_m, 0.07);
+  EXPECT_DOUBLE_EQ(o.leg.max_diameter_m, 0.2);
+  EXPECT_DOUBLE_EQ(o.leg.diameter_margin_m, 0.02);
   EXPECT_DOUBLE_EQ(o.leg.convexity_floor, 0.3);
   EXPECT_FALSE(o.detect_people);
   EXPECT_DOUBLE_EQ(o.leg_threshold, 0.7);
@@ -323,12 +327,97 @@ TEST(SegmenterStageTest, ReadsTheClassificationOptions) {
   ExpectConfigError("segmenter:\n  leg_threshold: 1.5\n", "leg_threshold");
   ExpectConfigError("segmenter:\n  min_line_points: 2\n", "min_line_points");
   ExpectConfigError("segmenter:\n  extract_lines: maybe\n", "extract_lines");
-  ExpectConfigError("segmenter:\n  max_leg_separation_m: 0.05\n", "max_leg_separation_m");
-  ExpectConfigError("segmenter:\n  leg_max_diameter_m: 0.05\n", "leg_max_diameter_m");
-  ExpectConfigError("segmenter:\n  convexity_floor: -0.1\n", "convexity_floor");
+  ExpectConfigError("segmenter:\n  person_max_leg_separation_m: 0.05\n",
+                    "person_max_leg_separation_m must be > person_min_leg_separation_m");
+  ExpectConfigError("segmenter:\n  leg_max_diameter_m: 0.05\n",
+                    "leg_max_diameter_m must be >= leg_min_diameter_m");
+  ExpectConfigError("segmenter:\n  leg_convexity_floor: -0.1\n",
+                    "segmenter.leg_convexity_floor: must be in [0, 1], got -0.1");
   ExpectConfigError("segmenter:\n  line_split_range_fraction: 1.5\n",
                     "line_split_range_fraction");
   ExpectConfigError("segmenter:\n  depth_edge_m: 0\n", "depth_edge_m");
+}
+
+// Every key of an earlier version is an error that names its new key.
+TEST(SegmenterStageTest, RenamedKeysNameTheirNewKey) {
+  ASSERT_EQ(RenamedSegmenterKeys().size(), 6u);
+  for (const RenamedKey& r : RenamedSegmenterKeys()) {
+    std::string what;
+    try {
+      const std::string yaml = "segmenter:\n  " + r.old_key + ": 0.5\n";
+      ReadSegmenterOptions(Config::FromString(yaml, "old.yaml").Child("segmenter"));
+    } catch (const ConfigError& e) {
+      what = e.what();
+    }
+    EXPECT_NE(what.find("old.yaml:2: segmenter." + r.old_key + ": renamed to " + r.new_key),
+              std::string::npos)
+        << what;
+  }
+}
+
+// The schema names every key once, the reader reads every one of them (a file that sets every
+// key to its default is accepted and gives the defaults, bit for bit), and docs/perception.md
+// carries the generated table and the migration note.
+TEST(SegmenterStageTest, EveryKeyOfTheSchemaIsReadAndDocumented) {
+  const std::string table = SegmenterOptionsTable();
+  std::string yaml = "segmenter:\n";
+  std::vector<std::string> keys;
+  std::istringstream rows(table);
+  std::string row;
+  while (std::getline(rows, row)) {
+    if (row.rfind("| `", 0) != 0) continue;
+    const size_t end = row.find('`', 3);
+    const std::string key = row.substr(3, end - 3);
+    const size_t value_end = row.find(" |", end + 4);
+    keys.push_back(key);
+    yaml += "  " + key + ": " + row.substr(end + 4, value_end - end - 4) + "\n";
+  }
+  ASSERT_EQ(keys.size(), 34u) << table;
+  std::vector<std::string> sorted = keys;
+  std::sort(sorted.begin(), sorted.end());
+  EXPECT_EQ(std::adjacent_find(sorted.begin(), sorted.end()), sorted.end()) << "a key twice";
+  for (const RenamedKey& r : RenamedSegmenterKeys()) {
+    EXPECT_TRUE(std::binary_search(sorted.begin(), sorted.end(), r.new_key)) << r.new_key;
+    EXPECT_FALSE(std::binary_search(sorted.begin(), sorted.end(), r.old_key)) << r.old_key;
+  }
+  const SegmenterOptions o =
+      ReadSegmenterOptions(Config::FromString(yaml, "every.yaml").Child("segmenter"));
+  const SegmenterOptions d;
+  EXPECT_EQ(o.lambda_rad, d.lambda_rad);
+  EXPECT_EQ(o.bearing_sigma_rad, d.bearing_sigma_rad);
+  EXPECT_EQ(o.duplicate_angle_tolerance_rad, d.duplicate_angle_tolerance_rad);
+  EXPECT_TRUE(std::isinf(o.max_range_m));
+  EXPECT_EQ(o.centre_rule, d.centre_rule);
+  EXPECT_EQ(o.leg.convexity_floor, d.leg.convexity_floor);
+  EXPECT_EQ(o.person.single_leg_offset_sigma_m, d.person.single_leg_offset_sigma_m);
+  std::ifstream file(std::string(SLAMMTT_SOURCE_DIR) + "/docs/perception.md");
+  ASSERT_TRUE(file.good()) << "docs/perception.md is part of the checkout";
+  std::ostringstream text;
+  text << file.rdbuf();
+  const std::string docs = text.str();
+  EXPECT_NE(docs.find(table), std::string::npos)
+      << "docs/perception.md: replace the options table by `slammtt-segmenter --options-table`";
+  for (const RenamedKey& r : RenamedSegmenterKeys()) {
+    EXPECT_NE(docs.find("| `" + r.old_key + "` | `" + r.new_key + "` |"), std::string::npos)
+        << "docs/perception.md, Migration: " << r.old_key;
+  }
+}
+
+// An absent section gives exactly the pure library's defaults (the stage and the tests that
+// build SegmenterOptions{} segment alike).
+TEST(SegmenterStageTest, AbsentKeysKeepTheDefaultsBitForBit) {
+  const SegmenterOptions o = ReadSegmenterOptions(Config());
+  const SegmenterOptions d;
+  EXPECT_EQ(o.lambda_rad, d.lambda_rad);
+  EXPECT_EQ(o.max_beam_gap_rad, d.max_beam_gap_rad);
+  EXPECT_EQ(o.duplicate_angle_tolerance_rad, d.duplicate_angle_tolerance_rad);
+  EXPECT_EQ(o.bearing_sigma_rad, d.bearing_sigma_rad);
+  EXPECT_EQ(o.leg_threshold, d.leg_threshold);
+  EXPECT_EQ(o.max_range_m, d.max_range_m);
+  // 0 is "no limit" in the configuration.
+  const SegmenterOptions unlimited = ReadSegmenterOptions(
+      Config::FromString("segmenter:\n  max_range_m: 0\n", "s.yaml").Child("segmenter"));
+  EXPECT_TRUE(std::isinf(unlimited.max_range_m));
 }
 
 // A wall behind a person on two legs: FEATURES carries the wall as a line, both legs as point

@@ -644,18 +644,20 @@ TEST(SegmenterTest, RandomGarbageNeverBreaksIt) {
 TEST(SegmenterTest, BadOptionsAreRejectedWithTheFieldName) {
   SegmenterOptions options;
   options.lambda_rad = 100.0 * kDeg;
-  EXPECT_NE(CheckSegmenterOptions(options).find("lambda_rad"), std::string::npos);
+  EXPECT_EQ(CheckSegmenterOptions(options), "lambda_deg = 100: must be in (0, 90)");
   try {
     Segmenter segmenter(options);
     FAIL() << "no exception";
   } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("lambda_rad"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("lambda_deg"), std::string::npos);
   }
   options = SegmenterOptions{};
   options.sigma_r_m = std::nan("");
   EXPECT_NE(CheckSegmenterOptions(options).find("sigma_r_m"), std::string::npos);
   options = SegmenterOptions{};
   options.max_range_m = 0.0;
+  EXPECT_EQ(CheckSegmenterOptions(options), "max_range_m must be > min_range_m");
+  options.max_range_m = -std::numeric_limits<double>::infinity();
   EXPECT_NE(CheckSegmenterOptions(options).find("max_range_m"), std::string::npos);
   options = SegmenterOptions{};
   options.min_points = 0;
@@ -665,7 +667,14 @@ TEST(SegmenterTest, BadOptionsAreRejectedWithTheFieldName) {
   EXPECT_NE(CheckSegmenterOptions(options).find("max_dropped_beams"), std::string::npos);
   options = SegmenterOptions{};
   options.bearing_sigma_rad = 0.0;
-  EXPECT_NE(CheckSegmenterOptions(options).find("bearing_sigma_rad"), std::string::npos);
+  EXPECT_EQ(CheckSegmenterOptions(options), "bearing_sigma_deg = 0: must be > 0");
+  options = SegmenterOptions{};
+  options.person.single_leg_threshold = 1.5;
+  EXPECT_EQ(CheckSegmenterOptions(options),
+            "person_single_leg_threshold = 1.5: must be in [0, 1]");
+  options = SegmenterOptions{};
+  options.centre_rule = static_cast<CentreRule>(7);
+  EXPECT_EQ(CheckSegmenterOptions(options), "centre_rule is not one of its choices");
   EXPECT_EQ(CheckSegmenterOptions(SegmenterOptions{}), "");
 }
 
