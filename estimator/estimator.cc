@@ -232,6 +232,7 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
   // 8. Classification (line 12).
   ClassifyObjects(association, gating.gated, options_, after_updates, assignment, &state_,
                   &counts);
+  result.static_observations = StaticObservations(features.measurements, assignment, state_);
   // 9. Re-acquisition, then pruning (line 11).
   const std::vector<int64_t> continues_id =
       TagPossibleContinuations(association, gating.nearest_nis, taken_over, options_,
@@ -304,6 +305,7 @@ ValidatedFeatures Estimator::TakeFeatures(const std::vector<FeatureReading>& fea
 
 void Estimator::Predict(int64_t utime, const ScanInterval& interval) {
   const PredictionNotes notes = PredictToScan(utime, interval, options_, &odometry_, &state_);
+  last_motion_ = notes.motion;
   if (notes.without_odometry) {
     ++counters_.scans_without_odometry;
     Event("scan at utime " + std::to_string(utime) +
@@ -387,6 +389,7 @@ void Estimator::ReportEstimate(int64_t utime, ScanResult* result) const {
   result->processed = true;
   result->pose = state_.robot_pose();
   result->pose_covariance = state_.robot_covariance();
+  result->motion = last_motion_;
   result->objects.reserve(static_cast<size_t>(state_.num_objects()));
   for (int j = 0; j < state_.num_objects(); ++j) {
     const ObjectRecord& record = state_.object(j).record;

@@ -67,6 +67,7 @@
 #include "estimator/odometry_plausibility.h"
 #include "estimator/scan_prediction.h"
 #include "estimator/slam_state.h"
+#include "estimator/static_observations.h"
 #include "estimator/step_counts.h"
 #include "estimator/time_base.h"
 
@@ -128,6 +129,10 @@ struct ScanResult {
   std::vector<ObjectEstimate> objects;
   std::vector<LineEstimate> lines;
   StepCounts counts;
+  // For the smoother (smoother_input.h): the robot's motion the prediction applied, and the
+  // measurements associated with confirmed static point landmarks (static_observations.h).
+  RobotMotion motion;
+  std::vector<StaticObservation> static_observations;
 };
 
 // Cumulative counters (estimator_status_t).
@@ -216,6 +221,7 @@ class Estimator {
   Eigen::Vector3d last_finite_pose_;
   Eigen::Matrix3d last_finite_pose_covariance_ = Eigen::Matrix3d::Zero();
   std::vector<LineCandidate> line_candidates_;  // straight runs not yet line landmarks
+  RobotMotion last_motion_;  // of the last prediction (ScanResult::motion)
   int64_t next_id_ = 1;
 };
 
