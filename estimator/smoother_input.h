@@ -29,9 +29,8 @@ struct SmootherScanInput {
   Eigen::Matrix3d increment_covariance = Eigen::Matrix3d::Zero();
   SensorMount mount;
   std::vector<StaticObservation> observations;
-  // Landmarks in `observations` of an earlier scan of this time base that are no longer
-  // confirmed static landmarks of kind OTHER (turned moving or undecided, pruned, removed by a
-  // state recovery), ascending.
+  // Objects in `observations` of an earlier scan of this time base that can no longer be
+  // landmarks: turned moving, pruned, removed by a state recovery, became a person; ascending.
   std::vector<int64_t> removed_landmark_ids;
 };
 

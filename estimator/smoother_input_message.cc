@@ -44,6 +44,7 @@ slammtt_msgs::smoother_input_t SmootherInputMessage(const SmootherScanInput& inp
     observation.range_m = o.range_bearing(0);
     observation.bearing_rad = o.range_bearing(1);
     WriteRowMajor<2>(o.covariance, observation.covariance);
+    observation.tentative = o.tentative;
     message.observations.push_back(observation);
   }
   message.num_observations = static_cast<int32_t>(message.observations.size());
@@ -66,7 +67,8 @@ SmootherScanInput SmootherScanInputFromMessage(const slammtt_msgs::smoother_inpu
   input.observations.reserve(message.observations.size());
   for (const slammtt_msgs::smoother_observation_t& o : message.observations) {
     input.observations.push_back(StaticObservation{
-        o.landmark_id, Eigen::Vector2d(o.range_m, o.bearing_rad), ReadRowMajor<2>(o.covariance)});
+        o.landmark_id, Eigen::Vector2d(o.range_m, o.bearing_rad), ReadRowMajor<2>(o.covariance),
+        o.tentative != 0});
   }
   input.removed_landmark_ids = message.removed_landmark_ids;
   return input;

@@ -117,6 +117,30 @@ std::optional<std::string> CheckFinite(const Eigen::MatrixXd& value, const char*
 
 }  // namespace
 
+void VisitSmootherOptions(OptionVisitor* v, SmootherOptions* o) {
+  using R = OptionRange;
+  int method = static_cast<int>(o->method);
+  v->Choice("method", &method, {"gauss_newton", "levenberg_marquardt"},
+            "the batch solve's method");
+  o->method = static_cast<SmootherOptions::Method>(method);
+  int damping = static_cast<int>(o->damping);
+  v->Choice("damping", &damping, {"identity", "diagonal"},
+            "Levenberg-Marquardt's lambda I (GTSAM's) or lambda diag(J^T J)");
+  o->damping = static_cast<SmootherOptions::Damping>(damping);
+  v->Int("max_iterations", &o->max_iterations, R::Between(1, 1e6),
+         "batch: Levenberg-Marquardt tries at most");
+  v->Double("relative_tolerance", &o->relative_tolerance, R::AtLeast(0),
+            "batch: converged when a step lowers chi^2 by less than this fraction");
+  v->Double("relinearize_threshold", &o->relinearize_threshold, R::Above(0),
+            "incremental: a variable whose pending step exceeds this (m or rad) is relinearised");
+  v->Int("relinearize_skip", &o->relinearize_skip, R::Between(1, 1e6),
+         "incremental: relinearisation looked at every this many updates");
+  v->Int("max_incremental_relinearizations", &o->max_incremental_relinearizations,
+         R::Between(0, 1e9), "incremental: more variables to relinearise: refactorise instead");
+  v->Int("full_relinearization_interval", &o->full_relinearization_interval, R::Between(0, 1e9),
+         "incremental: updates between full relinearisations (0: never)");
+}
+
 Smoother::Smoother(const SmootherOptions& options)
     : options_(options),
       layout_(std::make_unique<Layout>()),

@@ -45,6 +45,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "common/options_schema.h"
 #include "estimator/range_bearing_model.h"
 #include "smoother/sparse_cholesky.h"
 
@@ -87,6 +88,10 @@ struct SmootherOptions {
   double reorder_fill_ratio = 2.0;  // refactor when the factor's nonzeros grow this much
   int min_free_slots = 64;          // variables' room reserved at the end of the ordering
 };
+
+// The schema of the options (common/options_schema.h) for a configuration section; the batch
+// method and damping as choices (gauss_newton / levenberg_marquardt, identity / diagonal).
+void VisitSmootherOptions(OptionVisitor* visitor, SmootherOptions* options);
 
 struct SolveReport {
   bool ok = false;

@@ -14,7 +14,7 @@ namespace {
 
 using testing::StepScene;
 
-TEST(StaticObservationsTest, OnlyConfirmedStaticLandmarksOfKindOtherWithPointMeasurements) {
+TEST(StaticObservationsTest, LandmarksAndTentativeLandmarksOfKindOtherWithPointMeasurements) {
   StepScene scene;
   const int landmark = scene.AddLandmark({5, 0}, 0.1, 11);
   const int mover = scene.AddMover({0, 5}, 0.1, {1, 0}, 0.1, ObjectClass::kMoving, 12);
@@ -23,6 +23,7 @@ TEST(StaticObservationsTest, OnlyConfirmedStaticLandmarksOfKindOtherWithPointMea
   const int person = scene.AddLandmark({-5, 5}, 0.1, 14);
   scene.state.object(person).record.kind = ObjectKind::kPerson;
   const int second = scene.AddLandmark({8, -2}, 0.1, 15);
+  const int undecided = scene.AddMover({-3, -3}, 0.1, {0, 0}, 0.1, ObjectClass::kUndecided, 16);
   const int z_landmark = scene.Measure({5, 0});
   const int z_mover = scene.Measure({0, 5});
   const int z_tentative = scene.Measure({5, 5});
@@ -30,18 +31,26 @@ TEST(StaticObservationsTest, OnlyConfirmedStaticLandmarksOfKindOtherWithPointMea
   const int z_free = scene.Measure({20, 0});
   const int z_person_feature = scene.Measure({8, -2});
   scene.measurements[static_cast<size_t>(z_person_feature)].person = true;
+  const int z_undecided = scene.Measure({-3, -3});
   Assignment assignment(static_cast<int>(scene.measurements.size()), scene.state.num_objects());
   assignment.Set(z_landmark, landmark);
   assignment.Set(z_mover, mover);
   assignment.Set(z_tentative, tentative);
   assignment.Set(z_person, person);
   assignment.Set(z_person_feature, second);
+  assignment.Set(z_undecided, undecided);
   (void)z_free;
 
   const std::vector<StaticObservation> observations =
       StaticObservations(scene.measurements, assignment, scene.state);
-  ASSERT_EQ(observations.size(), 1u);
+  ASSERT_EQ(observations.size(), 3u);
   EXPECT_EQ(observations[0].landmark_id, 11);
+  EXPECT_FALSE(observations[0].tentative);
+  // Not yet confirmed, not yet classified: held by the smoother until they are landmarks.
+  EXPECT_EQ(observations[1].landmark_id, 13);
+  EXPECT_TRUE(observations[1].tentative);
+  EXPECT_EQ(observations[2].landmark_id, 16);
+  EXPECT_TRUE(observations[2].tentative);
   EXPECT_EQ(observations[0].range_bearing,
             scene.measurements[static_cast<size_t>(z_landmark)].range_bearing);
   EXPECT_EQ(observations[0].covariance,
@@ -117,7 +126,7 @@ TEST(SmootherInputBuilderTest, ReportsALandmarkThatLeftTheStaticMapOnce) {
   EXPECT_EQ(first.observations.size(), 2u);
   EXPECT_TRUE(first.removed_landmark_ids.empty());
 
-  // Landmark 2 turned moving, landmark 3 (never observed as static) vanished.
+  // Landmark 2 turned moving, landmark 3 (never observed) vanished.
   const SmootherScanInput second = builder.Build(
       Result(2, true, {Landmark(1), Landmark(2, ObjectClass::kMoving)}, {1}), mount);
   EXPECT_TRUE(second.continues);
@@ -129,6 +138,18 @@ TEST(SmootherInputBuilderTest, ReportsALandmarkThatLeftTheStaticMapOnce) {
   EXPECT_EQ(third.removed_landmark_ids, std::vector<int64_t>{1});
   const SmootherScanInput fourth = builder.Build(Result(4, true, {}, {}), mount);
   EXPECT_TRUE(fourth.removed_landmark_ids.empty());
+}
+
+TEST(SmootherInputBuilderTest, AnUndecidedObjectIsNotRemoved) {
+  SmootherInputBuilder builder;
+  builder.Build(Result(1, false, {Landmark(1)}, {1}), SensorMount{});
+  const SmootherScanInput next = builder.Build(
+      Result(2, true, {Landmark(1, ObjectClass::kUndecided)}, {}), SensorMount{});
+  EXPECT_TRUE(next.removed_landmark_ids.empty());
+  ObjectEstimate person = Landmark(1);
+  person.kind = ObjectKind::kPerson;
+  EXPECT_EQ(builder.Build(Result(3, true, {person}, {}), SensorMount{}).removed_landmark_ids,
+            std::vector<int64_t>{1});
 }
 
 TEST(SmootherInputBuilderTest, ANewTimeBaseForgetsWhatWasReported) {
