@@ -1,8 +1,9 @@
 // slammtt-smoother's stage in slammtt-replay on s1-crossing seed 1 (docs/smoother.md, "In the
 // stack"): a `smoother:` section or --smoother runs it, SMOOTHED_POSE at every scan and
 // SMOOTHED_MAP exist, the output is the same bytes every run, the filter's outputs are those of
-// a replay without the smoother, slammtt-eval scores the smoothed trajectory and map, and
-// slammtt-timing sees the stage.
+// a replay without the smoother, slammtt-eval scores the smoothed trajectory and map (the
+// smoothed ATE no worse than the filter's: issue 14's target, on this seed), and slammtt-timing
+// sees the stage.
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -83,7 +84,10 @@ TEST(SmootherReplayTest, SmoothedTrajectoryAndMapAreDeterministicAndScored) {
   ASSERT_TRUE(report["smoothed_ate_rmse_m"].is_number()) << report.dump();
   ASSERT_TRUE(report["smoothed_landmark_rmse_m"].is_number());
   const double smoothed = report["smoothed_ate_rmse_m"].get<double>();
-  // Far better than dead reckoning (0.77 m on this seed); the figures: docs/smoother.md.
+  // Issue 14: the smoothed trajectory no worse than the filter's (seed 1: 0.043 m against
+  // 0.073 m; other seeds: docs/smoother.md, where it does not hold on 3 of 10), and far better
+  // than dead reckoning (0.77 m).
+  EXPECT_LE(smoothed, report["ate_rmse_m"].get<double>());
   EXPECT_LT(smoothed, 0.5 * report["odometry_ate_rmse_m"].get<double>());
   EXPECT_LT(report["smoothed_landmark_rmse_m"].get<double>(), 0.5);
   EXPECT_GE(report["detail"]["smoothed_map"]["static_recall"].get<double>(), 0.9);
