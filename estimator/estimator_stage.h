@@ -1,8 +1,8 @@
 // The estimator as a processing stage (runtime/stage.h): ODOMETRY and FEATURES in; POSE, MAP,
-// TRACKS, SMOOTHER_INPUT, ESTIMATOR_STATUS and STAGE_TIMING out. The live process (slammtt-estimator) and
-// slammtt-replay run this same object; it depends on nothing live (no clock except
-// StageTimer's durations, no LCM handle), and its RANSAC generator is seeded from the
-// configuration, so a replay gives the same bytes every time.
+// TRACKS, SMOOTHER_INPUT, ESTIMATOR_STATUS and STAGE_TIMING out. The live process
+// (slammtt-estimator) and slammtt-replay run this same object; it depends on nothing live (no
+// clock except StageTimer's durations, no LCM handle), and its RANSAC generator is seeded from
+// the configuration, so a replay gives the same bytes every time.
 //
 // Per odometry_t: buffered for the next scan (Estimator::AddOdometry). Nothing is published,
 // except an estimator_status_t (with the odometry's utime) when the message is dropped.

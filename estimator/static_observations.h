@@ -28,8 +28,8 @@ struct StaticObservation {
 // Every measurement i of `measurements` assigned to an object j of `state` (the assignment's
 // object indices are the state's) that is not MOVING, of kind OTHER (a standing person is no
 // landmark: map_t leaves it out too), and is not itself a person feature; in measurement order;
-// tentative unless the object is STATIC and confirmed. Indices outside the state or the measurements are a programming error
-// the assignment cannot make (they are skipped, not trusted).
+// tentative unless the object is STATIC and confirmed. Indices outside the state or the
+// measurements are a programming error the assignment cannot make (skipped, not trusted).
 std::vector<StaticObservation> StaticObservations(const std::vector<PointMeasurement>& measurements,
                                                   const Assignment& assignment,
                                                   const SlamState& state);

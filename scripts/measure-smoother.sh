@@ -16,8 +16,13 @@ config_in=$(cd "$(dirname "$0")/.." && pwd)/estimator/config/$scenario.yaml
 mkdir -p "$out"
 config=$out/$scenario-smoother.yaml
 cp "$config_in" "$config"
-if [ -n "$extra" ]; then printf 'smoother:\n%s\n' "$extra" >> "$config"; else echo 'smoother: {}' >> "$config"; fi
-echo "seed filter_ate_m smoothed_ate_m filter_landmark_rmse_m smoothed_landmark_rmse_m smoother_p50_us smoother_p99_us"
+if [ -n "$extra" ]; then
+  printf 'smoother:\n%s\n' "$extra" >> "$config"
+else
+  echo 'smoother: {}' >> "$config"
+fi
+echo "seed filter_ate_m smoothed_ate_m filter_landmark_rmse_m smoothed_landmark_rmse_m" \
+  "smoother_p50_us smoother_p99_us"
 seed=$first
 while [ "$seed" -le "$last" ]; do
   w=$out/$scenario-seed$seed.lcm
@@ -27,6 +32,14 @@ while [ "$seed" -le "$last" ]; do
   "$bin/slammtt-replay" "$w" -o "$r" --config "$config" >/dev/null 2>&1
   "$bin/slammtt-eval" "$r" --config "$config" --json "$j" >/dev/null 2>&1 || true
   timing=$("$bin/slammtt-timing" "$r.timing.lcm" | awk '$1 == "smoother" {print $3, $5}')
-  python3 -c "import json,sys; d=json.load(open(sys.argv[1])); f=lambda k: 'null' if d[k] is None else '%.3f' % d[k]; print(sys.argv[2], f('ate_rmse_m'), f('smoothed_ate_rmse_m'), f('landmark_rmse_m'), f('smoothed_landmark_rmse_m'), sys.argv[3])" "$j" "$seed" "$timing"
+  python3 - "$j" "$seed" "$timing" <<'PY'
+import json
+import sys
+report = json.load(open(sys.argv[1]))
+def figure(key):
+    return "null" if report[key] is None else "%.3f" % report[key]
+print(sys.argv[2], figure("ate_rmse_m"), figure("smoothed_ate_rmse_m"),
+      figure("landmark_rmse_m"), figure("smoothed_landmark_rmse_m"), sys.argv[3])
+PY
   seed=$((seed + 1))
 done

@@ -18,8 +18,8 @@
 //     object that is not in the problem yet is held with its keyframe (at most
 //     max_held_observations per object) until the object's first confirmed static observation,
 //     which adds the landmark and every held observation; a removal drops what is held.
-//     Observations of other scans are not used (counted). Then one incremental Update, and a batch Optimize every
-//     optimize_every_keyframes keyframes.
+//     Observations of other scans are not used (counted). Then one incremental Update, and a
+//     batch Optimize every optimize_every_keyframes keyframes.
 //  5. The robot's smoothed pose at the scan: the last keyframe's estimate composed with the
 //     motion since.
 // Bad input (a non-finite number, a covariance that is not positive definite, a range <= 0) is

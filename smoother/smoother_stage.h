@@ -8,8 +8,9 @@
 //  - pose_t (`smoothed_pose`): the robot at the scan, map frame of the estimator: the last
 //    keyframe's smoothed estimate composed with the odometry since, and its covariance (zero
 //    with covariances: false);
-//  - map_t (`smoothed_map`), at every map_every_keyframes-th keyframe: every landmark of the problem at its smoothed
-//    estimate, ids as the estimator's, with its marginal covariance; no lines;
+//  - map_t (`smoothed_map`), at every map_every_keyframes-th keyframe: every landmark of the
+//    problem at its smoothed estimate, ids as the estimator's, with its marginal covariance; no
+//    lines;
 //  - stage_timing_t (`stage_timing`): stage "smoother", substages "smooth" (the scan's variables
 //    and factors, Update, and Optimize when due) and "publish" (covariances and messages);
 //    counters "observations", "keyframe" (1 or 0), "keyframes", "landmarks",
