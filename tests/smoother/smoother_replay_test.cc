@@ -22,7 +22,9 @@ using testing::Shell;
 
 std::string Bin(const std::string& program) { return std::string(SLAMMTT_BIN_DIR) + "/" + program; }
 
-std::string Config() { return std::string(SLAMMTT_SOURCE_DIR) + "/estimator/config/s1-crossing.yaml"; }
+std::string Config() {
+  return std::string(SLAMMTT_SOURCE_DIR) + "/estimator/config/s1-crossing.yaml";
+}
 
 std::map<std::string, std::vector<std::string>> Channels(const std::string& path) {
   std::map<std::string, std::vector<std::string>> channels;
