@@ -68,6 +68,16 @@ Estimator::Estimator(const EstimatorOptions& options)
       state_(InitialState(options)),
       last_finite_pose_(state_.robot_pose()) {}
 
+void Estimator::SetLaserGeometry(const EstimatorOptions& options) {
+  EstimatorOptions next = options_;
+  next.sensor = options.sensor;
+  next.field_of_view_rad = options.field_of_view_rad;
+  next.field_of_view_start_rad = options.field_of_view_start_rad;
+  next.field_of_view_end_rad = options.field_of_view_end_rad;
+  next.max_range_m = options.max_range_m;
+  options_ = Checked(next);
+}
+
 TimeJumpLimits Estimator::time_jump_limits() const {
   return TimeJumpLimits{options_.time_jump_back_restart_s, options_.time_jump_forward_s,
                         options_.time_jump_confirm_messages};
@@ -153,101 +163,171 @@ bool Estimator::AddOdometry(const OdometryReading& reading) {
   return true;
 }
 
+// What the steps of one scan hand on to each other.
+struct Estimator::ScanInProgress {
+  ScanInProgress(int64_t scan_utime, const ScanInterval& scan_interval,
+                 const SensorMount& sensor, StepCounts* step_counts)
+      : utime(scan_utime), interval(scan_interval), counts(step_counts), predicted(sensor) {}
+
+  // The scan as the association levels see it (association.h).
+  ScanAssociation association() const { return {features.measurements, may_update, utime}; }
+
+  const int64_t utime;
+  const ScanInterval interval;
+  StepCounts* const counts;
+  ValidatedFeatures features;          // the point measurements, off the line landmarks
+  ObservationPredictions predicted;    // once per state the scan passes through
+  ScanGating gating;                   // at the predicted state
+  std::vector<uint8_t> may_update;     // per object: the budget of updates
+  Assignment assignment{0, 0};         // measurement <-> object, level by level
+};
+
+namespace {
+
+// Tells the observer (if any) that a sub-stage of the scan ended.
+struct SubstageLaps {
+  StepObserver* observer;
+  void operator()(Substage substage) const {
+    if (observer != nullptr) observer->SubstageDone(substage);
+  }
+};
+
+}  // namespace
+
 ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
                                   StepObserver* observer) {
   ScanResult result;
   result.utime = scan.utime;
-  StepCounts& counts = result.counts;
-  counts.features = static_cast<int>(scan.features.size());
-  auto lap = [observer](Substage s) { if (observer != nullptr) observer->SubstageDone(s); };
+  result.counts.features = static_cast<int>(scan.features.size());
   if (!AcceptScanTime(scan.utime)) return result;
-  const ScanInterval interval = IntervalTo(scan.utime);
-  ValidatedFeatures features = TakeFeatures(scan.features, &counts);
-  const bool static_world = options_.mode == AssociationMode::kStaticNearestNeighbour;
+  const SubstageLaps lap{observer};
+  ScanInProgress s(scan.utime, IntervalTo(scan.utime), options_.sensor, &result.counts);
+  s.features = TakeFeatures(scan.features, s.counts);
 
-  // 1. Predict (line 2).
-  Predict(scan.utime, interval);
-  last_scan_utime_ = scan.utime;
-  // 1b. The walls (line landmarks) correct the pose before the points are judged.
-  UpdateLines(scan, &counts);
-  DropPointsOnLines(&features, &counts);
+  // Line 2: propagate the whole state to the scan (step 1); the walls then correct the pose
+  // before the points are judged (step 1b).
+  PropagateState(scan, &s);
   lap(Substage::kPredict);
-
-  // 2, 3. Predict the observations, gate (lines 3-4), and the budget of landmark updates.
-  ObservationPredictions predicted(options_.sensor);
-  const ScanGating gating = GateScan(features.measurements, predicted.At(state_), options_);
+  // Lines 3-4: individual compatibility with gate d1, the association matrix J (steps 2-3).
+  GateMeasurements(&s);
   lap(Substage::kGating);
-  const std::vector<uint8_t> may_update =
-      ObjectsThatMayUpdate(state_, gating.gated, options_.max_static_updates_per_scan,
-                           options_.max_mover_updates_per_scan);
-  const ScanAssociation association{features.measurements, may_update, scan.utime};
-  Assignment assignment(static_cast<int>(features.measurements.size()), state_.num_objects());
-
-  // 4. Level 1 (lines 5-6); baseline (a): nearest neighbours.
-  std::vector<Candidate> ambiguous;
-  if (static_world) {
-    AssociateNearestNeighbours(gating.compatible, association, options_, &predicted, &state_,
-                               &assignment, &counts);
-  } else if (options_.mode == AssociationMode::kMlRansac) {
-    ambiguous = AssociateLevel1(gating.compatible, association, options_, &predicted, &state_,
-                                &assignment, &counts);
-  }
+  // Lines 5-6: the first level EKF update with the pairs J settles (step 4).
+  const std::vector<Candidate> ambiguous = UpdateFirstLevel(&s);
   lap(Substage::kLevel1);
-
-  // 5. RANSAC over what level 1 left ambiguous, then level 2 with the best hypothesis (line 7).
-  const RansacOutcome ransac =
-      static_world ? RansacOutcome()
-                   : RunRansacLevel(ambiguous, association, options_, &predicted, state_,
-                                    assignment, rng);
-  counts.hypotheses = ransac.hypotheses;
-  counts.ransac_pair_tests = ransac.pair_tests;
-  counters_.hypotheses_generated += ransac.hypotheses;
-  if (ransac.budget_cut) {
-    counts.ransac_budget_cut = 1;
-    ++counters_.ransac_budget_cuts;
-    Event("scan at utime " + std::to_string(scan.utime) + ": RANSAC stopped after " +
-          std::to_string(ransac.hypotheses) + " hypotheses at ransac_max_pair_tests (" +
-          std::to_string(options_.ransac.max_pair_tests) + " pair tests)");
-  }
+  // Line 7 a-d: RANSAC over the observations J leaves to decide (step 5)...
+  const RansacOutcome ransac = FindRansacConsensus(ambiguous, rng, &s);
   lap(Substage::kRansac);
-  counts.level2_updates = ApplyPairs(ransac.consensus, options_.gate_d1_chi2, association,
-                                     options_, &predicted, &state_, &assignment, &counts);
-
-  // 6. Level 3 (line 9), after the manoeuvres.
-  if (options_.level3 && !static_world) {
-    GiveManoeuvringMoversAVelocityJump(interval.dt_s, association, options_, &predicted,
-                                       &state_, assignment, &counts);
-    AssociateLevel3(association, options_, &predicted, &state_, &assignment, &counts);
-  }
-  // The speeds each kind can reach (people.h).
-  counts.speeds_limited = LimitSpeedsToTheirKind(options_.people, &state_);
+  // ... e: the second level EKF update with its consensus, gate d1.
+  UpdateSecondLevel(ransac, &s);
+  // Line 9 (optional): the third level EKF update with gate d2 > d1 (step 6).
+  UpdateThirdLevel(&s);
   lap(Substage::kLevel23);
-
-  // 7. Track management (line 11), judged at the state after the updates.
-  const std::vector<ObjectPrediction> after_updates = predicted.At(state_);
-  RecordHitsAndMisses(association, features.widths_m, interval.gap_s, options_, after_updates,
-                      assignment, &state_);
-  const std::vector<int> taken_over =
-      TakeOverLostIdentities(scan.utime, options_, assignment, &state_, &counts);
-  // 8. Classification (line 12).
-  ClassifyObjects(association, gating.gated, options_, after_updates, assignment, &state_,
-                  &counts);
-  result.static_observations = StaticObservations(features.measurements, assignment, state_);
-  // 9. Re-acquisition, then pruning (line 11).
-  const std::vector<int64_t> continues_id =
-      TagPossibleContinuations(association, gating.nearest_nis, taken_over, options_,
-                               &predicted, state_, assignment);
-  PruneObjects(scan.utime, taken_over, options_, after_updates, assignment, &state_, &counts);
-  // 10. New objects (line 13).
-  AddNewObjects(association, gating.nearest_nis, continues_id, options_, assignment, &next_id_,
-                &state_, &counts);
-  ReportScanProblems(scan.utime, counts);
-  counts.observation_predictions = predicted.computations();
-  EnsureFiniteState(scan.utime, &counts);
+  // Lines 11-13: prune, determine static or dynamic, initialise new tracks (steps 7-10); what
+  // the scan measured of the static landmarks is kept for the smoother.
+  result.static_observations = ManageTracks(&s);
+  FinishScan(&s);
   lap(Substage::kTrackManagement);
   ++counters_.scans_processed;
   ReportEstimate(scan.utime, &result);
   return result;
+}
+
+void Estimator::PropagateState(const ScanInput& scan, ScanInProgress* s) {
+  Predict(scan.utime, s->interval);
+  last_scan_utime_ = scan.utime;
+  UpdateLines(scan, s->counts);
+  DropPointsOnLines(&s->features, s->counts);
+}
+
+void Estimator::GateMeasurements(ScanInProgress* s) {
+  s->gating = GateScan(s->features.measurements, s->predicted.At(state_), options_);
+  s->may_update =
+      ObjectsThatMayUpdate(state_, s->gating.gated, options_.max_static_updates_per_scan,
+                           options_.max_mover_updates_per_scan);
+  s->assignment =
+      Assignment(static_cast<int>(s->features.measurements.size()), state_.num_objects());
+}
+
+std::vector<Candidate> Estimator::UpdateFirstLevel(ScanInProgress* s) {
+  if (options_.mode == AssociationMode::kStaticNearestNeighbour) {
+    AssociateNearestNeighbours(s->gating.compatible, s->association(), options_, &s->predicted,
+                               &state_, &s->assignment, s->counts);
+    return {};
+  }
+  if (options_.mode != AssociationMode::kMlRansac) return {};
+  return AssociateLevel1(s->gating.compatible, s->association(), options_, &s->predicted,
+                         &state_, &s->assignment, s->counts);
+}
+
+RansacOutcome Estimator::FindRansacConsensus(const std::vector<Candidate>& ambiguous,
+                                             std::mt19937_64* rng, ScanInProgress* s) {
+  RansacOutcome ransac;  // none in the static-world baseline
+  if (options_.mode != AssociationMode::kStaticNearestNeighbour) {
+    ransac = RunRansacLevel(ambiguous, s->association(), options_, &s->predicted, state_,
+                            s->assignment, rng);
+  }
+  s->counts->hypotheses = ransac.hypotheses;
+  s->counts->ransac_pair_tests = ransac.pair_tests;
+  counters_.hypotheses_generated += ransac.hypotheses;
+  if (ransac.budget_cut) {
+    s->counts->ransac_budget_cut = 1;
+    ++counters_.ransac_budget_cuts;
+    Event("scan at utime " + std::to_string(s->utime) + ": RANSAC stopped after " +
+          std::to_string(ransac.hypotheses) + " hypotheses at ransac_max_pair_tests (" +
+          std::to_string(options_.ransac.max_pair_tests) + " pair tests)");
+  }
+  return ransac;
+}
+
+void Estimator::UpdateSecondLevel(const RansacOutcome& ransac, ScanInProgress* s) {
+  s->counts->level2_updates =
+      ApplyPairs(ransac.consensus, options_.gate_d1_chi2, s->association(), options_,
+                 &s->predicted, &state_, &s->assignment, s->counts);
+}
+
+void Estimator::UpdateThirdLevel(ScanInProgress* s) {
+  if (options_.level3 && options_.mode != AssociationMode::kStaticNearestNeighbour) {
+    GiveManoeuvringMoversAVelocityJump(s->interval.dt_s, s->association(), options_,
+                                       &s->predicted, &state_, s->assignment, s->counts);
+    AssociateLevel3(s->association(), options_, &s->predicted, &state_, &s->assignment,
+                    s->counts);
+  }
+  // The speeds each kind can reach (people.h).
+  s->counts->speeds_limited = LimitSpeedsToTheirKind(options_.people, &state_);
+}
+
+std::vector<StaticObservation> Estimator::ManageTracks(ScanInProgress* s) {
+  const ScanAssociation association = s->association();
+  // 7. Hits and misses (line 11), judged at the state after the updates; the take-overs of
+  // lost movers' identities tagged at an earlier scan.
+  const std::vector<ObjectPrediction> after_updates = s->predicted.At(state_);
+  RecordHitsAndMisses(association, s->features.widths_m, s->interval.gap_s, options_,
+                      after_updates, s->assignment, &state_);
+  const std::vector<int> taken_over =
+      TakeOverLostIdentities(s->utime, options_, s->assignment, &state_, s->counts);
+  // 8. Static or dynamic (line 12).
+  ClassifyObjects(association, s->gating.gated, options_, after_updates, s->assignment,
+                  &state_, s->counts);
+  // The measurements of confirmed static landmarks, taken while the assignment's object indices
+  // are still those of the state (pruning and new objects renumber them).
+  std::vector<StaticObservation> static_observations =
+      StaticObservations(s->features.measurements, s->assignment, state_);
+  // 9. Re-acquisition tags, then pruning (line 11).
+  const std::vector<int64_t> continues_id =
+      TagPossibleContinuations(association, s->gating.nearest_nis, taken_over, options_,
+                               &s->predicted, state_, s->assignment);
+  PruneObjects(s->utime, taken_over, options_, after_updates, s->assignment, &state_,
+               s->counts);
+  // 10. New tracks outside gate dn of every object (line 13).
+  AddNewObjects(association, s->gating.nearest_nis, continues_id, options_, s->assignment,
+                &next_id_, &state_, s->counts);
+  return static_observations;
+}
+
+void Estimator::FinishScan(ScanInProgress* s) {
+  ReportScanProblems(s->utime, *s->counts);
+  s->counts->observation_predictions = s->predicted.computations();
+  EnsureFiniteState(s->utime, s->counts);
 }
 
 bool Estimator::AcceptScanTime(int64_t utime) {

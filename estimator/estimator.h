@@ -8,7 +8,8 @@
 //                             eqs. 6-8, landmarks unchanged (line 2: scan_prediction.h);
 //  1b. line landmarks        the scan's line features (walls) update the line landmarks and
 //                             the pose, and start new line landmarks; the point features on a
-//                             line landmark are dropped (line_landmarks.h);
+//                             line landmark are dropped (line_landmarks.h; new walls start
+//                             as candidate lines, line_candidates.h);
 //   2. predict observations   of every object (eqs. 10-11, 20-21), once per state the scan
 //                             passes through (observation_predictions.h);
 //   3. gate                   Mahalanobis distances and the compatibility matrix J with gate d1
@@ -63,6 +64,8 @@
 
 #include "estimator/estimator_options.h"
 #include "estimator/feature_validation.h"
+#include "estimator/gating.h"
+#include "estimator/ml_ransac.h"
 #include "estimator/odometry_buffer.h"
 #include "estimator/odometry_plausibility.h"
 #include "estimator/scan_prediction.h"
@@ -172,6 +175,12 @@ class Estimator {
   ScanResult ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
                          StepObserver* observer = nullptr);
 
+  // From the next scan on, the laser geometry of `options` (sensor mount, field of view,
+  // max_range_m; laser_geometry.h) replaces the one the estimator was built with; nothing else
+  // of `options` is read, and the state is kept (landmarks live in the map frame). Throws
+  // std::invalid_argument with CheckEstimatorOptions()'s message for unusable options.
+  void SetLaserGeometry(const EstimatorOptions& options);
+
   const EstimatorCounters& counters() const { return counters_; }
   // Description of the last unusual event ("" if none yet).
   const std::string& last_event() const { return last_event_; }
@@ -195,6 +204,31 @@ class Estimator {
   ScanInterval IntervalTo(int64_t utime) const;
   // The scan's features validated (feature_validation.h); rejections counted and described.
   ValidatedFeatures TakeFeatures(const std::vector<FeatureReading>& features, StepCounts* counts);
+  // The steps of ProcessScan, each one line (or lines) of Algorithm 2; ScanInProgress
+  // (estimator.cc) carries what one step hands on to the next.
+  struct ScanInProgress;
+  // Line 2: Predict, then UpdateLines and DropPointsOnLines.
+  void PropagateState(const ScanInput& scan, ScanInProgress* s);
+  // Lines 3-4 (scan_gating.h), and the budget of updates (update_budget.h).
+  void GateMeasurements(ScanInProgress* s);
+  // Lines 5-6 (level1.h; the static-world baseline: nearest_neighbour.h). Returns the pairs J
+  // leaves ambiguous (none in the baselines).
+  std::vector<Candidate> UpdateFirstLevel(ScanInProgress* s);
+  // Line 7 a-d (ransac_level.h): RANSAC's best hypothesis over `ambiguous`, counted; a cut by
+  // ransac_max_pair_tests described. None in the static-world baseline.
+  RansacOutcome FindRansacConsensus(const std::vector<Candidate>& ambiguous,
+                                    std::mt19937_64* rng, ScanInProgress* s);
+  // Line 7 e: the consensus' pairs, gated by d1, update the state (association.h).
+  void UpdateSecondLevel(const RansacOutcome& ransac, ScanInProgress* s);
+  // Line 9 when level 3 is on (manoeuvres.h, level3.h); then every speed limited to its kind's
+  // (people.h).
+  void UpdateThirdLevel(ScanInProgress* s);
+  // Lines 11-13: hits and misses, take-overs, classification, re-acquisition tags, pruning,
+  // new objects (steps 7-10 above). Returns the scan's measurements of confirmed static point
+  // landmarks, taken right after classification (static_observations.h).
+  std::vector<StaticObservation> ManageTracks(ScanInProgress* s);
+  // The scan's problems reported, the state made finite (EnsureFiniteState).
+  void FinishScan(ScanInProgress* s);
   // Step 1 (scan_prediction.h), with what it made up for counted and described.
   void Predict(int64_t utime, const ScanInterval& interval);
   // Step 1b (line_landmarks.h): the walls update the pose and the line landmarks.

@@ -1,5 +1,5 @@
-// slammtt-estimator: ODOMETRY and FEATURES in; POSE, MAP, TRACKS, ESTIMATOR_STATUS and
-// STAGE_TIMING out (paper Algorithm 2). Thin: the work is in EstimatorStage
+// slammtt-estimator: ODOMETRY, FEATURES and LASER_GEOMETRY in; POSE, MAP, TRACKS,
+// ESTIMATOR_STATUS and STAGE_TIMING out (paper Algorithm 2). Thin: the work is in EstimatorStage
 // (estimator/estimator_stage.h), which slammtt-replay runs too.
 #include <algorithm>
 #include <cmath>
@@ -17,8 +17,9 @@ int main(int argc, char** argv) {
     slammtt::CommandLine command_line(
         "slammtt-estimator", "[options]",
         "EKF SLAM with moving-object tracking and ML-RANSAC data association (paper Algorithm "
-        "2). Subscribes odometry and features; publishes pose, map, tracks, estimator_status "
-        "and stage_timing; options in the `estimator:` section of --config "
+        "2). Subscribes odometry, features and laser_geometry (the laser's mount, view and "
+        "range, taken where --config does not give them); publishes pose, map, tracks, "
+        "estimator_status and stage_timing; options in the `estimator:` section of --config "
         "(docs/estimator.md).");
     slammtt::AddStandardOptions(&command_line);
     command_line.AddFlag("options-table",

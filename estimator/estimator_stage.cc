@@ -1,7 +1,9 @@
 #include "estimator/estimator_stage.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstring>
 #include <utility>
 
 #include "estimator/smoother_input_message.h"
@@ -9,6 +11,7 @@
 #include "runtime/log.h"
 #include "slammtt_msgs/estimator_status_t.hpp"
 #include "slammtt_msgs/features_t.hpp"
+#include "slammtt_msgs/laser_geometry_t.hpp"
 #include "slammtt_msgs/map_t.hpp"
 #include "slammtt_msgs/odometry_t.hpp"
 #include "slammtt_msgs/pose_t.hpp"
@@ -55,12 +58,119 @@ Eigen::Vector2d SensorPoint(const slammtt_msgs::feature_t& f) {
   return f.range_m * Eigen::Vector2d(std::cos(f.bearing_rad), std::sin(f.bearing_rad));
 }
 
+// Text from a message, fit for one log line: control characters become '?', and at most 200
+// bytes are kept.
+std::string OneLine(const std::string& text) {
+  std::string line = text.substr(0, 200);
+  for (char& c : line) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7F) c = '?';
+  }
+  return line;
+}
+
 // A 2x2 covariance as the messages carry it: row-major, 4 doubles.
 void Write2x2(const Eigen::Matrix2d& m, double out[4]) {
   out[0] = m(0, 0);
   out[1] = m(0, 1);
   out[2] = m(1, 0);
   out[3] = m(1, 1);
+}
+
+// The counters of stage_timing_t for one processed scan.
+void CountScanWork(const ScanResult& result, StageTimer* timer) {
+  const StepCounts& counts = result.counts;
+  timer->Count("features", counts.features);
+  timer->Count("objects", static_cast<int64_t>(result.objects.size()));
+  timer->Count("hypotheses", counts.hypotheses);
+  timer->Count("updates", counts.level1_updates + counts.level2_updates + counts.level3_updates);
+  timer->Count("updates_skipped", counts.static_updates_skipped);
+  timer->Count("lines", counts.lines);
+  timer->Count("line_updates", counts.line_updates);
+  timer->Count("new_lines", counts.new_lines);
+  timer->Count("features_over_cap", counts.features_over_cap);
+  timer->Count("ransac_pair_tests", counts.ransac_pair_tests);
+  timer->Count("ransac_budget_cut", counts.ransac_budget_cut);
+  timer->Count("state_recovered", counts.state_recovered);
+}
+
+slammtt_msgs::pose_t PoseMessage(int64_t utime, const ScanResult& result) {
+  slammtt_msgs::pose_t pose;
+  pose.utime = utime;
+  pose.x_m = result.pose(0);
+  pose.y_m = result.pose(1);
+  pose.heading_rad = result.pose(2);
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) pose.covariance[3 * r + c] = result.pose_covariance(r, c);
+  }
+  return pose;
+}
+
+slammtt_msgs::track_t TrackMessage(const ObjectEstimate& e) {
+  slammtt_msgs::track_t track;
+  track.id = e.id;
+  track.x_m = e.position(0);
+  track.y_m = e.position(1);
+  track.vx_mps = e.velocity(0);
+  track.vy_mps = e.velocity(1);
+  for (int r = 0; r < 4; ++r) {
+    for (int c = 0; c < 4; ++c) track.covariance[4 * r + c] = e.covariance(r, c);
+  }
+  track.object_class = ClassCode(e.object_class);
+  track.confirmed = e.confirmed;
+  track.first_seen_utime = e.first_seen_utime;
+  track.hits = e.hits;
+  track.last_seen_utime = e.last_seen_utime;
+  track.measured = e.measured;
+  track.coasting_s = e.coasting_s;
+  track.reported = e.reported;
+  track.kind = e.kind == ObjectKind::kPerson ? slammtt_msgs::track_t::KIND_PERSON
+                                             : slammtt_msgs::track_t::KIND_OTHER;
+  return track;
+}
+
+// Every object, in the estimator's order.
+slammtt_msgs::tracks_t TracksMessage(int64_t utime, const ScanResult& result) {
+  slammtt_msgs::tracks_t tracks;
+  tracks.utime = utime;
+  for (const ObjectEstimate& e : result.objects) tracks.tracks.push_back(TrackMessage(e));
+  tracks.num_tracks = static_cast<int32_t>(tracks.tracks.size());
+  return tracks;
+}
+
+slammtt_msgs::line_landmark_t LineLandmarkMessage(const LineEstimate& e) {
+  slammtt_msgs::line_landmark_t line;
+  line.id = e.id;
+  line.rho_m = e.line(0);
+  line.alpha_rad = e.line(1);
+  Write2x2(e.covariance, line.covariance);
+  line.from_x_m = e.from_m(0);
+  line.from_y_m = e.from_m(1);
+  line.to_x_m = e.to_m(0);
+  line.to_y_m = e.to_m(1);
+  line.hits = e.hits;
+  return line;
+}
+
+// The confirmed static objects that are not people, and every line landmark.
+slammtt_msgs::map_t MapMessage(int64_t utime, const ScanResult& result) {
+  slammtt_msgs::map_t map;
+  map.utime = utime;
+  for (const ObjectEstimate& e : result.objects) {
+    // A standing person is a STATIC object of kind PERSON: tracked, never part of the map.
+    if (e.object_class != ObjectClass::kStatic || !e.confirmed || e.kind == ObjectKind::kPerson) {
+      continue;
+    }
+    slammtt_msgs::landmark_t landmark;
+    landmark.id = e.id;
+    landmark.x_m = e.position(0);
+    landmark.y_m = e.position(1);
+    Write2x2(e.covariance.topLeftCorner<2, 2>(), landmark.covariance);
+    map.landmarks.push_back(landmark);
+  }
+  for (const LineEstimate& e : result.lines) map.lines.push_back(LineLandmarkMessage(e));
+  map.num_landmarks = static_cast<int32_t>(map.landmarks.size());
+  map.num_lines = static_cast<int32_t>(map.lines.size());
+  return map;
 }
 
 }  // namespace
@@ -166,6 +276,12 @@ void VisitEstimatorStageOptions(OptionVisitor* v, EstimatorStageOptions* o) {
 EstimatorStageOptions ReadEstimatorOptions(const Config& s) {
   RejectRenamedKeys(s, RenamedEstimatorKeys(), "docs/estimator.md, \"Migration\"");
   EstimatorStageOptions stage;
+  stage.geometry_given.mount =
+      s.Has("sensor_forward_m") || s.Has("sensor_left_m") || s.Has("sensor_yaw_deg");
+  stage.geometry_given.field_of_view = s.Has("field_of_view_deg") ||
+                                       s.Has("field_of_view_start_deg") ||
+                                       s.Has("field_of_view_end_deg");
+  stage.geometry_given.max_range = s.Has("max_range_m");
   ConfigOptionReader reader(s);
   VisitEstimatorStageOptions(&reader, &stage);
   s.CheckUnused();
@@ -185,8 +301,11 @@ EstimatorStage::EstimatorStage(const EstimatorStageOptions& options, const Chann
     : estimator_(options.estimator),
       rng_(options.seed),
       person_features_(options.person_features),
+      configured_(options.estimator),
+      geometry_given_(options.geometry_given),
       odometry_channel_(channels.Get("odometry")),
       features_channel_(channels.Get("features")),
+      laser_geometry_channel_(channels.Get("laser_geometry")),
       pose_channel_(channels.Get("pose")),
       map_channel_(channels.Get("map")),
       tracks_channel_(channels.Get("tracks")),
@@ -198,7 +317,7 @@ EstimatorStage::EstimatorStage(const ProcessSettings& settings)
     : EstimatorStage(ReadEstimatorOptions(settings.config.Child("estimator")), settings.channels) {}
 
 std::vector<std::string> EstimatorStage::InputChannels() const {
-  return {odometry_channel_, features_channel_};
+  return {odometry_channel_, features_channel_, laser_geometry_channel_};
 }
 
 void EstimatorStage::Handle(const std::string& channel, const void* data, int size,
@@ -207,6 +326,8 @@ void EstimatorStage::Handle(const std::string& channel, const void* data, int si
     HandleOdometry(data, size, out);
   } else if (channel == features_channel_) {
     HandleFeatures(data, size, out);
+  } else if (channel == laser_geometry_channel_) {
+    HandleLaserGeometry(data, size);
   }
 }
 
@@ -230,6 +351,52 @@ void EstimatorStage::HandleOdometry(const void* data, int size, MessageSink& out
   if (!estimator_.AddOdometry(reading)) PublishStatus(message.utime, out);
 }
 
+void EstimatorStage::HandleLaserGeometry(const void* data, int size) {
+  slammtt_msgs::laser_geometry_t message;
+  if (!Decode(data, size, &message)) {
+    Undecodable("undecodable laser_geometry_t message dropped");
+    return;
+  }
+  ++counters_.geometry_messages;
+  LaserGeometry log;
+  log.mount.forward_m = message.mount_forward_m;
+  log.mount.left_m = message.mount_left_m;
+  log.mount.yaw_rad = message.mount_yaw_rad;
+  log.view.start_rad = message.view_start_rad;
+  log.view.end_rad = message.view_end_rad;
+  log.view.symmetric = message.view_start_rad == -message.view_end_rad;
+  log.max_range_m = message.range_max_m;
+  // Publishers repeat their geometry about once a second: only a new one is reconciled and
+  // reported. Compared bit for bit, so that a repeated NaN is the same geometry too.
+  const std::array<double, 6> values = {log.mount.forward_m, log.mount.left_m,
+                                        log.mount.yaw_rad,   log.view.start_rad,
+                                        log.view.end_rad,    log.max_range_m};
+  if (log_geometry_ &&
+      std::memcmp(log_geometry_->data(), values.data(), sizeof(double) * values.size()) == 0) {
+    return;
+  }
+  log_geometry_ = values;
+  const std::string source = message.source.empty() ? "" : " (" + OneLine(message.source) + ")";
+  const GeometryReconciliation r = ReconcileLaserGeometry(configured_, geometry_given_, log);
+  if (!r.problem.empty()) {
+    ++counters_.geometry_rejected;
+    LogWarning() << "estimator: laser geometry of " << laser_geometry_channel_ << source
+                 << " not used: " << r.problem;
+    return;
+  }
+  if (!r.disagreement.empty()) {
+    ++counters_.geometry_disagreements;
+    LogWarning() << "estimator: the configuration's laser geometry disagrees with "
+                 << laser_geometry_channel_ << source << ": " << r.disagreement
+                 << "; the configuration's is used";
+  }
+  if (!r.taken.empty()) {
+    LogInfo() << "estimator: laser geometry the configuration does not give, taken from "
+              << laser_geometry_channel_ << source << ": " << r.taken;
+  }
+  estimator_.SetLaserGeometry(r.options);
+}
+
 void EstimatorStage::HandleFeatures(const void* data, int size, MessageSink& out) {
   slammtt_msgs::features_t message;
   if (!Decode(data, size, &message)) {
@@ -244,83 +411,11 @@ void EstimatorStage::HandleFeatures(const void* data, int size, MessageSink& out
     PublishStatus(message.utime, out);
     return;
   }
-  timer.Count("features", result.counts.features);
-  timer.Count("objects", static_cast<int64_t>(result.objects.size()));
-  timer.Count("hypotheses", result.counts.hypotheses);
-  timer.Count("updates", result.counts.level1_updates + result.counts.level2_updates +
-                             result.counts.level3_updates);
-  timer.Count("updates_skipped", result.counts.static_updates_skipped);
-  timer.Count("lines", result.counts.lines);
-  timer.Count("line_updates", result.counts.line_updates);
-  timer.Count("new_lines", result.counts.new_lines);
-  timer.Count("features_over_cap", result.counts.features_over_cap);
-  timer.Count("ransac_pair_tests", result.counts.ransac_pair_tests);
-  timer.Count("ransac_budget_cut", result.counts.ransac_budget_cut);
-  timer.Count("state_recovered", result.counts.state_recovered);
+  CountScanWork(result, &timer);
   const slammtt_msgs::stage_timing_t timing = timer.Finish();
-
-  slammtt_msgs::pose_t pose;
-  pose.utime = message.utime;
-  pose.x_m = result.pose(0);
-  pose.y_m = result.pose(1);
-  pose.heading_rad = result.pose(2);
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) pose.covariance[3 * r + c] = result.pose_covariance(r, c);
-  }
-  slammtt_msgs::map_t map;
-  map.utime = message.utime;
-  slammtt_msgs::tracks_t tracks;
-  tracks.utime = message.utime;
-  for (const ObjectEstimate& e : result.objects) {
-    slammtt_msgs::track_t track;
-    track.id = e.id;
-    track.x_m = e.position(0);
-    track.y_m = e.position(1);
-    track.vx_mps = e.velocity(0);
-    track.vy_mps = e.velocity(1);
-    for (int r = 0; r < 4; ++r) {
-      for (int c = 0; c < 4; ++c) track.covariance[4 * r + c] = e.covariance(r, c);
-    }
-    track.object_class = ClassCode(e.object_class);
-    track.confirmed = e.confirmed;
-    track.first_seen_utime = e.first_seen_utime;
-    track.hits = e.hits;
-    track.last_seen_utime = e.last_seen_utime;
-    track.measured = e.measured;
-    track.coasting_s = e.coasting_s;
-    track.reported = e.reported;
-    track.kind = e.kind == ObjectKind::kPerson ? slammtt_msgs::track_t::KIND_PERSON
-                                               : slammtt_msgs::track_t::KIND_OTHER;
-    tracks.tracks.push_back(track);
-    // A standing person is a STATIC object of kind PERSON: tracked, never part of the map.
-    if (e.object_class == ObjectClass::kStatic && e.confirmed && e.kind != ObjectKind::kPerson) {
-      slammtt_msgs::landmark_t landmark;
-      landmark.id = e.id;
-      landmark.x_m = e.position(0);
-      landmark.y_m = e.position(1);
-      Write2x2(e.covariance.topLeftCorner<2, 2>(), landmark.covariance);
-      map.landmarks.push_back(landmark);
-    }
-  }
-  for (const LineEstimate& e : result.lines) {
-    slammtt_msgs::line_landmark_t line;
-    line.id = e.id;
-    line.rho_m = e.line(0);
-    line.alpha_rad = e.line(1);
-    Write2x2(e.covariance, line.covariance);
-    line.from_x_m = e.from_m(0);
-    line.from_y_m = e.from_m(1);
-    line.to_x_m = e.to_m(0);
-    line.to_y_m = e.to_m(1);
-    line.hits = e.hits;
-    map.lines.push_back(line);
-  }
-  tracks.num_tracks = static_cast<int32_t>(tracks.tracks.size());
-  map.num_landmarks = static_cast<int32_t>(map.landmarks.size());
-  map.num_lines = static_cast<int32_t>(map.lines.size());
-  out.PublishMessage(pose_channel_, pose);
-  out.PublishMessage(map_channel_, map);
-  out.PublishMessage(tracks_channel_, tracks);
+  out.PublishMessage(pose_channel_, PoseMessage(message.utime, result));
+  out.PublishMessage(map_channel_, MapMessage(message.utime, result));
+  out.PublishMessage(tracks_channel_, TracksMessage(message.utime, result));
   PublishSmootherInput(result, out);
   PublishStatus(message.utime, out);
   out.PublishMessage(timing_channel_, timing);

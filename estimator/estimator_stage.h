@@ -1,5 +1,5 @@
-// The estimator as a processing stage (runtime/stage.h): ODOMETRY and FEATURES in; POSE, MAP,
-// TRACKS, SMOOTHER_INPUT, ESTIMATOR_STATUS and STAGE_TIMING out. The live process
+// The estimator as a processing stage (runtime/stage.h): ODOMETRY, FEATURES and LASER_GEOMETRY
+// in; POSE, MAP, TRACKS, SMOOTHER_INPUT, ESTIMATOR_STATUS and STAGE_TIMING out. The live process
 // (slammtt-estimator) and slammtt-replay run this same object; it depends on nothing live (no
 // clock except StageTimer's durations, no LCM handle), and its RANSAC generator is seeded from
 // the configuration, so a replay gives the same bytes every time.
@@ -21,18 +21,27 @@
 //    "level1", "ransac", "level2_3", "track_management"; counters "features" (received),
 //    "objects" (after the scan), "hypotheses" (RANSAC hypotheses of this scan), "updates",
 //    "updates_skipped", "lines" (line features received), "line_updates", "new_lines".
+// Per laser_geometry_t: the parts of the laser geometry the configuration does not give are
+// taken from it, and the parts it gives are compared with it (laser_geometry.h); nothing is
+// published. Each geometry the log gives is reported once, in one line on stderr: what was
+// taken (an info line naming the values), or what disagrees (a warning naming both values;
+// counted in counters().geometry_disagreements). An unusable geometry is counted
+// (geometry_rejected), warned about once and not used.
 // A scan older than the last processed one is dropped: only estimator_status_t is published.
 // A message that cannot be decoded is counted (counters().messages_undecodable), logged (the
 // 1st, 10th, 100th, ... time) and nothing is published: it has no trustworthy utime.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
 
 #include "estimator/estimator.h"
+#include "estimator/laser_geometry.h"
 #include "estimator/smoother_input.h"
 #include "runtime/config.h"
 #include "runtime/config_options.h"
@@ -50,6 +59,10 @@ struct EstimatorStageOptions {
   // legs is one object to track, not two. false: every point feature is a measurement and
   // person features are ignored. Line features update the line landmarks (line_landmarks.h).
   bool person_features = true;
+  // The parts of the laser geometry the section gives (any of their keys present): kept and
+  // compared with a log's LASER_GEOMETRY; the others are taken from it. Not an option: set by
+  // ReadEstimatorOptions from the keys present.
+  ConfiguredGeometryParts geometry_given;
 };
 
 // The measurements of one FEATURES message (EstimatorStageOptions::person_features). A person
@@ -67,7 +80,8 @@ void VisitEstimatorStageOptions(OptionVisitor* visitor, EstimatorStageOptions* o
 const std::vector<RenamedKey>& RenamedEstimatorKeys();
 
 // Reads the `estimator:` section of the stack configuration through the schema; absent keys
-// keep the defaults of EstimatorStageOptions. Throws ConfigError naming file, line and key for a
+// keep the defaults of EstimatorStageOptions, and geometry_given says which geometry keys are
+// present. Throws ConfigError naming file, line and key for a
 // renamed key (with its new name), a wrong type, a value out of its range, an unknown key
 // (CheckUnused()) or options that do not fit together (CheckEstimatorOptions).
 EstimatorStageOptions ReadEstimatorOptions(const Config& section);
@@ -79,6 +93,9 @@ std::string EstimatorStageOptionsTable();
 struct EstimatorStageCounters {
   int64_t scans_published = 0;
   int64_t messages_undecodable = 0;
+  int64_t geometry_messages = 0;       // LASER_GEOMETRY messages decoded
+  int64_t geometry_disagreements = 0;  // geometries that disagree with the configuration
+  int64_t geometry_rejected = 0;       // geometries not used (unusable values)
 };
 
 class EstimatorStage : public Stage {
@@ -97,6 +114,7 @@ class EstimatorStage : public Stage {
  private:
   void HandleOdometry(const void* data, int size, MessageSink& out);
   void HandleFeatures(const void* data, int size, MessageSink& out);
+  void HandleLaserGeometry(const void* data, int size);
   void PublishStatus(int64_t utime, MessageSink& out);
   void PublishSmootherInput(const ScanResult& result, MessageSink& out);
   void Undecodable(const std::string& what);
@@ -104,8 +122,14 @@ class EstimatorStage : public Stage {
   Estimator estimator_;
   std::mt19937_64 rng_;
   bool person_features_;
+  // The options as configured and the geometry parts they give: every log geometry is
+  // reconciled against these, not against a geometry an earlier message gave.
+  EstimatorOptions configured_;
+  ConfiguredGeometryParts geometry_given_;
+  std::optional<std::array<double, 6>> log_geometry_;  // the last one reconciled, its values
   std::string odometry_channel_;
   std::string features_channel_;
+  std::string laser_geometry_channel_;
   std::string pose_channel_;
   std::string map_channel_;
   std::string tracks_channel_;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "estimator/angle.h"
 #include "estimator/ekf_update.h"
@@ -109,39 +110,62 @@ double Nis(const LineMeasurement& m, const LinePrediction& p) {
   return (s(1, 1) * v(0) * v(0) - 2.0 * s(0, 1) * v(0) * v(1) + s(0, 0) * v(1) * v(1)) / det;
 }
 
+// A feature's end points, placed in the map by `robot`, in coordinates along `line` (map
+// frame): the stretch of that line the feature shows.
+struct Extent {
+  double from_m = 0.0;
+  double to_m = 0.0;
+};
+
+Extent ExtentAlong(const Eigen::Vector2d& line, const Eigen::Vector3d& robot,
+                   const SensorMount& mount, const LineMeasurement& m) {
+  const double a = PositionAlongLine(line, SensorPointToMap(robot, mount, m.first_m));
+  const double b = PositionAlongLine(line, SensorPointToMap(robot, mount, m.last_m));
+  return {std::min(a, b), std::max(a, b)};
+}
+
 // Whether the feature's extent (placed by the current pose) reaches within `gap_m` of line j's.
 bool ExtentsOverlap(const SlamState& state, const SensorMount& mount, const LineMeasurement& m,
                     int j, double gap_m) {
-  const Eigen::Vector3d robot = state.robot_pose();
-  const Eigen::Vector2d line = state.line_params(j);
-  const double a = PositionAlongLine(line, SensorPointToMap(robot, mount, m.first_m));
-  const double b = PositionAlongLine(line, SensorPointToMap(robot, mount, m.last_m));
+  const Extent seen = ExtentAlong(state.line_params(j), state.robot_pose(), mount, m);
   const LineRecord& record = state.line(j).record;
-  return std::min(a, b) <= record.extent_to_m + gap_m &&
-         std::max(a, b) >= record.extent_from_m - gap_m;
+  return seen.from_m <= record.extent_to_m + gap_m && seen.to_m >= record.extent_from_m - gap_m;
 }
 
-// Compatible pairs (NIS < d1, extents overlapping) at the current state; `near_any` marks the
-// features inside gate dn of a landmark whose extent they overlap.
-std::vector<LinePair> CompatiblePairs(const std::vector<LineMeasurement>& measurements,
-                                      const std::vector<LinePrediction>& predictions,
-                                      const SlamState& state, const SensorMount& mount,
-                                      const LineLandmarkOptions& options, const LineGates& gates,
-                                      std::vector<uint8_t>* near_any) {
-  std::vector<LinePair> pairs;
-  near_any->assign(measurements.size(), 0);
-  for (size_t i = 0; i < measurements.size(); ++i) {
+// What the steps of one scan share.
+struct LineScan {
+  const std::vector<LineMeasurement>& measurements;  // the valid features
+  const LineLandmarkOptions& options;
+  const LineGates& gates;
+  const SensorMount& mount;
+  int64_t utime = 0;
+
+  int num_features() const { return static_cast<int>(measurements.size()); }
+};
+
+// Step 1 at the state the step starts from.
+struct LineGating {
+  std::vector<LinePair> compatible;   // NIS < d1, extents overlapping; by feature, then line
+  std::vector<uint8_t> near_landmark;  // per feature: inside gate dn of a landmark it overlaps
+};
+
+LineGating GateLines(const LineScan& scan, const std::vector<LinePrediction>& predictions,
+                     const SlamState& state) {
+  LineGating gating;
+  gating.near_landmark.assign(scan.measurements.size(), 0);
+  for (int i = 0; i < scan.num_features(); ++i) {
+    const LineMeasurement& m = scan.measurements[static_cast<size_t>(i)];
     for (int j = 0; j < state.num_lines(); ++j) {
       const LinePrediction& p = predictions[static_cast<size_t>(j)];
       if (!p.usable) continue;
-      const double nis = Nis(measurements[i], p);
-      if (!(nis < gates.dn_chi2 || nis < gates.d1_chi2)) continue;
-      if (!ExtentsOverlap(state, mount, measurements[i], j, options.extent_gap_m)) continue;
-      (*near_any)[i] = 1;
-      if (nis < gates.d1_chi2) pairs.push_back({static_cast<int>(i), j, nis});
+      const double nis = Nis(m, p);
+      if (!(nis < scan.gates.dn_chi2 || nis < scan.gates.d1_chi2)) continue;
+      if (!ExtentsOverlap(state, scan.mount, m, j, scan.options.extent_gap_m)) continue;
+      gating.near_landmark[static_cast<size_t>(i)] = 1;
+      if (nis < scan.gates.d1_chi2) gating.compatible.push_back({i, j, nis});
     }
   }
-  return pairs;
+  return gating;
 }
 
 // Level 1: the pairs whose feature and line appear in no other pair.
@@ -227,15 +251,13 @@ int ApplyLinePairs(const std::vector<LinePair>& pairs,
   return applied;
 }
 
+
 // The feature's extent, placed by the current pose, along line j.
 void GrowExtent(const LineMeasurement& m, const SensorMount& mount, int j, SlamState* state) {
-  const Eigen::Vector3d robot = state->robot_pose();
-  const Eigen::Vector2d line = state->line_params(j);
-  const double a = PositionAlongLine(line, SensorPointToMap(robot, mount, m.first_m));
-  const double b = PositionAlongLine(line, SensorPointToMap(robot, mount, m.last_m));
+  const Extent seen = ExtentAlong(state->line_params(j), state->robot_pose(), mount, m);
   LineRecord& record = state->line(j).record;
-  record.extent_from_m = std::min(record.extent_from_m, std::min(a, b));
-  record.extent_to_m = std::max(record.extent_to_m, std::max(a, b));
+  record.extent_from_m = std::min(record.extent_from_m, seen.from_m);
+  record.extent_to_m = std::max(record.extent_to_m, seen.to_m);
 }
 
 // The feature as a map-frame line at the current pose, with its extent along it.
@@ -244,35 +266,13 @@ LineCandidate CandidateOf(const LineMeasurement& m, const SensorMount& mount, in
   const Eigen::Vector3d robot = state.robot_pose();
   LineCandidate c;
   c.line = LineFromObservation(robot, m.observation, mount);
-  const double a = PositionAlongLine(c.line, SensorPointToMap(robot, mount, m.first_m));
-  const double b = PositionAlongLine(c.line, SensorPointToMap(robot, mount, m.last_m));
-  c.extent_from_m = std::min(a, b);
-  c.extent_to_m = std::max(a, b);
+  const Extent seen = ExtentAlong(c.line, robot, mount, m);
+  c.extent_from_m = seen.from_m;
+  c.extent_to_m = seen.to_m;
   c.scans = 1;
   c.first_seen_utime = utime;
   c.last_seen_utime = utime;
   return c;
-}
-
-// Whether `seen` continues `candidate`: the same line within the match distances (either
-// sign of (rho, alpha)), extents overlapping or within extent_gap_m.
-bool Continues(const LineCandidate& seen, const LineCandidate& candidate,
-               const LineLandmarkOptions& options) {
-  double sign = 1.0;
-  double angle = WrapAngle(seen.line(1) - candidate.line(1));
-  if (std::abs(angle) > 0.5 * M_PI) {
-    sign = -1.0;  // the same line written as (-rho, alpha + pi)
-    angle = WrapAngle(angle + M_PI);
-  }
-  if (std::abs(angle) > options.candidate_match_rad ||
-      std::abs(sign * seen.line(0) - candidate.line(0)) > options.candidate_match_m) {
-    return false;
-  }
-  // The seen extent in the candidate's coordinates (the direction flips with the sign).
-  const double from = sign > 0.0 ? seen.extent_from_m : -seen.extent_to_m;
-  const double to = sign > 0.0 ? seen.extent_to_m : -seen.extent_from_m;
-  return from <= candidate.extent_to_m + options.extent_gap_m &&
-         to >= candidate.extent_from_m - options.extent_gap_m;
 }
 
 void AddLineLandmark(const LineMeasurement& m, const SensorMount& mount, int64_t utime,
@@ -288,14 +288,124 @@ void AddLineLandmark(const LineMeasurement& m, const SensorMount& mount, int64_t
   record.first_seen_utime = utime;
   record.last_seen_utime = utime;
   record.last_update_utime = utime;
-  const double a = PositionAlongLine(line, SensorPointToMap(robot, mount, m.first_m));
-  const double b = PositionAlongLine(line, SensorPointToMap(robot, mount, m.last_m));
-  record.extent_from_m = std::min(a, b);
-  record.extent_to_m = std::max(a, b);
+  const Extent seen = ExtentAlong(line, robot, mount, m);
+  record.extent_from_m = seen.from_m;
+  record.extent_to_m = seen.to_m;
   state->AddLine(line, g, j_observation * m.covariance * j_observation.transpose(), record);
 }
 
+// Which landmark each feature of the scan got (steps 2-3), and which landmarks the budget lets
+// update the state (step 4).
+class LineAssociation {
+ public:
+  LineAssociation(int num_features, std::vector<uint8_t> may_update)
+      : line_of_feature_(static_cast<size_t>(num_features), -1),
+        line_taken_(may_update.size(), 0),
+        may_update_(std::move(may_update)) {}
+
+  // -1: none.
+  int LineOf(int feature) const { return line_of_feature_[static_cast<size_t>(feature)]; }
+  bool MayUpdate(int line) const { return may_update_[static_cast<size_t>(line)] != 0; }
+  bool PairFree(const LinePair& p) const {
+    return LineOf(p.feature) < 0 && !line_taken_[static_cast<size_t>(p.line)];
+  }
+  // Associates the pair; it joins `updating` when its landmark may update, and is counted as a
+  // skipped update when not.
+  void Associate(const LinePair& p, std::vector<LinePair>* updating, LineStepCounts* counts) {
+    line_of_feature_[static_cast<size_t>(p.feature)] = p.line;
+    line_taken_[static_cast<size_t>(p.line)] = 1;
+    if (MayUpdate(p.line)) {
+      updating->push_back(p);
+    } else {
+      ++counts->updates_skipped;
+    }
+  }
+
+ private:
+  std::vector<int> line_of_feature_;
+  std::vector<uint8_t> line_taken_;
+  std::vector<uint8_t> may_update_;
+};
+
+// Step 2: the pairs whose feature and landmark are in no other pair update the state together
+// (the compatibility matrix settles them: no gate again). Returns the updates applied.
+int AssociateLinesLevel1(const std::vector<LinePair>& compatible, const LineScan& scan,
+                         LineAssociation* association, SlamState* state,
+                         LineStepCounts* counts) {
+  std::vector<LinePair> level1;
+  for (const LinePair& p : UniquePairs(compatible, scan.num_features(), state->num_lines())) {
+    association->Associate(p, &level1, counts);
+  }
+  return ApplyLinePairs(level1, scan.measurements, scan.mount,
+                        std::numeric_limits<double>::infinity(), scan.gates.group_size, state,
+                        counts);
+}
+
+// Step 3: the free compatible pairs, judged again at the state level 1 left, one to one by
+// increasing NIS, gate d1. Returns the updates applied.
+int AssociateLinesLevel2(const std::vector<LinePair>& compatible, const LineScan& scan,
+                         LineAssociation* association, SlamState* state,
+                         LineStepCounts* counts) {
+  const std::vector<LinePrediction> after_level1 = PredictLines(*state, scan.mount);
+  std::vector<LinePair> rest;
+  for (LinePair p : compatible) {
+    if (!association->PairFree(p)) continue;
+    const LinePrediction& prediction = after_level1[static_cast<size_t>(p.line)];
+    if (!prediction.usable) continue;
+    p.nis = Nis(scan.measurements[static_cast<size_t>(p.feature)], prediction);
+    if (p.nis < scan.gates.d1_chi2) rest.push_back(p);
+  }
+  std::stable_sort(rest.begin(), rest.end(),
+                   [](const LinePair& a, const LinePair& b) { return a.nis < b.nis; });
+  std::vector<LinePair> level2;
+  for (const LinePair& p : rest) {
+    if (association->PairFree(p)) association->Associate(p, &level2, counts);
+  }
+  return ApplyLinePairs(level2, scan.measurements, scan.mount, scan.gates.d1_chi2,
+                        scan.gates.group_size, state, counts);
+}
+
+// Step 5: every associated landmark's extent grows to cover its feature's (at the updated
+// pose); its record counts the hit, and the update when the budget let it update.
+void RecordAssociatedLines(const LineScan& scan, const LineAssociation& association,
+                           SlamState* state, LineStepCounts* counts) {
+  for (int i = 0; i < scan.num_features(); ++i) {
+    const int j = association.LineOf(i);
+    if (j < 0) continue;
+    ++counts->associated;
+    GrowExtent(scan.measurements[static_cast<size_t>(i)], scan.mount, j, state);
+    LineRecord& record = state->line(j).record;
+    ++record.hits;
+    record.last_seen_utime = scan.utime;
+    if (association.MayUpdate(j)) record.last_update_utime = scan.utime;
+  }
+}
+
+// Step 6: the features in no pair and near no landmark are sightings of candidate lines
+// (line_candidates.h); a candidate seen often enough becomes a landmark, up to max_landmarks.
+void AddConfirmedLines(const LineScan& scan, const LineAssociation& association,
+                       const std::vector<uint8_t>& near_landmark, int64_t* next_id,
+                       SlamState* state, std::vector<LineCandidate>* candidates,
+                       LineStepCounts* counts) {
+  for (int i = 0; i < scan.num_features(); ++i) {
+    const LineMeasurement& m = scan.measurements[static_cast<size_t>(i)];
+    if (association.LineOf(i) >= 0 || near_landmark[static_cast<size_t>(i)] ||
+        m.observation(0) < kMinLineDistance_m) {
+      continue;
+    }
+    const LineCandidate seen = CandidateOf(m, scan.mount, scan.utime, *state);
+    if (!ConfirmLineCandidate(seen, scan.options, candidates)) continue;
+    if (state->num_lines() >= scan.options.max_landmarks) {
+      ++counts->refused;
+      continue;
+    }
+    AddLineLandmark(m, scan.mount, scan.utime, next_id, state);
+    ++counts->new_landmarks;
+  }
+}
+
 }  // namespace
+
 
 void VisitLineLandmarkOptions(OptionVisitor* v, LineLandmarkOptions* o) {
   using R = OptionRange;
@@ -349,122 +459,34 @@ std::vector<uint8_t> PointsOnLineLandmarks(const std::vector<Eigen::Vector2d>& r
   return on_line;
 }
 
+
 LineStepCounts UpdateLineLandmarks(const std::vector<LineReading>& lines, int64_t utime,
                                    const LineLandmarkOptions& options, const LineGates& gates,
                                    const SensorMount& mount, int64_t* next_id, SlamState* state,
                                    std::vector<LineCandidate>* candidates) {
   LineStepCounts counts;
   counts.features = static_cast<int>(lines.size());
-  // Candidates not seen for too long are gone.
-  candidates->erase(std::remove_if(candidates->begin(), candidates->end(),
-                                   [&](const LineCandidate& c) {
-                                     return static_cast<double>(utime - c.last_seen_utime) *
-                                                1e-6 >
-                                            options.candidate_timeout_s;
-                                   }),
-                    candidates->end());
+  DropStaleLineCandidates(utime, options, candidates);
   counts.candidates = static_cast<int>(candidates->size());
   if (!options.enabled || lines.empty()) return counts;
   const std::vector<LineMeasurement> measurements = ValidateLines(lines, options, &counts);
-  const int num_features = static_cast<int>(measurements.size());
+  const LineScan scan{measurements, options, gates, mount, utime};
 
-  // 1. Compatible pairs at the predicted state; the budget.
-  std::vector<uint8_t> near_any;
-  const std::vector<LinePair> compatible =
-      CompatiblePairs(measurements, PredictLines(*state, mount), *state, mount, options, gates,
-                      &near_any);
-  const std::vector<uint8_t> may_update =
-      LinesThatMayUpdate(*state, compatible, options.max_updates_per_scan);
-  std::vector<int> line_of_feature(static_cast<size_t>(num_features), -1);
-  std::vector<uint8_t> line_taken(static_cast<size_t>(state->num_lines()), 0);
-  auto associate = [&](const LinePair& p, std::vector<LinePair>* updating) {
-    line_of_feature[static_cast<size_t>(p.feature)] = p.line;
-    line_taken[static_cast<size_t>(p.line)] = 1;
-    if (may_update[static_cast<size_t>(p.line)]) {
-      updating->push_back(p);
-    } else {
-      ++counts.updates_skipped;
-    }
-  };
-
-  // 2. Level 1.
-  std::vector<LinePair> level1;
-  for (const LinePair& p : UniquePairs(compatible, num_features, state->num_lines())) {
-    associate(p, &level1);
-  }
-  counts.level1_updates = ApplyLinePairs(level1, measurements, mount,
-                                         std::numeric_limits<double>::infinity(),
-                                         gates.group_size, state, &counts);
-
-  // 3. Level 2: the rest, judged at the state level 1 left, one to one by increasing NIS.
-  const std::vector<LinePrediction> after_level1 = PredictLines(*state, mount);
-  std::vector<LinePair> rest;
-  for (LinePair p : compatible) {
-    if (line_of_feature[static_cast<size_t>(p.feature)] >= 0 ||
-        line_taken[static_cast<size_t>(p.line)]) {
-      continue;
-    }
-    const LinePrediction& prediction = after_level1[static_cast<size_t>(p.line)];
-    if (!prediction.usable) continue;
-    p.nis = Nis(measurements[static_cast<size_t>(p.feature)], prediction);
-    if (p.nis < gates.d1_chi2) rest.push_back(p);
-  }
-  std::stable_sort(rest.begin(), rest.end(),
-                   [](const LinePair& a, const LinePair& b) { return a.nis < b.nis; });
-  std::vector<LinePair> level2;
-  for (const LinePair& p : rest) {
-    if (line_of_feature[static_cast<size_t>(p.feature)] >= 0 ||
-        line_taken[static_cast<size_t>(p.line)]) {
-      continue;
-    }
-    associate(p, &level2);
-  }
-  counts.level2_updates = ApplyLinePairs(level2, measurements, mount, gates.d1_chi2,
-                                         gates.group_size, state, &counts);
-
+  // 1. Compatible pairs at the predicted state; 4. the budget they leave.
+  const LineGating gating = GateLines(scan, PredictLines(*state, mount), *state);
+  LineAssociation association(
+      scan.num_features(),
+      LinesThatMayUpdate(*state, gating.compatible, options.max_updates_per_scan));
+  // 2. Level 1; 3. level 2 at the state level 1 left.
+  counts.level1_updates =
+      AssociateLinesLevel1(gating.compatible, scan, &association, state, &counts);
+  counts.level2_updates =
+      AssociateLinesLevel2(gating.compatible, scan, &association, state, &counts);
   // 5. Extents and records of the associated landmarks.
-  for (int i = 0; i < num_features; ++i) {
-    const int j = line_of_feature[static_cast<size_t>(i)];
-    if (j < 0) continue;
-    ++counts.associated;
-    GrowExtent(measurements[static_cast<size_t>(i)], mount, j, state);
-    LineRecord& record = state->line(j).record;
-    ++record.hits;
-    record.last_seen_utime = utime;
-    if (may_update[static_cast<size_t>(j)]) record.last_update_utime = utime;
-  }
-
-  // 6. New landmarks.
-  for (int i = 0; i < num_features; ++i) {
-    const LineMeasurement& m = measurements[static_cast<size_t>(i)];
-    if (line_of_feature[static_cast<size_t>(i)] >= 0 || near_any[static_cast<size_t>(i)] ||
-        m.observation(0) < kMinLineDistance_m) {
-      continue;
-    }
-    const LineCandidate seen = CandidateOf(m, mount, utime, *state);
-    auto continued = std::find_if(
-        candidates->begin(), candidates->end(), [&](const LineCandidate& c) {
-          return c.last_seen_utime < utime && Continues(seen, c, options);
-        });
-    if (continued == candidates->end()) {
-      candidates->push_back(seen);
-      continued = candidates->end() - 1;
-    } else {
-      continued->scans += 1;
-      continued->line = seen.line;
-      continued->last_seen_utime = utime;
-      continued->extent_from_m = seen.extent_from_m;
-      continued->extent_to_m = seen.extent_to_m;
-    }
-    if (continued->scans < options.confirm_scans) continue;
-    candidates->erase(continued);
-    if (state->num_lines() >= options.max_landmarks) {
-      ++counts.refused;
-      continue;
-    }
-    AddLineLandmark(m, mount, utime, next_id, state);
-    ++counts.new_landmarks;
-  }
+  RecordAssociatedLines(scan, association, state, &counts);
+  // 6. New landmarks from the candidates that stay.
+  AddConfirmedLines(scan, association, gating.near_landmark, next_id, state, candidates,
+                    &counts);
   counts.candidates = static_cast<int>(candidates->size());
   return counts;
 }

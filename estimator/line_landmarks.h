@@ -24,15 +24,10 @@
 //  5. extents: every associated landmark's extent grows to cover its feature's (at the updated
 //     pose);
 //  6. new landmarks: a feature in no pair, and outside gate new_object_gate_dn_chi2 of every
-//     landmark whose extent it overlaps is a candidate line, kept
-//     outside the state (LineCandidate): placed in the map by the pose, it must be seen again
-//     (within lines_candidate_match_m and lines_candidate_match_deg, extents overlapping) in
-//     lines_confirm_scans scans with no gap longer than lines_candidate_timeout_s before it
-//     becomes a landmark (line_model.h: LineFromObservation of its latest feature, with its
-//     covariance from the robot's and the feature's), up to lines_max_landmarks. A straight
-//     run that does not stay (people walking side by side, a cluster that happens to be
-//     straight in one scan) never enters the state, so a scene without walls is estimated
-//     exactly as without this step.
+//     landmark whose extent it overlaps is a candidate line, kept outside the state until it
+//     stays (line_candidates.h); then it becomes a landmark (line_model.h:
+//     LineFromObservation of its latest feature, with its covariance from the robot's and the
+//     feature's), up to lines_max_landmarks.
 // Bad input: a feature with a non-finite value, rho < 0, alpha outside [-pi, pi], a negative
 // variance or a covariance that is not positive semi-definite is rejected and counted; a
 // feature or landmark seen edge on (predicted |rho| < kMinLineDistance_m) is not associated.
@@ -47,6 +42,7 @@
 #include <vector>
 
 #include "common/options_schema.h"
+#include "estimator/line_candidates.h"
 #include "estimator/range_bearing_model.h"
 #include "estimator/slam_state.h"
 
@@ -97,16 +93,6 @@ struct LineStepCounts {
   int candidates = 0;       // line candidates held after the scan
   int failed = 0;           // numerically unusable updates
   std::string first_rejection;
-};
-
-// A straight run seen in recent scans that is not a landmark yet (step 6), in the map frame.
-struct LineCandidate {
-  Eigen::Vector2d line = Eigen::Vector2d::Zero();  // (rho, alpha), from its latest feature
-  double extent_from_m = 0.0;                       // along the line, as LineRecord's
-  double extent_to_m = 0.0;
-  int scans = 0;                                    // scans it was seen in
-  int64_t first_seen_utime = 0;
-  int64_t last_seen_utime = 0;
 };
 
 // Gates of the points' association (EstimatorOptions), passed in so that lines and points

@@ -14,6 +14,7 @@ const std::map<std::string, std::string>& Channels::Defaults() {
       {"odometry", "ODOMETRY"},
       {"velocity_command", "VELOCITY_COMMAND"},
       {"laser_scan", "LASER_SCAN"},
+      {"laser_geometry", "LASER_GEOMETRY"},
       {"features", "FEATURES"},
       {"pose", "POSE"},
       {"map", "MAP"},

@@ -43,12 +43,6 @@ void SetLogProgramName(const std::string& name) {
   ProgramName() = name;
 }
 
-bool IsReportable(int64_t count) {
-  if (count <= 0) return false;
-  while (count % 10 == 0) count /= 10;
-  return count == 1;
-}
-
 void SetLogLevel(LogLevel level) { Threshold() = static_cast<int>(level); }
 
 LogLevel GetLogLevel() { return static_cast<LogLevel>(Threshold().load()); }

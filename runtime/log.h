@@ -8,6 +8,8 @@
 #include <sstream>
 #include <string>
 
+#include "common/report_count.h"
+
 namespace slammtt {
 
 enum class LogLevel { kDebug = 0, kInfo = 1, kWarning = 2, kError = 3 };
@@ -41,8 +43,7 @@ class Log {
   std::ostringstream stream_;
 };
 
-// True for the 1st, 10th, 100th, ... occurrence: how often a repeated problem is reported.
-bool IsReportable(int64_t count);
+// IsReportable(count), how often a repeated problem is reported: common/report_count.h.
 
 inline Log LogDebug() { return Log(LogLevel::kDebug); }
 inline Log LogInfo() { return Log(LogLevel::kInfo); }

@@ -174,6 +174,14 @@ bool PlausibleBaseStatus(const void* data, int size) {
   return w.End();
 }
 
+bool PlausibleLaserGeometry(const void* data, int size) {
+  EncodedWalk w(data, size);
+  // utime; mount forward, left, yaw; view start, end; range min, max
+  w.Fixed(kFingerprint + kInt64 + 7 * kDouble);
+  w.String();  // source
+  return w.End();
+}
+
 bool PlausibleEstimatorStatus(const void* data, int size) {
   EncodedWalk w(data, size);
   // utime, scans/odometry processed, features_rejected, messages_out_of_order, time_gaps,

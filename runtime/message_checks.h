@@ -40,6 +40,7 @@
 #include "slammtt_msgs/ground_truth_t.hpp"
 #include "slammtt_msgs/laser_scan_t.hpp"
 #include "slammtt_msgs/leg_labels_t.hpp"
+#include "slammtt_msgs/laser_geometry_t.hpp"
 #include "slammtt_msgs/lidar_status_t.hpp"
 #include "slammtt_msgs/map_t.hpp"
 #include "slammtt_msgs/stage_timing_t.hpp"
@@ -102,6 +103,7 @@ bool PlausibleLidarStatus(const void* data, int size);
 bool PlausibleBaseStatus(const void* data, int size);
 bool PlausibleEstimatorStatus(const void* data, int size);
 bool PlausibleLegLabels(const void* data, int size);
+bool PlausibleLaserGeometry(const void* data, int size);
 
 // The check of a type, chosen by overload on a (never dereferenced) pointer to the type.
 inline bool PlausibleEncoding(const slammtt_msgs::laser_scan_t*, const void* data, int size) {
@@ -134,6 +136,10 @@ inline bool PlausibleEncoding(const slammtt_msgs::estimator_status_t*, const voi
 }
 inline bool PlausibleEncoding(const slammtt_msgs::leg_labels_t*, const void* data, int size) {
   return PlausibleLegLabels(data, size);
+}
+inline bool PlausibleEncoding(const slammtt_msgs::laser_geometry_t*, const void* data,
+                              int size) {
+  return PlausibleLaserGeometry(data, size);
 }
 // Every other type (odometry_t, pose_t, velocity_command_t and the nested element types) has a
 // fixed size: the generated decoder checks each read against `size` before it makes it and

@@ -11,7 +11,14 @@ cd "$(dirname "$0")/.."
 count=${1:-10}
 [ "$#" -gt 0 ] && shift
 if [ "$#" -eq 0 ]; then
-  set -- common drivers estimator lcmtypes perception runtime tools tests
+  # Every top-level folder with C++ sources that git tracks, so that no folder is left out;
+  # outside a git checkout, a fixed list.
+  folders=$(git ls-files '*.cc' '*.h' '*.cpp' '*.hpp' 2>/dev/null | sed -n 's|/.*||p' | sort -u)
+  if [ -z "$folders" ]; then
+    folders="cmake common drivers estimator perception runtime smoother tools tests"
+  fi
+  # shellcheck disable=SC2086
+  set -- $folders
 fi
 venv=build/venv-lizard
 if [ ! -x "$venv/bin/lizard" ]; then

@@ -93,7 +93,10 @@ std::string CheckKeyframeSmootherOptions(const KeyframeSmootherOptions& options)
   KeyframeSmootherOptions o = options;
   OptionRangeCheck check;
   VisitKeyframeSmootherOptions(&check, &o);
-  return check.problem();
+  if (!check.problem().empty()) return check.problem();
+  // The solver's own rules beyond its ranges (max_lambda >= initial_lambda).
+  const std::string solver_problem = CheckSmootherOptions(o.solver);
+  return solver_problem.empty() ? "" : "solver: " + solver_problem;
 }
 
 KeyframeSmoother::KeyframeSmoother(const KeyframeSmootherOptions& options)

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "common/angle.h"
@@ -115,34 +117,68 @@ std::optional<std::string> CheckFinite(const Eigen::MatrixXd& value, const char*
   return std::nullopt;
 }
 
+const SmootherOptions& Checked(const SmootherOptions& options) {
+  const std::string problem = CheckSmootherOptions(options);
+  if (!problem.empty()) throw std::invalid_argument("smoother options: " + problem);
+  return options;
+}
+
 }  // namespace
 
 void VisitSmootherOptions(OptionVisitor* v, SmootherOptions* o) {
   using R = OptionRange;
+  constexpr double kMaxCount = 1e9;  // counts stay within int
   int method = static_cast<int>(o->method);
-  v->Choice("method", &method, {"gauss_newton", "levenberg_marquardt"},
-            "the batch solve's method");
+  v->Choice("method", &method, {"gauss_newton", "levenberg_marquardt"}, "batch solver");
   o->method = static_cast<SmootherOptions::Method>(method);
   int damping = static_cast<int>(o->damping);
   v->Choice("damping", &damping, {"identity", "diagonal"},
-            "Levenberg-Marquardt's lambda I (GTSAM's) or lambda diag(J^T J)");
+            "LM adds lambda I (GTSAM's default) or lambda diag(J^T J)");
   o->damping = static_cast<SmootherOptions::Damping>(damping);
-  v->Int("max_iterations", &o->max_iterations, R::Between(1, 1e6),
-         "batch: Levenberg-Marquardt tries at most");
+  v->Int("max_iterations", &o->max_iterations, R::Between(1, kMaxCount),
+         "batch: accepted steps at most");
   v->Double("relative_tolerance", &o->relative_tolerance, R::AtLeast(0),
-            "batch: converged when a step lowers chi^2 by less than this fraction");
-  v->Double("relinearize_threshold", &o->relinearize_threshold, R::Above(0),
-            "incremental: a variable whose pending step exceeds this (m or rad) is relinearised");
-  v->Int("relinearize_skip", &o->relinearize_skip, R::Between(1, 1e6),
-         "incremental: relinearisation looked at every this many updates");
+            "converged when an accepted step lowers chi^2 by less than this fraction of it");
+  v->Double("absolute_tolerance", &o->absolute_tolerance, R::AtLeast(0),
+            "... or by less than this (chi^2 units)");
+  v->Double("initial_lambda", &o->initial_lambda, R::Above(0),
+            "LM's first damping (GTSAM's lambdaInitial)");
+  v->Double("lambda_factor", &o->lambda_factor, R::Above(1),
+            "LM divides lambda by it after a success, multiplies it after a failure "
+            "(lambdaFactor)");
+  v->Double("max_lambda", &o->max_lambda, R::Above(0),
+            "LM stops when lambda would exceed it (lambdaUpperBound)");
+  v->Double("min_model_fidelity", &o->min_model_fidelity, R{0.0, 1.0, true, false},
+            "a step is accepted above this fraction of the decrease the model predicts "
+            "(minModelFidelity)");
+  v->Double("relinearize_threshold", &o->relinearize_threshold, R::AtLeast(0),
+            "incremental: a variable whose step exceeds it in any component (m or rad) moves its "
+            "linearisation point (ISAM2's default)");
+  v->Int("relinearize_skip", &o->relinearize_skip, R::Between(1, kMaxCount),
+         "incremental: relinearisation is looked at every this many updates (ISAM2's default)");
   v->Int("max_incremental_relinearizations", &o->max_incremental_relinearizations,
-         R::Between(0, 1e9), "incremental: more variables to relinearise: refactorise instead");
-  v->Int("full_relinearization_interval", &o->full_relinearization_interval, R::Between(0, 1e9),
-         "incremental: updates between full relinearisations (0: never)");
+         R::Between(0, kMaxCount),
+         "more variables to relinearise at once: a full refactorisation instead of rank updates");
+  v->Int("full_relinearization_interval", &o->full_relinearization_interval,
+         R::Between(0, kMaxCount), "updates between full relinearisations (0: never)");
+  v->Double("reorder_fill_ratio", &o->reorder_fill_ratio, R::AtLeast(1),
+            "refactorise when the factor's nonzeros grew this much since the ordering");
+  v->Int("min_free_slots", &o->min_free_slots, R::Between(0, kMaxCount),
+         "variables' room reserved at the end of the ordering (at least a quarter of the live "
+         "ones)");
+}
+
+std::string CheckSmootherOptions(const SmootherOptions& options) {
+  SmootherOptions o = options;
+  OptionRangeCheck check;
+  VisitSmootherOptions(&check, &o);
+  if (!check.problem().empty()) return check.problem();
+  if (!(o.max_lambda >= o.initial_lambda)) return "max_lambda must be >= initial_lambda";
+  return "";
 }
 
 Smoother::Smoother(const SmootherOptions& options)
-    : options_(options),
+    : options_(Checked(options)),
       layout_(std::make_unique<Layout>()),
       cholesky_(std::make_unique<SparseCholesky>()) {}
 

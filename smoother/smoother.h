@@ -89,9 +89,14 @@ struct SmootherOptions {
   int min_free_slots = 64;          // variables' room reserved at the end of the ordering
 };
 
-// The schema of the options (common/options_schema.h) for a configuration section; the batch
-// method and damping as choices (gauss_newton / levenberg_marquardt, identity / diagonal).
+// The schema of SmootherOptions (common/options_schema.h): every field with its range and one
+// line of documentation (docs/smoother.md, "Options").
 void VisitSmootherOptions(OptionVisitor* visitor, SmootherOptions* options);
+
+// "" when the options are usable, else one line naming the first problem: a value outside its
+// range (VisitSmootherOptions), or max_lambda < initial_lambda. (A lambda_factor of at most 1 or
+// an initial_lambda of 0 would let Levenberg-Marquardt reject steps for ever.)
+std::string CheckSmootherOptions(const SmootherOptions& options);
 
 struct SolveReport {
   bool ok = false;
@@ -108,6 +113,7 @@ struct SolveReport {
 
 class Smoother {
  public:
+  // Throws std::invalid_argument with CheckSmootherOptions()'s message for unusable options.
   explicit Smoother(const SmootherOptions& options = {});
   ~Smoother();
   Smoother(const Smoother&) = delete;

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "drivers/command_auth/command_key.h"
-#include "drivers/command_auth/command_signature.h"
+#include "drivers/command_auth/velocity_sender.h"
 #include "drivers/common/driver_clock.h"
 #include "runtime/command_line.h"
 #include "runtime/lcm_io.h"
@@ -35,25 +35,17 @@ int Run(int argc, char** argv) {
   const double linear = cl.DoubleValue("linear-mps").value_or(0.0);
   const double angular = cl.DoubleValue("angular-radps").value_or(0.0);
   const double duration_s = cl.DoubleValue("duration-s").value_or(1.0);
-  const double rate_hz = cl.DoubleValue("rate-hz").value_or(10.0);
+  const double rate_hz = cl.DoubleValue("rate-hz").value_or(kDefaultCommandRateHz);
   if (!(duration_s >= 0.0 && duration_s <= 3600.0)) {
     throw UsageError("--duration-s must be in [0, 3600]");
   }
   if (!(rate_hz >= 1.0 && rate_hz <= 100.0)) throw UsageError("--rate-hz must be in [1, 100]");
 
   const CommandKey key = LoadCommandKeyFile(*key_path);
-  const std::string channel = settings.channels.Get("velocity_command");
-  VelocityCommandSigner signer(key, channel, NewSenderId());
   std::unique_ptr<lcm::LCM> lcm = OpenLcm(settings.lcm_url);
   SystemDriverClock clock;
-  const auto send = [&](double v, double w) {
-    slammtt_msgs::velocity_command_t command{};
-    command.utime = clock.NowUtime();
-    command.linear_mps = v;
-    command.angular_radps = w;
-    signer.Sign(&command);
-    if (lcm->publish(channel, &command) != 0) throw std::runtime_error("LCM publish failed");
-  };
+  SignedVelocitySender sender(key, settings.channels.Get("velocity_command"), lcm.get(), &clock);
+  const auto send = [&](double v, double w) { sender.Send(v, w); };
   const int64_t period_us = static_cast<int64_t>(std::llround(1e6 / rate_hz));
   const int64_t start_us = clock.NowMonotonicUs();
   const int64_t end_us = start_us + static_cast<int64_t>(std::llround(duration_s * 1e6));
@@ -64,7 +56,7 @@ int Run(int argc, char** argv) {
     send(linear, angular);
   }
   send(0.0, 0.0);
-  LogInfo() << "sent " << signer.last_counter() << " signed commands on " << channel
+  LogInfo() << "sent " << sender.sent() << " signed commands on " << sender.channel()
             << " (the last one a stop)";
   return 0;
 }

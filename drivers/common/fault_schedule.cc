@@ -2,6 +2,7 @@
 
 #include <optional>
 #include <stdexcept>
+#include <utility>
 
 #include "common/number_text.h"
 
@@ -42,6 +43,20 @@ ScheduledFault ParseScheduledFault(const std::string& text,
   fault.at_s = FaultNumber(when, 0.0, text);
   if (colon != std::string::npos) fault.argument = rest.substr(colon + 1);
   return fault;
+}
+
+FaultSchedule::FaultSchedule(std::vector<double> at_s)
+    : at_s_(std::move(at_s)), fired_(at_s_.size(), false), pending_(at_s_.size()) {}
+
+std::vector<size_t> FaultSchedule::TakeDue(double elapsed_s) {
+  std::vector<size_t> due;
+  for (size_t i = 0; i < at_s_.size(); ++i) {
+    if (fired_[i] || elapsed_s < at_s_[i]) continue;
+    fired_[i] = true;
+    --pending_;
+    due.push_back(i);
+  }
+  return due;
 }
 
 }  // namespace slammtt

@@ -1,11 +1,9 @@
 // Options of the P3-DX base driver: the `p3dx:` section of the stack configuration, then the
-// command line (which wins). Every default is documented in docs/p3dx.md.
+// command line (which wins; both read by p3dx_driver_config.h). Every default is documented in
+// docs/p3dx.md. Pure: the device session (p3dx_session.h) takes them as they are.
 #pragma once
 
 #include <string>
-
-#include "runtime/command_line.h"
-#include "runtime/config.h"
 
 namespace slammtt {
 
@@ -48,22 +46,5 @@ struct P3dxDriverOptions {
 
 // "hmac-sha256" or "none", the configuration's spelling.
 const char* CommandAuthenticationName(P3dxDriverOptions::CommandAuthentication mode);
-
-// Reads the `p3dx:` section; ConfigError naming the key for a bad value. The caller runs
-// CheckUnused() on the section afterwards.
-P3dxDriverOptions ReadP3dxDriverOptions(const Config& section);
-
-// --port, --baud, --max-linear-mps, --max-angular-radps, --command-timeout-s.
-void AddP3dxDriverOptions(CommandLine* command_line);
-void ApplyP3dxDriverCommandLine(const CommandLine& command_line, P3dxDriverOptions* options);
-
-// Throws std::invalid_argument, one line naming the option, when a value is out of range or the
-// port is not a well-formed endpoint (drivers/common CheckEndpoint).
-void ValidateP3dxDriverOptions(const P3dxDriverOptions& options);
-
-// Throws std::invalid_argument, one line, when commands are unauthenticated (kNone) on a bus
-// whose packets may leave the host: anything but memq or udpm with ttl=0 (runtime/lcm_url.h).
-void CheckCommandAuthenticationForBus(const P3dxDriverOptions& options,
-                                      const std::string& lcm_url);
 
 }  // namespace slammtt

@@ -13,7 +13,7 @@
 #include "drivers/common/driver_clock.h"
 #include "drivers/command_auth/command_key.h"
 #include "drivers/p3dx/p3dx_driver.h"
-#include "drivers/p3dx/p3dx_driver_options.h"
+#include "drivers/p3dx/p3dx_driver_config.h"
 #include "runtime/lcm_io.h"
 #include "runtime/log.h"
 #include "runtime/process.h"

@@ -1,7 +1,6 @@
 #include "drivers/rplidar/emulated_room.h"
 
 #include <cmath>
-#include <limits>
 #include <utility>
 
 namespace slammtt {
@@ -30,44 +29,31 @@ EmulatedRoom EmulatedRoom::Default() {
   return EmulatedRoom(std::move(segments), std::move(circles));
 }
 
-EmulatedRoom::EmulatedRoom(std::vector<RoomSegment> segments, std::vector<RoomCircle> circles)
-    : segments_(std::move(segments)), circles_(std::move(circles)) {}
+EmulatedRoom::EmulatedRoom(std::vector<RoomSegment> segments, std::vector<RoomCircle> circles) {
+  for (const RoomSegment& s : segments) {
+    segments_.push_back(Segment{s.x0_m, s.y0_m, s.x1_m, s.y1_m});
+    segment_returns_light_.push_back(s.returns_light);
+  }
+  for (const RoomCircle& c : circles) circles_.push_back(Circle{c.x_m, c.y_m, c.radius_m});
+}
 
 std::optional<double> EmulatedRoom::CastRay(double direction_rad) const {
-  const double dx = std::cos(direction_rad);
-  const double dy = std::sin(direction_rad);
-  double best = std::numeric_limits<double>::infinity();
-  bool best_returns = false;
-  for (const RoomSegment& s : segments_) {
-    // Solve t * d = p0 + u * (p1 - p0), t > 0, u in [0, 1].
-    const double ex = s.x1_m - s.x0_m;
-    const double ey = s.y1_m - s.y0_m;
-    const double denominator = dx * ey - dy * ex;
-    if (std::fabs(denominator) < 1e-12) continue;
-    const double t = (s.x0_m * ey - s.y0_m * ex) / denominator;
-    const double u = (s.x0_m * dy - s.y0_m * dx) / denominator;
-    if (t > 1e-9 && u >= 0.0 && u <= 1.0 && t < best) {
-      best = t;
-      best_returns = s.returns_light;
-    }
+  const BeamHit hit = slammtt::CastRay(0.0, 0.0, direction_rad, circles_, segments_);
+  if (!hit.hit()) return std::nullopt;
+  if (hit.segment >= 0 && !segment_returns_light_[static_cast<size_t>(hit.segment)]) {
+    return std::nullopt;
   }
-  for (const RoomCircle& c : circles_) {
-    // |t d - c|^2 = r^2  ->  t^2 - 2 t (d.c) + |c|^2 - r^2 = 0
-    const double b = dx * c.x_m + dy * c.y_m;
-    const double discriminant = b * b - (c.x_m * c.x_m + c.y_m * c.y_m - c.radius_m * c.radius_m);
-    if (discriminant < 0.0) continue;
-    const double t = b - std::sqrt(discriminant);
-    if (t > 1e-9 && t < best) {
-      best = t;
-      best_returns = true;
-    }
-  }
-  if (!std::isfinite(best) || !best_returns) return std::nullopt;
-  return best;
+  return hit.range_m;
 }
 
 std::optional<double> EmulatedRoom::CastDeviceRay(double device_angle_deg) const {
   return CastRay(-device_angle_deg * kPi / 180.0);
+}
+
+std::optional<SceneReturn> EmulatedRoom::Cast(double device_angle_deg, int64_t) const {
+  const std::optional<double> range_m = CastDeviceRay(device_angle_deg);
+  if (!range_m) return std::nullopt;
+  return SceneReturn{*range_m, 0.0};
 }
 
 }  // namespace rplidar

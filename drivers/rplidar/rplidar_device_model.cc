@@ -67,17 +67,26 @@ double RplidarDeviceModel::SampleAngleDeg(int64_t k, uint16_t sample_us) const {
   return std::fmod(degrees, 360.0);
 }
 
-double RplidarDeviceModel::MeasureMm(double device_angle_deg, int64_t k, uint8_t* quality) const {
+int64_t RplidarDeviceModel::SampleTimeUs(int64_t k, uint16_t sample_us) const {
+  return epoch_us_ + k * sample_us;
+}
+
+double RplidarDeviceModel::MeasureMm(double device_angle_deg, int64_t k, int64_t time_us,
+                                     uint8_t* quality) const {
   *quality = 0;
-  const std::optional<double> range_m = options_.room.CastDeviceRay(device_angle_deg);
-  if (!range_m || *range_m > options_.max_range_m) return 0.0;
+  const std::optional<SceneReturn> surface = options_.scene->Cast(device_angle_deg, time_us);
+  if (!surface || surface->range_m > options_.max_range_m) return 0.0;
+  if (surface->dropout_probability > 0.0 && Uniform(k, 4) < surface->dropout_probability) {
+    return 0.0;
+  }
+  const double range_m = surface->range_m;
   // Box-Muller from two hashed uniforms: the same k always gets the same noise.
   const double u1 = std::max(Uniform(k, 1), 1e-12);
   const double u2 = Uniform(k, 2);
   const double noise = std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * kPi * u2);
-  const double mm = (*range_m + options_.range_noise_m * noise) * 1000.0;
+  const double mm = (range_m + options_.range_noise_m * noise) * 1000.0;
   if (mm <= 1.0) return 0.0;
-  *quality = static_cast<uint8_t>(std::clamp(60 - static_cast<int>(*range_m * 3.0), 10, 63));
+  *quality = static_cast<uint8_t>(std::clamp(60 - static_cast<int>(range_m * 3.0), 10, 63));
   return mm;
 }
 
@@ -334,7 +343,8 @@ std::vector<uint8_t> RplidarDeviceModel::StandardNode(int64_t k) const {
   const bool start =
       k > 0 && angle_q6 < AngleQ6(SampleAngleDeg(k - 1, options_.standard_sample_us));
   uint8_t quality = 0;
-  const double mm = MeasureMm(angle_q6 / 64.0, k, &quality);
+  const double mm =
+      MeasureMm(angle_q6 / 64.0, k, SampleTimeUs(k, options_.standard_sample_us), &quality);
   const uint16_t distance_q2 = static_cast<uint16_t>(std::min(65535.0, std::round(mm * 4.0)));
   return {static_cast<uint8_t>((quality << 2) | (start ? 0x1 : 0x2)),
           static_cast<uint8_t>(((angle_q6 & 0x7F) << 1) | 0x1),
@@ -370,7 +380,8 @@ std::vector<uint8_t> RplidarDeviceModel::ExpressCapsule(int64_t capsule_index,
       if (angle_q6 >= kFullTurnQ6) angle_q6 -= kFullTurnQ6;
       angle_q16 += increment_q16;
       uint8_t quality = 0;
-      const double mm = MeasureMm(static_cast<double>(angle_q6) / 64.0, k, &quality);
+      const double mm = MeasureMm(static_cast<double>(angle_q6) / 64.0, k,
+                                  SampleTimeUs(k, options_.express_sample_us), &quality);
       const uint16_t distance_mm = static_cast<uint16_t>(std::min(16383.0, std::round(mm)));
       const uint16_t field = static_cast<uint16_t>((distance_mm << 2) | ((dtheta_q3 >> 4) & 0x3));
       bytes[half * 2] = static_cast<uint8_t>(field & 0xFF);

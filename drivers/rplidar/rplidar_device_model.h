@@ -21,23 +21,27 @@
 // deasserted (A1/A2 through the USB adapter: sl_lidar_driver.cpp setMotorSpeed clears DTR to
 // start the motor); when the DTR line cannot be observed (TCP), it always turns.
 //
-// Samples: the scanner sits at the origin of `room`; sample k of a scan is taken at device
-// angle start + k * sample_time * rotation_hz * 360 degrees (clockwise), its distance is the
-// room's ray plus Gaussian noise, drawn from a hash of (seed, k) so that the bytes of a scan
-// do not depend on how the transport paced them (as long as it polls within the backlog the
-// device keeps: one revolution; beyond, samples are skipped and the next express capsule
-// carries the S bit, so the host restarts its interpolation instead of bridging the gap). Express capsules carry per-sample angle
-// corrections dtheta drawn the same way, and the distance of each sample is measured at the
-// corrected angle, so a correct decoder recovers exactly the angles that were ray-cast.
+// Samples: sample k of a scan is taken at device angle start + k * sample_time * rotation_hz *
+// 360 degrees (clockwise) at time epoch + k * sample_time (epoch: when the data stream started);
+// its distance is what `scene` has along that angle at that time plus Gaussian noise (and no
+// return with the surface's dropout probability), drawn from a hash of (seed, k) so that the
+// bytes of a scan do not depend on how the transport paced them (as long as it polls within
+// the backlog the device keeps: one revolution; beyond, samples are skipped and the next
+// express capsule carries the S bit, so the host restarts its interpolation instead of
+// bridging the gap). Express capsules carry per-sample angle corrections dtheta drawn the same
+// way, and the distance of each sample is measured at the corrected angle, so a correct
+// decoder recovers exactly the angles that were ray-cast.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <optional>
 #include <vector>
 
 #include "drivers/rplidar/emulated_room.h"
+#include "drivers/rplidar/laser_scene.h"
 #include "drivers/rplidar/rplidar_protocol.h"
 #include "drivers/rplidar/rplidar_scan_decoder.h"
 
@@ -58,7 +62,9 @@ struct RplidarDeviceOptions {
   double max_range_m = 12.0;          // farther surfaces give no return (distance 0)
   double start_angle_deg = 17.0;      // device angle of the first sample of a scan
   uint64_t seed = 1;
-  EmulatedRoom room = EmulatedRoom::Default();
+  // What the scanner sees (never null): the default room around a fixed scanner, or a world
+  // shared with a moving robot.
+  std::shared_ptr<const LaserScene> scene = std::make_shared<EmulatedRoom>(EmulatedRoom::Default());
 
   // model 0x28 (family 2 = A2), firmware 1.29, hardware 7, a fixed serial number.
   static DeviceInfo DefaultInfo();
@@ -123,8 +129,10 @@ class RplidarDeviceModel {
   void EmitPacket(std::vector<uint8_t> packet, bool express);
   std::vector<uint8_t> StandardNode(int64_t k) const;
   std::vector<uint8_t> ExpressCapsule(int64_t capsule_index, bool start_flag) const;
-  // Distance in millimetres at a device angle for sample k (0: no return), and its quality.
-  double MeasureMm(double device_angle_deg, int64_t k, uint8_t* quality) const;
+  // Distance in millimetres at a device angle for sample k measured at `time_us` (0: no
+  // return), and its quality.
+  double MeasureMm(double device_angle_deg, int64_t k, int64_t time_us, uint8_t* quality) const;
+  int64_t SampleTimeUs(int64_t k, uint16_t sample_us) const;
   uint64_t Hash(int64_t k, uint64_t stream) const;
   double Uniform(int64_t k, uint64_t stream) const;
 

@@ -5,6 +5,7 @@
 #include "drivers/common/byte_stream.h"
 #include "drivers/common/driver_clock.h"
 #include "drivers/rplidar/rplidar_driver.h"
+#include "drivers/rplidar/rplidar_driver_config.h"
 #include "runtime/lcm_io.h"
 #include "runtime/process.h"
 #include "runtime/shutdown.h"
@@ -51,7 +52,8 @@ int main(int argc, char** argv) {
         [&options] {
           return OpenByteStream(options.port, options.baud, options.connect_timeout_ms);
         },
-        &clock, &sink, settings.channels.Get("laser_scan"), settings.channels.Get("lidar_status"));
+        &clock, &sink, settings.channels.Get("laser_scan"), settings.channels.Get("lidar_status"),
+        settings.channels.Get("laser_geometry"));
     driver.Run([] { return ShutdownRequested(); });
     return 0;
   });

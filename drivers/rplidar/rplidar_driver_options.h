@@ -1,12 +1,12 @@
-// Options of the RPLIDAR driver (`rplidar:` section of the stack configuration; --port,
-// --baud and --mode on the command line win). Defaults are the A2M8's (datasheet, SDK).
+// Options of the RPLIDAR driver (`rplidar:` section of the stack configuration, read by
+// rplidar_driver_config.h; --port, --baud and --mode on the command line win). Defaults are the
+// A2M8's (datasheet, SDK). Pure: the device session (rplidar_session.h) takes them as they are.
 #pragma once
 
 #include <string>
 
 #include "drivers/rplidar/rplidar_beams.h"
 #include "drivers/rplidar/rplidar_scan_decoder.h"
-#include "runtime/config.h"
 
 namespace slammtt {
 namespace rplidar {
@@ -35,15 +35,17 @@ struct RplidarDriverOptions {
   int reconnect_initial_ms = 200;     // backoff between reopen attempts, doubling ...
   int reconnect_max_ms = 5000;        // ... up to this
   double status_period_s = 1.0;       // LIDAR_STATUS period (also sent on every change)
+  // Where the scanner sits on the robot (paper eq. 11: a, b, from the middle of the wheel
+  // axle, x forward, y left) and the heading of the scans' frame (after angle_offset_deg), CCW
+  // from the robot's: published on LASER_GEOMETRY with LIDAR_STATUS, so that the estimator
+  // takes them from here (docs/estimator.md, "Laser geometry").
+  double mount_forward_m = 0.0;
+  double mount_left_m = 0.0;
+  double mount_yaw_deg = 0.0;
 };
 
-// Reads the `rplidar:` section; ConfigError naming file, line and key on a bad value. The
-// caller calls CheckUnused() on the section afterwards.
-RplidarDriverOptions ReadRplidarDriverOptions(const Config& section);
 // "standard" / "express"; std::invalid_argument otherwise.
 ScanMode ParseScanMode(const std::string& text);
-// Throws std::invalid_argument with a one-line reason when options contradict each other.
-void CheckRplidarDriverOptions(const RplidarDriverOptions& options);
 
 }  // namespace rplidar
 }  // namespace slammtt

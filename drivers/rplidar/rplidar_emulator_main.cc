@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "drivers/common/fault_schedule.h"
+#include "drivers/rplidar/rplidar_emulator_faults.h"
 #include "drivers/rplidar/rplidar_emulator_server.h"
 #include "runtime/log.h"
 #include "runtime/output_file.h"
@@ -20,32 +21,25 @@ namespace {
 using namespace slammtt;
 using namespace slammtt::rplidar;
 
-// The emulator's faults (docs/rplidar.md) and their default arguments: bytes of garbage,
-// packets corrupted or cut, seconds of silence or of a pulled cable.
-const std::vector<std::string> kFaultKinds = {"garbage", "bad-checksum", "drop", "silence",
-                                              "mute", "disconnect"};
-
-double DefaultFaultArgument(const std::string& kind) {
-  if (kind == "garbage") return 100.0;
-  if (kind == "silence" || kind == "mute" || kind == "disconnect") return 3.0;
-  return 1.0;
-}
-
-struct PendingFault {
-  ScheduledFault fault;
-  double argument = 0.0;
-  bool done = false;
-};
-
-PendingFault ParseFault(const std::string& text) {
+RplidarEmulatorFault ParseFault(const std::string& text) {
   try {
-    PendingFault pending;
-    pending.fault = ParseScheduledFault(text, kFaultKinds);
-    pending.argument = FaultNumber(pending.fault.argument,
-                                   DefaultFaultArgument(pending.fault.kind), text);
-    return pending;
+    return ParseRplidarEmulatorFault(text);
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string("--fault: ") + e.what());
+  }
+}
+
+void Inject(const RplidarEmulatorFault& fault, RplidarEmulatorServer* server) {
+  using Kind = RplidarEmulatorFault::Kind;
+  const double argument = fault.argument;
+  LogInfo() << "fault: " << fault.name << " (" << argument << ")";
+  switch (fault.kind) {
+    case Kind::kGarbage: server->InjectGarbage(static_cast<size_t>(argument)); break;
+    case Kind::kBadChecksum: server->CorruptPackets(static_cast<int>(argument)); break;
+    case Kind::kDrop: server->DropBytes(static_cast<int>(argument)); break;
+    case Kind::kSilence: server->Silence(static_cast<int>(argument * 1000)); break;
+    case Kind::kMute: server->Mute(static_cast<int>(argument * 1000)); break;
+    case Kind::kDisconnect: server->Disconnect(static_cast<int>(argument * 1000)); break;
   }
 }
 
@@ -127,8 +121,9 @@ int main(int argc, char** argv) {
     device.accessory_board = command_line.Flag("accessory-board");
     if (auto health = command_line.Value("health")) device.health = ParseHealth(*health);
     device.health_persists_after_reset = command_line.Flag("health-persists");
-    std::vector<PendingFault> faults;
+    std::vector<RplidarEmulatorFault> faults;
     for (const std::string& text : command_line.Values("fault")) faults.push_back(ParseFault(text));
+    FaultSchedule schedule(FaultTimes(faults));
 
     EmulatorTransportOptions transport;
     if (auto port = command_line.IntValue("tcp")) {
@@ -151,19 +146,7 @@ int main(int argc, char** argv) {
     while (!ShutdownRequested()) {
       const double elapsed_s =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      for (PendingFault& pending : faults) {
-        if (pending.done || elapsed_s < pending.fault.at_s) continue;
-        pending.done = true;
-        const std::string& kind = pending.fault.kind;
-        const double argument = pending.argument;
-        LogInfo() << "fault: " << kind << " (" << argument << ")";
-        if (kind == "garbage") server.InjectGarbage(static_cast<size_t>(argument));
-        if (kind == "bad-checksum") server.CorruptPackets(static_cast<int>(argument));
-        if (kind == "drop") server.DropBytes(static_cast<int>(argument));
-        if (kind == "silence") server.Silence(static_cast<int>(argument * 1000));
-        if (kind == "mute") server.Mute(static_cast<int>(argument * 1000));
-        if (kind == "disconnect") server.Disconnect(static_cast<int>(argument * 1000));
-      }
+      for (size_t index : schedule.TakeDue(elapsed_s)) Inject(faults[index], &server);
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
     server.Stop();

@@ -22,7 +22,8 @@ SECTIONS = ("lcm", "channels", "segmenter", "estimator", "smoother", "rplidar", 
 # smoother's pose (smoothed_pose) when a log has it.
 CHANNEL_DEFAULTS = {
     "odometry": "ODOMETRY", "velocity_command": "VELOCITY_COMMAND",
-    "laser_scan": "LASER_SCAN", "features": "FEATURES", "pose": "POSE", "map": "MAP",
+    "laser_scan": "LASER_SCAN", "laser_geometry": "LASER_GEOMETRY", "features": "FEATURES",
+    "pose": "POSE", "map": "MAP",
     "tracks": "TRACKS", "ground_truth": "GROUND_TRUTH", "stage_timing": "STAGE_TIMING",
     "lidar_status": "LIDAR_STATUS", "base_status": "BASE_STATUS",
     "estimator_status": "ESTIMATOR_STATUS", "leg_labels": "LEG_LABELS",
@@ -123,3 +124,28 @@ class StackConfig:
         slammtt-eval reads them."""
         return (self.number("estimator", "sensor_forward_m", 0.0, -100.0, 100.0),
                 self.number("estimator", "sensor_left_m", 0.0, -100.0, 100.0))
+
+    def mount_given(self):
+        """Whether the file gives the mount (estimator.sensor_forward_m or sensor_left_m);
+        without it the log's LASER_GEOMETRY does (logged_mount)."""
+        values = self.section("estimator")
+        return "sensor_forward_m" in values or "sensor_left_m" in values
+
+
+def logged_mount(log_path, channel):
+    """(forward_m, left_m) of the log's first LASER_GEOMETRY with finite values within 100 m,
+    or None (docs/estimator.md, "Laser geometry")."""
+    import math
+    from slammtt import msgs
+    from slammtt.lcmlog import LogReader
+    for event in LogReader(log_path).events():
+        if event.channel != channel:
+            continue
+        try:
+            m = msgs.decode(event.data)
+        except msgs.UndecodableMessage:
+            continue
+        values = (getattr(m, "mount_forward_m", math.nan), getattr(m, "mount_left_m", math.nan))
+        if all(math.isfinite(v) and abs(v) <= 100.0 for v in values):
+            return values
+    return None

@@ -53,5 +53,33 @@ TEST(FaultScheduleTest, NumericArgumentsAreBoundedAndDefaulted) {
   }
 }
 
+TEST(FaultScheduleTest, EachFaultFiresOnceWhenItsTimeHasCome) {
+  FaultSchedule schedule({2.0, 0.0, 5.0});
+  EXPECT_EQ(schedule.pending(), 3u);
+  EXPECT_EQ(schedule.TakeDue(0.0), (std::vector<size_t>{1}));  // at 0 s: due at the start
+  EXPECT_TRUE(schedule.TakeDue(0.5).empty());
+  EXPECT_TRUE(schedule.TakeDue(1.999).empty());
+  EXPECT_EQ(schedule.TakeDue(2.0), (std::vector<size_t>{0}));  // the time itself is due
+  EXPECT_TRUE(schedule.TakeDue(2.1).empty()) << "fired once only";
+  EXPECT_EQ(schedule.pending(), 1u);
+  EXPECT_EQ(schedule.TakeDue(100.0), (std::vector<size_t>{2}));
+  EXPECT_EQ(schedule.pending(), 0u);
+  EXPECT_TRUE(schedule.TakeDue(1000.0).empty());
+}
+
+TEST(FaultScheduleTest, FaultsDueTogetherFireInTheOrderGiven) {
+  // A late look at the clock (the emulator slept past two times) fires both, in command-line
+  // order, not by time.
+  FaultSchedule schedule({3.0, 1.0, 2.0});
+  EXPECT_EQ(schedule.TakeDue(2.5), (std::vector<size_t>{1, 2}));
+  EXPECT_EQ(schedule.TakeDue(3.0), (std::vector<size_t>{0}));
+}
+
+TEST(FaultScheduleTest, AnEmptyScheduleHasNothingDue) {
+  FaultSchedule schedule({});
+  EXPECT_EQ(schedule.pending(), 0u);
+  EXPECT_TRUE(schedule.TakeDue(1e6).empty());
+}
+
 }  // namespace
 }  // namespace slammtt

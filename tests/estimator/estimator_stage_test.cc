@@ -12,6 +12,7 @@
 #include "estimator/estimator_stage.h"
 #include "slammtt_msgs/estimator_status_t.hpp"
 #include "slammtt_msgs/features_t.hpp"
+#include "slammtt_msgs/laser_geometry_t.hpp"
 #include "slammtt_msgs/map_t.hpp"
 #include "slammtt_msgs/odometry_t.hpp"
 #include "slammtt_msgs/pose_t.hpp"
@@ -276,7 +277,8 @@ TEST(ScanInputFromFeaturesTest, BadOrSharedLegIndicesAreIgnored) {
 TEST(EstimatorStageTest, PublishesEveryOutputWithTheFeaturesUtime) {
   EstimatorStage stage(EstimatorStageOptions{}, Channels());
   EXPECT_EQ(stage.Name(), "estimator");
-  EXPECT_EQ(stage.InputChannels(), (std::vector<std::string>{"ODOMETRY", "FEATURES"}));
+  EXPECT_EQ(stage.InputChannels(),
+            (std::vector<std::string>{"ODOMETRY", "FEATURES", "LASER_GEOMETRY"}));
   RecordingSink out;
   Feed(&stage, "ODOMETRY", OdometryBytes(0, 0.0, 0.5), out);
   Feed(&stage, "ODOMETRY", OdometryBytes(100000, 0.05, 0.5), out);
@@ -566,6 +568,123 @@ TEST(EstimatorStageTest, FactoryReadsTheStackConfiguration) {
   EXPECT_EQ(stage->Name(), "estimator");
   EXPECT_EQ(static_cast<EstimatorStage*>(stage.get())->estimator().options().mode,
             AssociationMode::kRansacAllPairs);
+}
+
+}  // namespace
+}  // namespace slammtt
+
+namespace slammtt {
+namespace {
+
+// A LASER_GEOMETRY as slammtt-world publishes it for s2-lobby.
+std::vector<uint8_t> LobbyGeometryBytes(int64_t utime) {
+  slammtt_msgs::laser_geometry_t m{};
+  m.utime = utime;
+  m.mount_forward_m = 0.1;
+  m.view_start_rad = -0.5 * (180.0 * M_PI / 180.0);
+  m.view_end_rad = 0.5 * (180.0 * M_PI / 180.0);
+  m.range_min_m = 0.1;
+  m.range_max_m = 30.0;
+  m.source = "slammtt-world, scenario s2-lobby";
+  return Encode(m);
+}
+
+EstimatorStage StageOf(const std::string& yaml) {
+  const Config config = Config::FromString(yaml, "stack.yaml");
+  return EstimatorStage(ReadEstimatorOptions(config.Child("estimator")), Channels());
+}
+
+// The lines the stage writes to stderr while it handles `bytes` on LASER_GEOMETRY `times` times.
+std::vector<std::string> GeometryLines(EstimatorStage* stage, const std::vector<uint8_t>& bytes,
+                                       int times) {
+  RecordingSink out;
+  ::testing::internal::CaptureStderr();
+  for (int k = 0; k < times; ++k) Feed(stage, "LASER_GEOMETRY", bytes, out);
+  std::istringstream text(::testing::internal::GetCapturedStderr());
+  EXPECT_TRUE(out.messages.empty());
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(text, line);) lines.push_back(line);
+  return lines;
+}
+
+TEST(EstimatorGeometryTest, ReadsWhichGeometryKeysTheConfigurationGives) {
+  EXPECT_FALSE(ReadEstimatorOptions(Config()).geometry_given.any());
+  const auto given = [](const std::string& key_value) {
+    const Config c = Config::FromString("estimator:\n  " + key_value + "\n", "stack.yaml");
+    return ReadEstimatorOptions(c.Child("estimator")).geometry_given;
+  };
+  const ConfiguredGeometryParts yaw = given("sensor_yaw_deg: 90");
+  EXPECT_TRUE(yaw.mount && !yaw.field_of_view && !yaw.max_range);
+  const ConfiguredGeometryParts view = given("field_of_view_start_deg: -120");
+  EXPECT_TRUE(!view.mount && view.field_of_view && !view.max_range);
+  const ConfiguredGeometryParts range = given("max_range_m: 12");
+  EXPECT_TRUE(!range.mount && !range.field_of_view && range.max_range);
+  EXPECT_FALSE(given("min_range_m: 0.1").any());  // the estimator's own gate, not geometry
+}
+
+TEST(EstimatorGeometryTest, WithoutTheKeysTakesTheLogsGeometryAndSaysSoOnce) {
+  EstimatorStage stage(EstimatorStageOptions{}, Channels());
+  const std::vector<std::string> lines = GeometryLines(&stage, LobbyGeometryBytes(0), 3);
+  ASSERT_EQ(lines.size(), 1u);
+  EXPECT_NE(lines[0].find("estimator: laser geometry the configuration does not give, taken from "
+                          "LASER_GEOMETRY (slammtt-world, scenario s2-lobby): mount "
+                          "forward 0.1 m, left 0 m, yaw 0 deg; field of view -90 to 90 deg; "
+                          "max range 30 m"),
+            std::string::npos)
+      << lines[0];
+  EXPECT_EQ(stage.estimator().options().sensor.forward_m, 0.1);
+  EXPECT_EQ(stage.estimator().options().field_of_view_rad, 180.0 * M_PI / 180.0);
+  EXPECT_EQ(stage.estimator().options().max_range_m, 30.0);
+  EXPECT_EQ(stage.counters().geometry_messages, 3);
+  EXPECT_EQ(stage.counters().geometry_disagreements, 0);
+}
+
+TEST(EstimatorGeometryTest, AnAgreeingConfigurationSaysNothing) {
+  EstimatorStage stage = StageOf(
+      "estimator:\n  sensor_forward_m: 0.1\n  sensor_left_m: 0.0\n"
+      "  field_of_view_deg: 180\n  max_range_m: 30\n");
+  EXPECT_TRUE(GeometryLines(&stage, LobbyGeometryBytes(0), 2).empty());
+  EXPECT_EQ(stage.counters().geometry_disagreements, 0);
+}
+
+TEST(EstimatorGeometryTest, ADisagreeingConfigurationWarnsOnceInOneLineNamingBothValues) {
+  // office's geometry on the lobby's log.
+  EstimatorStage stage = StageOf(
+      "estimator:\n  sensor_forward_m: 0.05\n  field_of_view_deg: 360\n  max_range_m: 12\n");
+  const std::vector<std::string> lines = GeometryLines(&stage, LobbyGeometryBytes(0), 4);
+  ASSERT_EQ(lines.size(), 1u);
+  EXPECT_NE(lines[0].find("the configuration's laser geometry disagrees with LASER_GEOMETRY "
+                          "(slammtt-world, scenario s2-lobby): mount: configuration (forward "
+                          "0.05 m, left 0 m, yaw 0 deg), log (forward 0.1 m, left 0 m, yaw 0 "
+                          "deg); field of view: configuration -180 to 180 deg, log -90 to 90 "
+                          "deg; max range: configuration 12 m, log 30 m; the configuration's "
+                          "is used"),
+            std::string::npos)
+      << lines[0];
+  EXPECT_EQ(stage.counters().geometry_disagreements, 1);
+  EXPECT_EQ(stage.estimator().options().sensor.forward_m, 0.05);
+  EXPECT_EQ(stage.estimator().options().max_range_m, 12.0);
+}
+
+TEST(EstimatorGeometryTest, AnUnusableGeometryIsCountedWarnedOnceAndNotUsed) {
+  slammtt_msgs::laser_geometry_t m{};
+  m.mount_forward_m = std::nan("");
+  m.view_start_rad = -1.0;
+  m.view_end_rad = 1.0;
+  m.range_max_m = 30.0;
+  m.source = "two\nlines";  // stays one line
+  EstimatorStage stage(EstimatorStageOptions{}, Channels());
+  const std::vector<std::string> lines = GeometryLines(&stage, Encode(m), 3);
+  ASSERT_EQ(lines.size(), 1u);
+  EXPECT_NE(lines[0].find("(two?lines) not used: a value is not a finite number"),
+            std::string::npos)
+      << lines[0];
+  EXPECT_EQ(stage.counters().geometry_rejected, 1);
+  EXPECT_EQ(stage.estimator().options().sensor.forward_m, 0.0);
+  const std::vector<uint8_t> garbage = {1, 2, 3};
+  RecordingSink out;
+  Feed(&stage, "LASER_GEOMETRY", garbage, out);
+  EXPECT_EQ(stage.counters().messages_undecodable, 1);
 }
 
 }  // namespace

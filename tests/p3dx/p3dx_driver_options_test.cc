@@ -1,6 +1,6 @@
 // The p3dx: section of the stack configuration: defaults, every key, and mistakes named with the
 // file, the line and the key.
-#include "drivers/p3dx/p3dx_driver_options.h"
+#include "drivers/p3dx/p3dx_driver_config.h"
 
 #include <gtest/gtest.h>
 

@@ -195,3 +195,15 @@ def test_a_link_planted_at_the_output_is_replaced_not_written_through(run, tmp_p
     export_ok(run.log, "--mcap", out)
     assert victim.read_text() == "keep me"
     assert not out.is_symlink() and read_mcap(out)[0].statistics.message_count > 1000
+
+
+def test_without_a_mount_in_the_configuration_the_logs_geometry_gives_it(run, tmp_path):
+    # The world log's LASER_GEOMETRY: s1-crossing's laser 0.1 m ahead of the axle.
+    path = tmp_path / "bare.mcap"
+    err = export_ok(run.log, "--mcap", path)
+    assert "laser mount from LASER_GEOMETRY: forward 0.1 m, left 0 m" in err
+    _, metadata, messages = read_mcap(path)
+    assert metadata["slammtt"]["laser_mount_forward_m"] == "0.1"
+    mounts = [t for _, tf in messages["/tf"] for t in tf.transforms
+              if (t.parent_frame_id, t.child_frame_id) == ("base_link", "laser")]
+    assert mounts and all(t.translation.x == 0.1 for t in mounts)

@@ -77,3 +77,55 @@ def test_readme_commands_run(netns, tmp_path_factory):
     assert (export / "tum" / "estimate.tum").exists() and (export / "csv" / "map.csv").exists()
     assert (export / "mot" / "frames.csv").exists()
     assert (export / "office-seed1-replay.mcap").stat().st_size > 100000
+
+
+def spy_commands():
+    readme = (SOURCE_DIR / "README.md").read_text()
+    section = readme.split("### The raw messages: lcm-spy\n", 1)[1].split("\n## ", 1)[0]
+    block = re.search(r"```sh\n(.*?)```", section, re.S).group(1)
+    return [line.split("#", 1)[0].strip() for line in block.splitlines() if line.strip()]
+
+
+def test_readme_lcm_spy_commands_run(netns, tmp_path_factory):
+    """The lcm-spy block as written, on an Xvfb display: the spy starts in the background, the
+    log (a scenario's replay in place of the office run's) plays onto the bus to its end, and
+    the spy, still running, stops on SIGTERM."""
+    import shutil
+    import time
+    commands = spy_commands()
+    assert [shlex.split(c)[0] for c in commands] == ["build/bin/slammtt-lcm-spy",
+                                                     "lcm-logplayer"]
+    assert commands[0].endswith("&")
+    spy = BIN_DIR / "slammtt-lcm-spy"
+    if not spy.exists():
+        pytest.skip(f"{spy} is not written: the build found no JDK (scripts/install-deps.sh)")
+    if shutil.which("Xvfb") is None:
+        pytest.skip("no Xvfb (Debian package xvfb, scripts/install-deps.sh): the spy needs a "
+                    "display")
+    run = scenario_run(tmp_path_factory, "s1-crossing", 7, duration_s=5)
+    xvfb = subprocess.Popen(["Xvfb", "-displayfd", "1", "-nolisten", "tcp"],
+                            stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
+    try:
+        display = xvfb.stdout.readline().strip()
+        assert display.isdigit(), display
+        env = dict(os.environ, DISPLAY=f":{display}")
+        process = subprocess.Popen(shlex.split(commands[0].rstrip("& ")), cwd=SOURCE_DIR,
+                                   env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                                   text=True)
+        try:
+            time.sleep(3)
+            assert process.poll() is None, process.stdout.read()
+            words = [str(run.log) if w == "out/office-seed1-replay.lcm" else w
+                     for w in shlex.split(commands[1])]
+            played = subprocess.run(words, capture_output=True, text=True, cwd=SOURCE_DIR,
+                                    env=env, timeout=120)
+            assert played.returncode == 0, played.stderr
+            assert process.poll() is None, process.stdout.read()
+        finally:
+            process.send_signal(signal.SIGTERM)
+            process.wait(timeout=30)
+        types = len(list((SOURCE_DIR / "lcmtypes").glob("*.lcm")))
+        assert f"Found {types} LCM types" in process.stdout.read()
+    finally:
+        xvfb.terminate()
+        xvfb.wait(timeout=30)

@@ -30,7 +30,7 @@ def test_fixture_scans_and_labels(tmp_path):
     assert "sensor_msgs/LaserScan topic /training_scan (the only one)" in err
     assert "LEG_LABELS: 20 labelled scans, 30 legs" in err
     log = read_log(out)
-    assert set(log) == {"LASER_SCAN", "LEG_LABELS"}
+    assert set(log) == {"LASER_SCAN", "LEG_LABELS", "LASER_GEOMETRY"}
     scans, labels = log["LASER_SCAN"], log["LEG_LABELS"]
     source_scans = bag_messages(POSITIVE_FIXTURE, "/training_scan")
     source_labels = bag_messages(POSITIVE_FIXTURE, "/leg_cluster_positions")
@@ -108,7 +108,13 @@ def test_odometry_tf_mount_and_topic_choice(tmp_path):
     # Odometry before each scan of the same moment: merged by utime.
     from slammtt.lcmlog import LogReader
     channels = [m.channel for m in LogReader(out)]
-    assert channels == ["ODOMETRY", "LASER_SCAN"] * 5
+    # The laser's geometry at the first scan (the next second starts after the last scan).
+    assert channels == ["ODOMETRY", "LASER_GEOMETRY", "LASER_SCAN"] + \
+        ["ODOMETRY", "LASER_SCAN"] * 4
+    geometry = log["LASER_GEOMETRY"][0]
+    assert geometry.utime == 1_000_000
+    assert (geometry.mount_forward_m, geometry.mount_left_m, geometry.mount_yaw_rad) == \
+        pytest.approx((0.2, 0.05, 0.0))
 
     rear = tmp_path / "rear.lcm"
     err = import_ok(path, "-o", rear, "--laser-topic", "/rear_scan", "--no-odometry",
@@ -116,7 +122,8 @@ def test_odometry_tf_mount_and_topic_choice(tmp_path):
     assert "topic /rear_scan (chosen by --laser-topic)" in err
     assert "no static transform base_link -> rear_laser" in err
     log = read_log(rear)
-    assert set(log) == {"REAR"} and list(log["REAR"][0].range_m) == [3.0, 3.0, 3.0]
+    assert set(log) == {"REAR", "LASER_GEOMETRY"}
+    assert list(log["REAR"][0].range_m) == [3.0, 3.0, 3.0]
 
 
 def test_wheel_speeds_unknown_without_the_track(tmp_path):

@@ -1,10 +1,13 @@
 // The emulated device, by itself: its replies byte for byte, its motor, its reset, and that
-// what it scans decodes to exactly the angles it ray-cast.
+// what it scans decodes to exactly the angles it ray-cast, each sample measured at its own
+// moment in the scene, with the scene's dropouts.
 #include "drivers/rplidar/rplidar_device_model.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -113,7 +116,7 @@ TEST(RplidarDeviceModelTest, ExpressScanDecodesToTheAnglesThatWereRayCast) {
   int revolutions = 0;
   for (const ScanSample& sample : samples) {
     revolutions += sample.start_of_revolution ? 1 : 0;
-    const std::optional<double> range = options.room.CastDeviceRay(sample.AngleDeg());
+    const std::optional<double> range = EmulatedRoom::Default().CastDeviceRay(sample.AngleDeg());
     if (!range) {
       EXPECT_EQ(sample.distance_q2, 0);
       continue;
@@ -131,7 +134,7 @@ TEST(RplidarDeviceModelTest, StandardScanMatchesTheRoomWithinNoise) {
   double sum_squares = 0.0;
   int hits = 0;
   for (const ScanSample& sample : samples) {
-    const std::optional<double> range = options.room.CastDeviceRay(sample.AngleDeg());
+    const std::optional<double> range = EmulatedRoom::Default().CastDeviceRay(sample.AngleDeg());
     if (!range) continue;
     const double error_m = sample.DistanceMm() / 1000.0 - *range;
     sum_squares += error_m * error_m;
@@ -160,6 +163,62 @@ TEST(RplidarDeviceModelTest, SameSeedSameBytesWhateverThePacingWithinTheBacklog)
   }
   EXPECT_EQ(fine, coarse);
   EXPECT_GT(fine.size(), 84u * 10);
+}
+
+}  // namespace
+}  // namespace rplidar
+}  // namespace slammtt
+
+namespace slammtt {
+namespace rplidar {
+namespace {
+
+// A scene at 2 m in every direction that remembers the moments it was asked about, with a
+// dropout probability of its own.
+class RecordingScene : public LaserScene {
+ public:
+  explicit RecordingScene(double dropout_probability) : dropout_(dropout_probability) {}
+  std::optional<SceneReturn> Cast(double, int64_t time_us) const override {
+    times_us.push_back(time_us);
+    return SceneReturn{2.0, dropout_};
+  }
+  mutable std::vector<int64_t> times_us;
+
+ private:
+  double dropout_;
+};
+
+TEST(RplidarDeviceModelTest, EachSampleIsMeasuredAtItsOwnMomentInTheScene) {
+  auto scene = std::make_shared<RecordingScene>(0.0);
+  RplidarDeviceOptions options;
+  options.scene = scene;
+  options.range_noise_m = 0.0;
+  RplidarDeviceModel model(options);
+  model.SetHostDtr(false, 0);
+  Ask(model, ScanRequest(), 0);
+  // The stream starts once the motor is at speed; node k is measured at epoch + k * 500 us.
+  const int64_t epoch = options.spin_up_us;
+  model.TakeOutput(epoch);
+  const Bytes nodes = model.TakeOutput(epoch + 100 * 500);
+  EXPECT_EQ(nodes.size(), 100u * 5u);
+  ASSERT_EQ(scene->times_us.size(), 100u);
+  for (size_t k = 0; k < scene->times_us.size(); ++k) {
+    EXPECT_EQ(scene->times_us[k], epoch + static_cast<int64_t>(k) * 500) << k;
+  }
+}
+
+TEST(RplidarDeviceModelTest, ASurfacesDropoutProbabilityLosesThatShareOfItsSamples) {
+  for (const double probability : {0.0, 0.3, 1.0}) {
+    RplidarDeviceOptions options;
+    options.scene = std::make_shared<RecordingScene>(probability);
+    const std::vector<ScanSample> samples = ScanAndDecode(true, 1300000, options);
+    ASSERT_GE(samples.size(), 3900u);
+    int lost = 0;
+    for (const ScanSample& sample : samples) lost += sample.distance_q2 == 0 ? 1 : 0;
+    const double share = static_cast<double>(lost) / static_cast<double>(samples.size());
+    // 3900+ draws: a binomial share within 0.03 of p (more than 4 standard deviations).
+    EXPECT_NEAR(share, probability, 0.03) << probability;
+  }
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-#include "drivers/rplidar/rplidar_driver_options.h"
+#include "drivers/rplidar/rplidar_driver_config.h"
 
 #include <gtest/gtest.h>
 
@@ -29,7 +29,8 @@ TEST(RplidarDriverOptionsTest, ReadsEveryKey) {
       "  upside_down: true\n  range_min_m: 0.2\n  range_max_m: 16\n  max_step_deg: 10\n"
       "  max_back_step_deg: 2\n  connect_timeout_ms: 300\n  response_timeout_ms: 400\n"
       "  first_data_timeout_ms: 3000\n  data_timeout_ms: 700\n  reset_wait_ms: 900\n"
-      "  reconnect_initial_ms: 100\n  reconnect_max_ms: 800\n  status_period_s: 0.5\n");
+      "  reconnect_initial_ms: 100\n  reconnect_max_ms: 800\n  status_period_s: 0.5\n"
+      "  mount_forward_m: 0.12\n  mount_left_m: -0.03\n  mount_yaw_deg: 90\n");
   const Config section = config.Child("rplidar");
   const RplidarDriverOptions options = ReadRplidarDriverOptions(section);
   EXPECT_NO_THROW(section.CheckUnused());
@@ -44,6 +45,9 @@ TEST(RplidarDriverOptionsTest, ReadsEveryKey) {
   EXPECT_DOUBLE_EQ(options.decoder.max_step_deg, 10.0);
   EXPECT_EQ(options.reconnect_max_ms, 800);
   EXPECT_DOUBLE_EQ(options.status_period_s, 0.5);
+  EXPECT_EQ(options.mount_forward_m, 0.12);
+  EXPECT_EQ(options.mount_left_m, -0.03);
+  EXPECT_EQ(options.mount_yaw_deg, 90.0);
   EXPECT_NO_THROW(CheckRplidarDriverOptions(options));
 }
 
@@ -75,6 +79,9 @@ TEST(RplidarDriverOptionsTest, BadValuesNameTheKey) {
   // Before: taken, and every beam angle became what is left of 1e300 - angle in a double.
   ExpectConfigError("  angle_offset_deg: 1e300\n", "rplidar.angle_offset_deg");
   ExpectConfigError("  angle_offset_deg: -360.5\n", "rplidar.angle_offset_deg");
+  ExpectConfigError("  mount_forward_m: 12\n", "rplidar.mount_forward_m");
+  ExpectConfigError("  mount_left_m: .nan\n", "rplidar.mount_left_m");
+  ExpectConfigError("  mount_yaw_deg: 181\n", "rplidar.mount_yaw_deg");
 }
 
 TEST(RplidarDriverOptionsTest, MalformedPortIsRefusedBeforeAnyOpen) {

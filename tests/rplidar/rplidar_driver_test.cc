@@ -39,7 +39,7 @@ struct Rig {
           if (unplugged) throw LinkError("virtual:rplidar: no such device");
           return std::make_unique<VirtualLink>(&model, &clock, &unplugged);
         },
-        &clock, &sink, "LASER_SCAN", "LIDAR_STATUS");
+        &clock, &sink, "LASER_SCAN", "LIDAR_STATUS", "LASER_GEOMETRY");
     const int64_t limit_us = clock.now_us_ + 120 * 1000000LL;  // a broken driver cannot spin forever
     driver.Run([&] {
       hook();
@@ -76,7 +76,7 @@ void ExpectScansMatchTheRoom(const Rig& rig, int min_beams, int max_beams) {
     EXPECT_LE(scan.num_beams, max_beams) << "scan " << i;
     EXPECT_EQ(scan.angle_rad.size(), static_cast<size_t>(scan.num_beams));
     EXPECT_EQ(scan.valid.size(), static_cast<size_t>(scan.num_beams));
-    EXPECT_EQ(CountBeamsDisagreeingWithRoom(scan, rig.device.room), 0) << "scan " << i;
+    EXPECT_EQ(CountBeamsDisagreeingWithRoom(scan, EmulatedRoom::Default()), 0) << "scan " << i;
     EXPECT_GT(scan.utime, previous_utime);
     previous_utime = scan.utime;
   }
@@ -112,6 +112,40 @@ TEST(RplidarDriverTest, ExpressScansMatchTheRoomAndStatusDescribesTheDevice) {
     if (s.state == "scanning") last_scanning_rate_hz = s.scan_rate_hz;
   }
   EXPECT_NEAR(last_scanning_rate_hz, 10.0, 0.2);  // virtual time: the exact rotation
+}
+
+// The mount of the rplidar: section travels on LASER_GEOMETRY, right after every LIDAR_STATUS
+// (at start, about once a second, on every change), for the estimator (docs/estimator.md).
+TEST(RplidarDriverTest, EveryStatusIsFollowedByTheLasersGeometry) {
+  Rig rig;
+  rig.options.mount_forward_m = 0.12;
+  rig.options.mount_left_m = -0.03;
+  rig.options.mount_yaw_deg = 90.0;
+  rig.options.beams.range_max_m = 16.0;
+  rig.Run([&] { return rig.sink.scan_count() >= 25; });
+  const std::vector<std::string> channels = rig.sink.channels();
+  const auto geometries = rig.sink.geometries();
+  ASSERT_GE(geometries.size(), 3u);  // connecting, scanning, at least one periodic
+  EXPECT_EQ(geometries.size(), rig.sink.statuses().size());
+  for (size_t k = 0; k < channels.size(); ++k) {
+    if (channels[k] == "LIDAR_STATUS") {
+      ASSERT_LT(k + 1, channels.size());
+      EXPECT_EQ(channels[k + 1], "LASER_GEOMETRY") << k;
+    }
+  }
+  const auto statuses = rig.sink.statuses();
+  for (size_t k = 0; k < geometries.size(); ++k) {
+    const slammtt_msgs::laser_geometry_t& g = geometries[k];
+    EXPECT_EQ(g.utime, statuses[k].utime);
+    EXPECT_EQ(g.mount_forward_m, 0.12);
+    EXPECT_EQ(g.mount_left_m, -0.03);
+    EXPECT_EQ(g.mount_yaw_rad, 90.0 * M_PI / 180.0);
+    EXPECT_EQ(g.view_start_rad, -M_PI);
+    EXPECT_EQ(g.view_end_rad, M_PI);
+    EXPECT_EQ(g.range_min_m, 0.15);
+    EXPECT_EQ(g.range_max_m, 16.0);
+    EXPECT_EQ(g.source, "slammtt-rplidar, rplidar: section");
+  }
 }
 
 TEST(RplidarDriverTest, StandardScansMatchTheRoom) {

@@ -16,6 +16,7 @@
 #include "drivers/rplidar/emulated_room.h"
 #include "drivers/rplidar/rplidar_device_model.h"
 #include "runtime/lcm_io.h"
+#include "slammtt_msgs/laser_geometry_t.hpp"
 #include "slammtt_msgs/laser_scan_t.hpp"
 #include "slammtt_msgs/lidar_status_t.hpp"
 
@@ -94,7 +95,11 @@ class RecordingSink : public MessageSink {
     } else if (channel == "LIDAR_STATUS") {
       slammtt_msgs::lidar_status_t status;
       if (Decode(data, size, &status)) statuses_.push_back(status);
+    } else if (channel == "LASER_GEOMETRY") {
+      slammtt_msgs::laser_geometry_t geometry;
+      if (Decode(data, size, &geometry)) geometries_.push_back(geometry);
     }
+    channels_.push_back(channel);
   }
   std::vector<slammtt_msgs::laser_scan_t> scans() const {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -104,8 +109,19 @@ class RecordingSink : public MessageSink {
     std::lock_guard<std::mutex> lock(mutex_);
     return statuses_;
   }
+  std::vector<slammtt_msgs::laser_geometry_t> geometries() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return geometries_;
+  }
+  // Every channel published on, in order.
+  std::vector<std::string> channels() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return channels_;
+  }
   void Clear() {
     std::lock_guard<std::mutex> lock(mutex_);
+    geometries_.clear();
+    channels_.clear();
     scans_.clear();
     statuses_.clear();
     publish_utimes_.clear();
@@ -130,6 +146,8 @@ class RecordingSink : public MessageSink {
   std::vector<slammtt_msgs::laser_scan_t> scans_;
   std::vector<int64_t> publish_utimes_;
   std::vector<slammtt_msgs::lidar_status_t> statuses_;
+  std::vector<slammtt_msgs::laser_geometry_t> geometries_;
+  std::vector<std::string> channels_;
 };
 
 // Beams that do not agree with the room: a beam measured what the room has along its direction

@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -21,6 +22,7 @@
 #include "slammtt_msgs/ground_truth_t.hpp"
 #include "slammtt_msgs/laser_scan_t.hpp"
 #include "slammtt_msgs/leg_labels_t.hpp"
+#include "slammtt_msgs/laser_geometry_t.hpp"
 #include "slammtt_msgs/lidar_status_t.hpp"
 #include "slammtt_msgs/map_t.hpp"
 #include "slammtt_msgs/stage_timing_t.hpp"
@@ -486,6 +488,30 @@ struct Sample<slammtt_msgs::leg_labels_t> {
   }
 };
 
+template <>
+struct Sample<slammtt_msgs::laser_geometry_t> {
+  static slammtt_msgs::laser_geometry_t Make() {
+    slammtt_msgs::laser_geometry_t m{};
+    m.utime = 1700000000900000;
+    m.mount_forward_m = 0.1;
+    m.mount_left_m = -0.02;
+    m.mount_yaw_rad = 0.5;
+    m.view_start_rad = -M_PI / 2;
+    m.view_end_rad = M_PI / 2;
+    m.range_min_m = 0.1;
+    m.range_max_m = 30.0;
+    m.source = "slammtt-world, scenario s2-lobby";
+    return m;
+  }
+  static std::vector<CountField> Counts(const slammtt_msgs::laser_geometry_t& m) {
+    std::vector<CountField> fields;
+    size_t at = kFingerprint + 8 + 7 * 8;  // utime, seven doubles
+    AddString(&fields, "source", m.source, &at);
+    return fields;
+  }
+  static bool ArraysMatchCounts(const slammtt_msgs::laser_geometry_t&) { return true; }
+};
+
 // Every type with a Sample above, for the typed tests of the checks and of the fuzzer: a new
 // type is added here once.
 using SampledTypes =
@@ -493,7 +519,7 @@ using SampledTypes =
                      slammtt_msgs::ground_truth_t, slammtt_msgs::tracks_t, slammtt_msgs::map_t,
                      slammtt_msgs::stage_timing_t, slammtt_msgs::lidar_status_t,
                      slammtt_msgs::base_status_t, slammtt_msgs::estimator_status_t,
-                     slammtt_msgs::leg_labels_t>;
+                     slammtt_msgs::leg_labels_t, slammtt_msgs::laser_geometry_t>;
 
 // Names each typed test after its message type ("laser_scan_t") instead of a number.
 class SampledTypeNames {

@@ -232,6 +232,12 @@ TEST(KeyframeSmootherTest, UnusableOptionsAreRefusedByTheConstructor) {
   options = KeyframeSmootherOptions{};
   options.keyframe_distance_m = -1.0;
   EXPECT_NE(CheckKeyframeSmootherOptions(options).find("keyframe_distance_m"), std::string::npos);
+  // The solver's rule beyond its ranges (CheckSmootherOptions), named with its group.
+  options = KeyframeSmootherOptions{};
+  options.solver.max_lambda = options.solver.initial_lambda / 2;
+  EXPECT_THROW(KeyframeSmoother{options}, std::invalid_argument);
+  EXPECT_EQ(CheckKeyframeSmootherOptions(options),
+            "solver: max_lambda must be >= initial_lambda");
   EXPECT_EQ(CheckKeyframeSmootherOptions(KeyframeSmootherOptions{}), "");
 }
 

@@ -7,7 +7,12 @@
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
 #include <cstring>
+#include <fstream>
+#include <limits>
 #include <random>
+#include <sstream>
+#include <stdexcept>
+#include <string>
 
 #include "common/angle.h"
 #include "smoother/factors.h"
@@ -432,6 +437,54 @@ TEST(SmootherTest, SameInputGivesTheSameBytes) {
     EXPECT_EQ(std::memcmp(first.data(), second.data(), first.size() * sizeof(double)), 0)
         << (incremental ? "incremental" : "batch");
   }
+}
+
+// What the constructor says about options it cannot work with (CheckSmootherOptions): the
+// first option out of its range, or max_lambda below initial_lambda.
+std::string ConstructorError(const SmootherOptions& options) {
+  try {
+    Smoother smoother(options);
+  } catch (const std::invalid_argument& error) {
+    return error.what();
+  }
+  return "";
+}
+
+TEST(SmootherOptionsTest, TheSmootherRefusesUnusableOptions) {
+  EXPECT_EQ(ConstructorError(SmootherOptions()), "");
+  SmootherOptions o;
+  o.lambda_factor = 1.0;  // a rejected LM step would never raise lambda
+  EXPECT_EQ(ConstructorError(o), "smoother options: lambda_factor = 1: must be > 1");
+  o = SmootherOptions();
+  o.initial_lambda = 0.0;
+  EXPECT_EQ(ConstructorError(o), "smoother options: initial_lambda = 0: must be > 0");
+  o = SmootherOptions();
+  o.initial_lambda = 1.0;
+  o.max_lambda = 0.1;
+  EXPECT_EQ(ConstructorError(o), "smoother options: max_lambda must be >= initial_lambda");
+  o = SmootherOptions();
+  o.relative_tolerance = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(ConstructorError(o), "smoother options: relative_tolerance = nan: must be >= 0");
+  o = SmootherOptions();
+  o.max_iterations = 0;
+  EXPECT_EQ(ConstructorError(o), "smoother options: max_iterations = 0: must be in [1, 1e+09]");
+  o = SmootherOptions();
+  o.method = static_cast<SmootherOptions::Method>(7);
+  EXPECT_EQ(ConstructorError(o), "smoother options: method is not one of its choices");
+}
+
+// docs/smoother.md carries the table the schema makes.
+TEST(SmootherOptionsTest, TheOptionsTableIsDocumented) {
+  SmootherOptions defaults;
+  OptionsMarkdownTable table;
+  VisitSmootherOptions(&table, &defaults);
+  std::ifstream file(std::string(SLAMMTT_SOURCE_DIR) + "/docs/smoother.md");
+  ASSERT_TRUE(file.good()) << "docs/smoother.md is part of the checkout";
+  std::ostringstream text;
+  text << file.rdbuf();
+  EXPECT_NE(text.str().find(table.Table()), std::string::npos)
+      << "docs/smoother.md, Options: replace the table by\n"
+      << table.Table();
 }
 
 }  // namespace

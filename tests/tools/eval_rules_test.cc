@@ -14,6 +14,7 @@
 #include "runtime/lcm_io.h"
 #include "slammtt_msgs/features_t.hpp"
 #include "slammtt_msgs/ground_truth_t.hpp"
+#include "slammtt_msgs/laser_geometry_t.hpp"
 #include "slammtt_msgs/laser_scan_t.hpp"
 #include "slammtt_msgs/map_t.hpp"
 #include "slammtt_msgs/pose_t.hpp"
@@ -307,9 +308,18 @@ TEST(EvalPeopleTest, WallsAreReadDrawnAndNeverPartOfThePointMap) {
 // Three scans with LASER_SCAN and FEATURES: 0, 2 and 1 person features. The snapshot is scan 1
 // (the most people), with its beams and lines; it is drawn in the truth frame from the robot's
 // true pose plus the mount (robot at (1, 2) heading 90 degrees, sensor 0.5 m ahead: (1, 2.5)).
+// Without a mount in the configuration, the log's LASER_GEOMETRY gives it, yaw included.
 TEST(EvalPeopleTest, TheScanWithTheMostPeopleIsSnapshotAndDrawn) {
   testing::TempDir dir;
   LogWriter log(dir.File("snapshot.lcm"));
+  slammtt_msgs::laser_geometry_t geometry{};
+  geometry.utime = At(0);
+  geometry.mount_forward_m = 0.3;
+  geometry.mount_yaw_rad = M_PI / 2;
+  geometry.view_start_rad = -M_PI;
+  geometry.view_end_rad = M_PI;
+  geometry.range_max_m = 10.0;
+  log.WriteMessage(geometry.utime, "LASER_GEOMETRY", geometry);
   for (int k = 0; k < 3; ++k) {
     slammtt_msgs::laser_scan_t scan{};
     scan.utime = At(k);
@@ -360,6 +370,7 @@ TEST(EvalPeopleTest, TheScanWithTheMostPeopleIsSnapshotAndDrawn) {
   log.Commit();
   EvalOptions options;
   options.sensor_forward_m = 0.5;
+  options.sensor_mount_given = true;
   EvalInput input;
   const EvaluationReport r = EvaluateFile(dir.File("snapshot.lcm"), options, &input);
   ASSERT_TRUE(input.snapshot.has_value());
@@ -371,6 +382,12 @@ TEST(EvalPeopleTest, TheScanWithTheMostPeopleIsSnapshotAndDrawn) {
   ASSERT_TRUE(r.scan_picture->sensor_pose.has_value());
   EXPECT_NEAR(r.scan_picture->sensor_pose->x_m, 1.0, 1e-12);
   EXPECT_NEAR(r.scan_picture->sensor_pose->y_m, 2.5, 1e-12);
+  options.sensor_mount_given = false;  // the log's: 0.3 m ahead, turned by 90 degrees
+  const EvaluationReport logged = Evaluate(input, options);
+  ASSERT_TRUE(logged.scan_picture && logged.scan_picture->sensor_pose);
+  EXPECT_NEAR(logged.scan_picture->sensor_pose->x_m, 1.0, 1e-12);
+  EXPECT_NEAR(logged.scan_picture->sensor_pose->y_m, 2.3, 1e-12);
+  EXPECT_NEAR(std::abs(logged.scan_picture->sensor_pose->heading_rad), M_PI, 1e-12);
   const std::string svg = ScanSvg(r);
   EXPECT_NE(svg.find("2 people"), std::string::npos);
   EXPECT_NE(svg.find("truth frame"), std::string::npos);

@@ -15,6 +15,7 @@
 #include "runtime/lcm_io.h"
 #include "slammtt_msgs/features_t.hpp"
 #include "slammtt_msgs/ground_truth_t.hpp"
+#include "slammtt_msgs/laser_geometry_t.hpp"
 #include "slammtt_msgs/laser_scan_t.hpp"
 #include "slammtt_msgs/odometry_t.hpp"
 #include "tests/support/child_process.h"
@@ -98,8 +99,9 @@ TEST_F(WorldCliTest, S1LogFollowsTheChannelContract) {
       World({"--scenario", "s1-crossing", "--seed", "7", "--log", Path("s1.lcm")});
   ASSERT_EQ(run.exit_code, 0) << run.err;
   // One summary line.
-  EXPECT_NE(run.err.find("slammtt-world: info: s1-crossing seed 7: 4323 messages (FEATURES 961, "
-                         "GROUND_TRUTH 961, ODOMETRY 2401) for 120.00 s simulated in "),
+  EXPECT_NE(run.err.find("slammtt-world: info: s1-crossing seed 7: 4444 messages (FEATURES 961, "
+                         "GROUND_TRUTH 961, LASER_GEOMETRY 121, ODOMETRY 2401) for 120.00 s "
+                         "simulated in "),
             std::string::npos)
       << run.err;
   EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1);
@@ -110,7 +112,9 @@ TEST_F(WorldCliTest, S1LogFollowsTheChannelContract) {
   std::map<std::string, int64_t> next_sequence;
   int64_t last_utime = 0;
   std::string last_channel;
-  const std::map<std::string, int> rank = {{"ODOMETRY", 0}, {"GROUND_TRUTH", 1}, {"FEATURES", 3}};
+  const std::map<std::string, int> rank = {
+      {"ODOMETRY", 0}, {"LASER_GEOMETRY", 1}, {"GROUND_TRUTH", 2}, {"FEATURES", 4}};
+  int64_t frames = 0;  // sensor frames so far (GROUND_TRUTH messages)
   while (const std::optional<LogEvent> event = log.Next()) {
     ASSERT_EQ(rank.count(event->channel), 1u) << event->channel;
     int64_t utime = 0;
@@ -125,10 +129,25 @@ TEST_F(WorldCliTest, S1LogFollowsTheChannelContract) {
         EXPECT_EQ(m.x_m, 0.0);
         EXPECT_EQ(m.heading_rad, 0.0);
       }
+    } else if (event->channel == "LASER_GEOMETRY") {
+      // The scenario's laser (paper section 5.1), with the first frame and every 8th (8 Hz).
+      slammtt_msgs::laser_geometry_t m{};
+      ASSERT_TRUE(Decode(event->data.data(), size, &m));
+      utime = m.utime;
+      EXPECT_EQ(frames % 8, 0);
+      EXPECT_EQ(m.mount_forward_m, 0.1);
+      EXPECT_EQ(m.mount_left_m, 0.0);
+      EXPECT_EQ(m.mount_yaw_rad, 0.0);
+      EXPECT_EQ(m.view_start_rad, -0.5 * M_PI);
+      EXPECT_EQ(m.view_end_rad, 0.5 * M_PI);
+      EXPECT_EQ(m.range_min_m, 0.1);
+      EXPECT_EQ(m.range_max_m, 30.0);
+      EXPECT_EQ(m.source, "slammtt-world, scenario s1-crossing");
     } else if (event->channel == "GROUND_TRUTH") {
       slammtt_msgs::ground_truth_t m{};
       ASSERT_TRUE(Decode(event->data.data(), size, &m));
       utime = m.utime;
+      ++frames;
       ASSERT_EQ(m.num_objects, 69 + 5);
       int moving = 0;
       int statics_visible = 0;
@@ -172,6 +191,7 @@ TEST_F(WorldCliTest, S1LogFollowsTheChannelContract) {
   }
   EXPECT_EQ(count["ODOMETRY"], 2401);
   EXPECT_EQ(count["GROUND_TRUTH"], 961);
+  EXPECT_EQ(count["LASER_GEOMETRY"], 121);
   EXPECT_EQ(count["FEATURES"], 961);
   EXPECT_EQ(last_utime, kEpoch + 120000000);
 }
@@ -206,6 +226,7 @@ TEST_F(WorldCliTest, ScansBothOutputsDurationAndChannelNames) {
   EXPECT_EQ(count["GROUND_TRUTH"], 21);
   EXPECT_EQ(count["SIM_SCAN"], 21);
   EXPECT_EQ(count["FEATURES"], 21);
+  EXPECT_EQ(count["LASER_GEOMETRY"], 3);  // frames 0, 10 and 20 (10 Hz)
   EXPECT_EQ(count.count("LASER_SCAN"), 0u);
 }
 

@@ -140,6 +140,9 @@ struct EvalInput {
   // The scan with the most person features (the earliest of those), with its beams: the picture
   // of what perception sees. Absent without a LASER_SCAN and FEATURES pair of the same utime.
   std::optional<ScanSnapshot> snapshot;
+  // The laser's mount (forward, left, yaw) of the log's first usable LASER_GEOMETRY: the scan
+  // picture's mount when the configuration gives none (EvalOptions::sensor_mount_given).
+  std::optional<Pose2> laser_mount;
   // Messages per channel key ("ground_truth", "odometry", "pose", "tracks", "map"; and
   // "smoothed_pose", "smoothed_map" when the log has any) that were undecodable, carried NaN/inf
   // or an unknown class, or repeated an earlier utime.

@@ -15,6 +15,7 @@
 #include "runtime/output_file.h"
 #include "slammtt_msgs/features_t.hpp"
 #include "slammtt_msgs/ground_truth_t.hpp"
+#include "slammtt_msgs/laser_geometry_t.hpp"
 #include "slammtt_msgs/laser_scan_t.hpp"
 #include "slammtt_msgs/map_t.hpp"
 #include "slammtt_msgs/odometry_t.hpp"
@@ -218,6 +219,7 @@ EvalInput ReadEvalInput(const std::string& path, const Channels& channels, LogRe
   const std::string features_channel = channels.Get("features");
   const std::string smoothed_pose_channel = channels.Get("smoothed_pose");
   const std::string smoothed_map_channel = channels.Get("smoothed_map");
+  const std::string laser_geometry_channel = channels.Get("laser_geometry");
   int64_t last_scan_utime = -1;  // the last decodable LASER_SCAN, kept for the snapshot
   std::vector<Eigen::Vector2d> last_scan_beams;
   for (const char* key : {"ground_truth", "odometry", "pose", "tracks", "map"}) {
@@ -246,6 +248,15 @@ EvalInput ReadEvalInput(const std::string& path, const Channels& channels, LogRe
       if (Decode(e.data, e.size, &msg)) {
         last_scan_utime = msg.utime;
         last_scan_beams = BeamPoints(msg);
+      }
+    } else if (e.channel == laser_geometry_channel) {
+      slammtt_msgs::laser_geometry_t msg{};
+      if (input.laser_mount || !Decode(e.data, e.size, &msg)) return;
+      const Pose2 mount{msg.mount_forward_m, msg.mount_left_m, msg.mount_yaw_rad};
+      if (std::isfinite(mount.x_m) && std::isfinite(mount.y_m) &&
+          std::isfinite(mount.heading_rad) && std::abs(mount.x_m) <= 100.0 &&
+          std::abs(mount.y_m) <= 100.0) {
+        input.laser_mount = mount;
       }
     } else if (e.channel == features_channel) {
       slammtt_msgs::features_t msg{};
@@ -379,6 +390,7 @@ EvalOptions ReadStackEvalOptions(const Config& stack) {
   const bool eval_sets_min_beams = eval.Has("min_beams");
   EvalOptions options = ReadEvalOptions(eval);
   const Config estimator = stack.Child("estimator");
+  options.sensor_mount_given = estimator.Has("sensor_forward_m") || estimator.Has("sensor_left_m");
   options.sensor_forward_m = estimator.GetDouble("sensor_forward_m", options.sensor_forward_m);
   options.sensor_left_m = estimator.GetDouble("sensor_left_m", options.sensor_left_m);
   if (!std::isfinite(options.sensor_forward_m) || !std::isfinite(options.sensor_left_m) ||

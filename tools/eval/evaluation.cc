@@ -309,8 +309,10 @@ EvaluationReport Evaluate(const EvalInput& input, const EvalOptions& options) {
     picture.scan = *input.snapshot;
     for (const TruthScan& scan : input.truth) {
       if (scan.utime != picture.scan.utime) continue;
-      picture.sensor_pose =
-          Compose(scan.robot, Pose2{options.sensor_forward_m, options.sensor_left_m, 0.0});
+      const Pose2 mount = options.sensor_mount_given || !input.laser_mount
+                              ? Pose2{options.sensor_forward_m, options.sensor_left_m, 0.0}
+                              : *input.laser_mount;
+      picture.sensor_pose = Compose(scan.robot, mount);
       picture.objects = scan.objects;
       picture.legs = scan.legs;
     }

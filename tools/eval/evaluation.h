@@ -67,9 +67,11 @@ struct EvalOptions {
   double min_moving_speed_mps = 0.2;
   // Where the laser sits on the robot (paper eq. 11: a forward, b left of the axle centre), to
   // draw a scan in the truth frame from the robot's true pose. Pictures only; slammtt-eval takes
-  // estimator.sensor_forward_m / sensor_left_m of the stack configuration.
+  // estimator.sensor_forward_m / sensor_left_m of the stack configuration, and without them
+  // (sensor_mount_given false) the log's LASER_GEOMETRY (EvalInput::laser_mount, with its yaw).
   double sensor_forward_m = 0.0;
   double sensor_left_m = 0.0;
+  bool sensor_mount_given = false;
 };
 
 // Line landmarks (docs/evaluation.md, "Line landmarks"): a line matches a true surface within

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -71,6 +72,15 @@ int Run(int argc, char** argv) {
   // SIGINT/SIGTERM (ProcessMain's handlers): stop at the next event, leave no output.
   options.should_stop = [] { return ShutdownRequested(); };
   std::vector<ReplayStage> stages = CreateStackStages(settings, enabled);
+  if (settings.config_path.empty()) {
+    // An input that cannot be scanned is reported by ReplayLogFile, in its one line.
+    std::string line;
+    try {
+      line = DefaultsLine(ScanLogFile(input), settings.channels, enabled);
+    } catch (const std::runtime_error&) {
+    }
+    if (!line.empty()) LogInfo() << line;
+  }
   const ReplayFileResult result = ReplayLogFile(input, *output, std::move(stages), options);
   for (const StageReplayStats& s : result.stages) {
     if (!s.runs) {

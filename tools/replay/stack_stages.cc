@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "estimator/estimator_stage.h"
+#include "estimator/laser_geometry.h"
 #include "perception/segmenter_stage.h"
 #include "smoother/smoother_stage.h"
 
@@ -49,6 +50,21 @@ std::vector<std::string> DefaultStackStages(const Config& config) {
   std::vector<std::string> stages = {"segmenter", "estimator"};
   if (config.Has("smoother")) stages.push_back("smoother");
   return stages;
+}
+
+std::string DefaultsLine(const LogScan& input, const Channels& channels,
+                         const std::vector<std::string>& enabled) {
+  std::string line = "no --config: every stage runs with its defaults";
+  if (std::find(enabled.begin(), enabled.end(), "estimator") == enabled.end()) return line;
+  const std::string& geometry_channel = channels.Get("laser_geometry");
+  if (input.channels.count(geometry_channel) > 0) {
+    return line + ", except the estimator's laser geometry: the log's " + geometry_channel +
+           " gives it";
+  }
+  const EstimatorStageOptions defaults;
+  return line + ", the estimator's laser geometry too (the log has no " + geometry_channel +
+         "): " + DescribeLaserGeometry(LaserGeometryOf(defaults.estimator)) +
+         "; give the sensor's with --config (docs/estimator.md, \"Laser geometry\")";
 }
 
 }  // namespace slammtt

@@ -9,6 +9,7 @@
 
 #include "runtime/process.h"
 #include "tools/replay/log_replay.h"
+#include "tools/replay/log_scan.h"
 
 namespace slammtt {
 
@@ -24,5 +25,11 @@ std::vector<std::string> DefaultStackStages(const Config& config);
 // Throws ConfigError for an unknown stage name.
 std::vector<ReplayStage> CreateStackStages(const ProcessSettings& settings,
                                            const std::vector<std::string>& enabled);
+
+// The line slammtt-replay prints when it runs without --config: that every stage runs with its
+// defaults, and where the estimator's laser geometry comes from: the log's LASER_GEOMETRY
+// (`input` has that channel) or the estimator's defaults, named with their values.
+std::string DefaultsLine(const LogScan& input, const Channels& channels,
+                         const std::vector<std::string>& enabled);
 
 }  // namespace slammtt

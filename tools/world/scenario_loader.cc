@@ -600,4 +600,22 @@ std::string ResolveScenarioPath(const std::string& name_or_path,
                     (available.empty() ? "" : "; shipped scenarios: " + available));
 }
 
+std::vector<std::string> ScenarioSearchRoots(const std::string& source_dir) {
+  std::vector<std::filesystem::path> candidates = {source_dir};
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    candidates.push_back(exe.parent_path() / ".." / "..");
+    candidates.push_back(exe.parent_path() / "..");
+  }
+  std::vector<std::string> roots;
+  for (const std::filesystem::path& candidate : candidates) {
+    const std::string root = candidate.lexically_normal().string();
+    const std::string trimmed =
+        root.size() > 1 && root.back() == '/' ? root.substr(0, root.size() - 1) : root;
+    if (std::find(roots.begin(), roots.end(), trimmed) == roots.end()) roots.push_back(trimmed);
+  }
+  return roots;
+}
+
 }  // namespace slammtt

@@ -32,4 +32,8 @@ std::vector<RecordedTrack> ReadRecordedTracks(const std::string& path);
 std::string ResolveScenarioPath(const std::string& name_or_path,
                                 const std::vector<std::string>& search_roots);
 
+// Where a program looks --scenario NAME up: `source_dir` (the source tree it was built from),
+// then the tree around the executable (build/bin/ -> ../../, then ../), without repeats.
+std::vector<std::string> ScenarioSearchRoots(const std::string& source_dir);
+
 }  // namespace slammtt

@@ -2,7 +2,6 @@
 //   slammtt-world --scenario s1-crossing --seed 7 --log OUT.lcm   # as fast as possible
 //   slammtt-world --scenario rplidar-a2                            # live, real time
 #include <algorithm>
-#include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -18,26 +17,6 @@
 #include "tools/world/world_runner.h"
 
 namespace {
-
-// Where --scenario NAME is looked up: the source tree this program was built from, then the
-// tree around the executable (build/bin/ -> ../../).
-std::vector<std::string> ScenarioSearchRoots() {
-  std::vector<std::filesystem::path> candidates = {SLAMMTT_WORLD_SOURCE_DIR};
-  std::error_code ec;
-  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    candidates.push_back(exe.parent_path() / ".." / "..");
-    candidates.push_back(exe.parent_path() / "..");
-  }
-  std::vector<std::string> roots;
-  for (const std::filesystem::path& candidate : candidates) {
-    const std::string root = candidate.lexically_normal().string();
-    const std::string trimmed =
-        root.size() > 1 && root.back() == '/' ? root.substr(0, root.size() - 1) : root;
-    if (std::find(roots.begin(), roots.end(), trimmed) == roots.end()) roots.push_back(trimmed);
-  }
-  return roots;
-}
 
 std::string Summary(const std::string& scenario, uint64_t seed, const std::string& where,
                     const slammtt::WorldRunSummary& s) {
@@ -94,7 +73,8 @@ int Run(int argc, char** argv) {
   }
 
   // The whole scenario (and any trajectory file) is read and checked before any output exists.
-  const std::string path = slammtt::ResolveScenarioPath(*scenario_arg, ScenarioSearchRoots());
+  const std::string path = slammtt::ResolveScenarioPath(
+      *scenario_arg, slammtt::ScenarioSearchRoots(SLAMMTT_WORLD_SOURCE_DIR));
   slammtt::Scenario scenario = slammtt::LoadScenario(path);
   if (const auto output = cl.Value("output")) {
     if (!slammtt::ParseSensorOutput(*output, &scenario.output)) {
@@ -121,6 +101,7 @@ int Run(int argc, char** argv) {
   channels.odometry = settings.channels.Get("odometry");
   channels.ground_truth = settings.channels.Get("ground_truth");
   channels.laser_scan = settings.channels.Get("laser_scan");
+  channels.laser_geometry = settings.channels.Get("laser_geometry");
   channels.features = settings.channels.Get("features");
 
   slammtt::WorldRunSummary summary;

@@ -1,5 +1,8 @@
 #include "tools/world/world_messages.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "runtime/lcm_io.h"
 
 namespace slammtt {
@@ -126,8 +129,32 @@ slammtt_msgs::features_t ToFeaturesMessage(const SensorFrame& frame, int64_t uti
   return msg;
 }
 
-std::vector<EncodedMessage> EncodeWorldEvent(const WorldEvent& event, const LaserSpec& laser,
+slammtt_msgs::laser_geometry_t ToLaserGeometryMessage(const Scenario& scenario, int64_t utime) {
+  const LaserSpec& laser = scenario.laser;
+  slammtt_msgs::laser_geometry_t msg{};
+  msg.utime = utime;
+  msg.mount_forward_m = laser.mount_a_m;
+  msg.mount_left_m = laser.mount_b_m;
+  // Degrees to radians as every configuration reader converts them (common/options_schema.h),
+  // so that an estimator taking these values estimates bit for bit as with its configuration.
+  msg.mount_yaw_rad = laser.mount_yaw_deg * M_PI / 180.0;
+  const double fov_rad = laser.fov_deg * M_PI / 180.0;
+  msg.view_start_rad = -0.5 * fov_rad;
+  msg.view_end_rad = 0.5 * fov_rad;
+  msg.range_min_m = laser.min_range_m;
+  msg.range_max_m = laser.max_range_m;
+  msg.source = "slammtt-world, scenario " + scenario.name;
+  return msg;
+}
+
+bool FrameCarriesGeometry(const LaserSpec& laser, int64_t sequence) {
+  const int64_t period = std::max<int64_t>(1, std::llround(laser.rate_hz));
+  return sequence % period == 0;
+}
+
+std::vector<EncodedMessage> EncodeWorldEvent(const WorldEvent& event, const Scenario& scenario,
                                              const WorldChannels& channels, int64_t utime_offset) {
+  const LaserSpec& laser = scenario.laser;
   std::vector<EncodedMessage> out;
   const int64_t utime = utime_offset + event.time_us;
   if (event.kind == WorldEvent::Kind::kOdometry) {
@@ -136,6 +163,9 @@ std::vector<EncodedMessage> EncodeWorldEvent(const WorldEvent& event, const Lase
     return out;
   }
   const SensorFrame& frame = event.sensor;
+  if (FrameCarriesGeometry(laser, frame.sequence)) {
+    out.push_back({utime, channels.laser_geometry, Encode(ToLaserGeometryMessage(scenario, utime))});
+  }
   out.push_back(
       {utime, channels.ground_truth, Encode(ToGroundTruthMessage(frame.truth, utime_offset))});
   if (frame.has_scan) {

@@ -43,7 +43,7 @@ WorldRunSummary WriteWorldLog(WorldSimulator* world, const WorldChannels& channe
     }
     const WorldEvent event = world->Next();
     for (const EncodedMessage& message :
-         EncodeWorldEvent(event, scenario.laser, channels, scenario.start_utime)) {
+         EncodeWorldEvent(event, scenario, channels, scenario.start_utime)) {
       log.Write(message.utime, message.channel, message.data.data(),
                 static_cast<int>(message.data.size()));
       Count(message, &summary);
@@ -135,7 +135,7 @@ WorldRunSummary PublishWorldLive(WorldSimulator* world, lcm::LCM* lcm,
     }
     const WorldEvent event = world->Next();
     for (const EncodedMessage& message :
-         EncodeWorldEvent(event, scenario.laser, channels, utime_offset)) {
+         EncodeWorldEvent(event, scenario, channels, utime_offset)) {
       if (lcm->publish(message.channel, message.data.data(),
                        static_cast<unsigned int>(message.data.size())) != 0) {
         throw std::runtime_error("LCM publish failed on " + message.channel);

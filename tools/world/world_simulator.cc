@@ -25,6 +25,25 @@ int64_t EventTimeUs(int64_t index, double rate_hz) {
 
 }  // namespace
 
+void CountBeamsIntoTruth(const std::vector<SimulatedBeam>& beams, TruthSnapshot* truth) {
+  const int num_objects = static_cast<int>(truth->objects.size());
+  const std::vector<int> counts = CountBeamsPerObject(beams, num_objects);
+  for (const SimulatedBeam& beam : beams) {
+    if (beam.valid && beam.segment >= 0) {
+      ++truth->segments[static_cast<size_t>(beam.segment)].beams_on_segment;
+    }
+  }
+  for (int i = 0; i < num_objects; ++i) {
+    ObjectTruth& object = truth->objects[static_cast<size_t>(i)];
+    object.beams_on_object = counts[static_cast<size_t>(i)];
+    if (object.kind == ObjectKind::kPerson) {
+      object.beams_on_object =
+          counts[static_cast<size_t>(i) + 1] + counts[static_cast<size_t>(i) + 2];
+    }
+    object.visible = object.beams_on_object >= 1;
+  }
+}
+
 WorldSimulator::WorldSimulator(const Scenario& scenario, uint64_t seed, SensorOutput output)
     : scenario_(scenario),
       output_(output),
@@ -215,6 +234,13 @@ TruthSnapshot WorldSimulator::TruthAt(int64_t time_us, std::vector<Circle>* circ
   return truth;
 }
 
+WorldScene WorldSimulator::SceneAt(int64_t time_us, const RobotTruth& robot) {
+  WorldScene scene;
+  scene.truth = TruthAt(time_us, &scene.circles, &scene.circle_object);
+  scene.truth.robot = robot;
+  return scene;
+}
+
 std::vector<FeatureTarget> WorldSimulator::FeatureTargets(
     const TruthSnapshot& truth, const std::vector<int>& circle_object) const {
   // Objects with a circle give a feature of their own, except legs: their person gives one.
@@ -250,7 +276,6 @@ SensorFrame WorldSimulator::MakeSensorFrame(int64_t time_us) {
   std::vector<Circle> circles;
   std::vector<int> circle_object;
   frame.truth = TruthAt(time_us, &circles, &circle_object);
-  const int num_objects = static_cast<int>(frame.truth.objects.size());
   const LaserSpec& laser = scenario_.laser;
 
   // The laser is always ray-cast (and its noise always drawn), whatever the output: ground truth
@@ -274,21 +299,7 @@ SensorFrame WorldSimulator::MakeSensorFrame(int64_t time_us) {
   for (SimulatedBeam& beam : beams) {
     if (beam.object >= 0) beam.object = circle_object[static_cast<size_t>(beam.object)];
   }
-  const std::vector<int> counts = CountBeamsPerObject(beams, num_objects);
-  for (const SimulatedBeam& beam : beams) {
-    if (beam.valid && beam.segment >= 0) {
-      ++frame.truth.segments[static_cast<size_t>(beam.segment)].beams_on_segment;
-    }
-  }
-  for (int i = 0; i < num_objects; ++i) {
-    ObjectTruth& object = frame.truth.objects[static_cast<size_t>(i)];
-    object.beams_on_object = counts[static_cast<size_t>(i)];
-    if (object.kind == ObjectKind::kPerson) {
-      object.beams_on_object =
-          counts[static_cast<size_t>(i) + 1] + counts[static_cast<size_t>(i) + 2];
-    }
-    object.visible = object.beams_on_object >= 1;
-  }
+  CountBeamsIntoTruth(beams, &frame.truth);
   if (output_ != SensorOutput::kFeatures) {
     frame.has_scan = true;
     frame.scan = std::move(beams);

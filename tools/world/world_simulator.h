@@ -86,6 +86,20 @@ struct SensorFrame {
   std::vector<PointFeature> features;
 };
 
+// The world at one moment for a robot driven from outside (drivers/sim_robot: the emulated
+// base's motion): the truth without beam counts, the circles a laser can hit (statics, then
+// discs and legs) and, per circle, the index of its object in truth.objects.
+struct WorldScene {
+  TruthSnapshot truth;
+  std::vector<Circle> circles;
+  std::vector<int> circle_object;
+};
+
+// Sets beams_on_object, visible (beams >= 1) and beams_on_segment of `truth` from measured
+// beams whose `object` indexes truth.objects and `segment` truth.segments (a person counts the
+// beams on its two legs, which follow it).
+void CountBeamsIntoTruth(const std::vector<SimulatedBeam>& beams, TruthSnapshot* truth);
+
 struct WorldEvent {
   enum class Kind { kOdometry, kSensor };
   Kind kind = Kind::kOdometry;
@@ -111,6 +125,14 @@ class WorldSimulator {
   // VELOCITY_COMMAND); nullopt returns to the scenario motion. Linear speed is clamped to
   // +-kMaxRobotSpeedMps. Takes effect at the next control tick.
   void SetCommandOverride(const std::optional<VelocityCommand>& command);
+
+  // The scene at time_us with the robot at `robot` (live robots driven from outside; call with
+  // non-decreasing times, as the people's gait moves on). Draws nothing.
+  WorldScene SceneAt(int64_t time_us, const RobotTruth& robot);
+  // The static segments in truth.segments order, and per segment / per static circle the
+  // probability that it gives the laser no return (scenario dropout_probability).
+  const std::vector<Segment>& segments() const { return segments_; }
+  const ArtefactInputs& surface_dropouts() const { return artefact_inputs_; }
 
   const Scenario& scenario() const { return scenario_; }
   int64_t duration_us() const { return duration_us_; }

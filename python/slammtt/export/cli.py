@@ -17,7 +17,7 @@ from slammtt.cli import Parser, UsageError, run_main
 from slammtt.export import mot, tables, tum
 from slammtt.export.logdata import LogData
 from slammtt.lcmlog import LogError
-from slammtt.stackconfig import ConfigError, StackConfig
+from slammtt.stackconfig import ConfigError, StackConfig, logged_mount
 
 PROGRAM = "slammtt-export"
 
@@ -40,7 +40,8 @@ def _parser():
     p.add_argument("--mcap", metavar="FILE", help="MCAP file with Foxglove schemas")
     p.add_argument("-c", "--config", metavar="FILE",
                    help="stack configuration: channels:, the laser mount (estimator.sensor_"
-                        "forward_m / sensor_left_m), eval.min_beams, eval.min_moving_speed_mps")
+                        "forward_m / sensor_left_m; without them the log's LASER_GEOMETRY), "
+                        "eval.min_beams, eval.min_moving_speed_mps")
     p.add_argument("--channel", action="append", default=[], metavar="KEY=NAME",
                    help="rename a channel (as every process)")
     p.add_argument("--min-beams", type=int, metavar="N",
@@ -114,6 +115,12 @@ def run(argv):
         lambda line: print(f"{PROGRAM}: {line}", file=sys.stderr))
     if not os.path.isfile(args.log):
         raise LogError(f"{args.log}: no such file")
+    if outputs["mcap"] and not config.mount_given():
+        logged = logged_mount(args.log, channels["laser_geometry"])
+        if logged is not None:
+            mount = logged
+            info(f"laser mount from {channels['laser_geometry']}: forward {mount[0]:g} m, "
+                 f"left {mount[1]:g} m")
     data = None
     if outputs["tum"] or outputs["csv"] or outputs["mot"]:
         data = LogData(args.log, channels)

@@ -42,7 +42,8 @@ def _parser():
                    help="port to listen on (default 8765; 0: any free port, printed)")
     p.add_argument("-c", "--config", metavar="FILE",
                    help="stack configuration: lcm.url, channels:, the laser mount "
-                        "(estimator.sensor_forward_m / sensor_left_m)")
+                        "(estimator.sensor_forward_m / sensor_left_m; without them the "
+                        "stream's LASER_GEOMETRY)")
     p.add_argument("--lcm-url", metavar="URL",
                    help="LCM URL (default: lcm.url of --config, $LCM_DEFAULT_URL, the stack's "
                         "udpm://239.255.76.67:7667?ttl=0)")
@@ -72,20 +73,22 @@ class _Stop:
 class Bridge:
     """Converts messages of one stream and logs them to the server's channels."""
 
-    def __init__(self, server, context, channels, mount):
+    def __init__(self, server, context, channels, mount, mount_from_log=False):
         from slammtt.foxglove.convert import ChannelSet, Converter
         self.server = server
         self.channels = channels
         self.mount = mount
+        self.mount_from_log = mount_from_log
         self.topics = ChannelSet(context, eager=True)
         self._converter_class = Converter
-        self.converter = Converter(channels, mount)
+        self.converter = Converter(channels, mount, mount_from_log=mount_from_log)
         self.undecodable = 0
         self.messages = 0
 
     def restart(self):
         """A new stream (the log again): transforms and anchoring from scratch."""
-        self.converter = self._converter_class(self.channels, self.mount)
+        self.converter = self._converter_class(self.channels, self.mount,
+                                               mount_from_log=self.mount_from_log)
 
     def data(self, channel, data):
         if channel not in self.converter.key_of:
@@ -186,7 +189,7 @@ def run(argv):
     except Exception as error:   # the SDK raises its own error type for a port in use
         raise LogError(f"cannot listen on {args.host}:{args.port} ({error})") from None
     stop = _Stop()
-    bridge = Bridge(server, context, channels, mount)
+    bridge = Bridge(server, context, channels, mount, mount_from_log=not config.mount_given())
     source = f"playing {args.log}" if args.log is not None else f"live from LCM {url}"
     print(f"{PROGRAM}: serving ws://{args.host}:{server.port} ({source})", file=sys.stderr,
           flush=True)

@@ -8,7 +8,8 @@ Frames (x forward, y left, z up; every message of the stack is planar, z = 0):
 
 - map -> base_link: every POSE (without POSE in the log: odom -> base_link from ODOMETRY);
 - base_link -> laser: the mount of the stack configuration (estimator.sensor_forward_m,
-  sensor_left_m; the laser faces forward, as the estimator assumes);
+  sensor_left_m; the laser faces forward), or, when it gives none (mount_from_log), the mount
+  of the stream's LASER_GEOMETRY, yaw included (docs/estimator.md, "Laser geometry");
 - world -> map: slammtt-eval's anchoring, truth * estimate^-1 at the first GROUND_TRUTH scan
   with a POSE of the same utime, so that the truth is drawn where slammtt-eval compares it;
 - map -> odom: estimate * odometry^-1 at the first POSE, with the last ODOMETRY at or before it
@@ -170,12 +171,13 @@ class Converter:
     """Converts the messages of one stream (a log in order, or a live bus) to Output lists.
 
     `channels`: {channel key: channel name} (slammtt.stackconfig); `mount`: (forward_m, left_m)
-    of the laser on the robot.
+    of the laser on the robot; `mount_from_log`: a LASER_GEOMETRY of the stream replaces it.
     """
 
-    def __init__(self, channels, mount=(0.0, 0.0), republish_s=1.0):
+    def __init__(self, channels, mount=(0.0, 0.0), republish_s=1.0, mount_from_log=False):
         self.key_of = {name: key for key, name in channels.items()}
         self.mount = Pose2(float(mount[0]), float(mount[1]), 0.0)
+        self.mount_from_log = mount_from_log
         self.republish_us = int(republish_s * 1e6)
         self.skipped = {}
         self.converted = {}
@@ -223,6 +225,17 @@ class Converter:
     def _add_constant(self, utime, parent, child, pose):
         self._constant[child] = (parent, pose)
         return self._send_constants(utime)
+
+    def _laser_geometry(self, m):
+        if not self.mount_from_log:
+            return []
+        if not _finite(m.mount_forward_m, m.mount_left_m, m.mount_yaw_rad):
+            raise _Skip()
+        mount = Pose2(m.mount_forward_m, m.mount_left_m, m.mount_yaw_rad)
+        if mount == self.mount:
+            return []
+        self.mount = mount
+        return self._add_constant(m.utime, BASE, LASER, mount)
 
     def _anchor(self, utime, truth, estimate):
         self._anchored = True

@@ -14,7 +14,7 @@ import sys
 
 import slammtt
 from slammtt.cli import Parser, UsageError, run_main
-from slammtt.importer import breezyslam, laser, odometry, rosbag
+from slammtt.importer import breezyslam, laser, laser_geometry, odometry, rosbag
 from slammtt.importer.geometry import wrap_angles
 from slammtt.importer.mount import Mount
 from slammtt.importer.output import Stream, write_log
@@ -22,7 +22,7 @@ from slammtt.output_file import write_text_atomically
 
 PROGRAM = "slammtt-import"
 CHANNEL_DEFAULTS = {"laser_scan": "LASER_SCAN", "odometry": "ODOMETRY",
-                    "leg_labels": "LEG_LABELS"}
+                    "leg_labels": "LEG_LABELS", "laser_geometry": "LASER_GEOMETRY"}
 
 
 class InputError(Exception):
@@ -35,8 +35,9 @@ def _parser():
         usage=f"{PROGRAM} [options] INPUT -o OUT.lcm",
         description="Turns a ROS 1 / ROS 2 bag (LaserScan, Odometry, tf, leg labels) or a "
                     "BreezySLAM text log into an LCM log of the stack's messages (LASER_SCAN, "
-                    "ODOMETRY, LEG_LABELS) and writes the laser mount as a configuration "
-                    "snippet. Same input and options: byte-identical output.")
+                    "ODOMETRY, LEG_LABELS, and LASER_GEOMETRY: the mount, field of view and "
+                    "range, which the estimator takes from the log) and writes the laser mount "
+                    "as a configuration snippet. Same input and options: byte-identical output.")
     p.add_argument("input", metavar="INPUT",
                    help="ROS 1 .bag, ROS 2 bag folder (or its .db3/.mcap), or breezyslam .dat")
     p.add_argument("-o", "--output", metavar="OUT.lcm", help="output log (required)")
@@ -70,7 +71,7 @@ def _parser():
     p.add_argument("--mount-yaml", metavar="FILE",
                    help="where the mount goes as a configuration (default OUT.lcm.mount.yaml)")
     p.add_argument("--channel", action="append", default=[], metavar="KEY=NAME",
-                   help="rename a channel: laser_scan, odometry, leg_labels")
+                   help="rename a channel: laser_scan, odometry, leg_labels, laser_geometry")
     p.add_argument("-q", "--quiet", action="store_true", help="only warnings and errors")
     p.add_argument("-h", "--help", action="help", help="show this help and exit")
     p.add_argument("--version", action="version", version=f"{PROGRAM} {slammtt.__version__}")
@@ -162,6 +163,16 @@ def _scan_stream(channel, scans, mount, rotate):
     return stream
 
 
+def _geometry_stream(channel, scans, mount, rotate, laser_name):
+    """LASER_GEOMETRY; its source names the laser, not the input file, so that a bag and its
+    ROS 2 conversion import to the same bytes."""
+    stream = Stream(channel)
+    text = f"slammtt-import, {laser_name}; mount from {mount.source}"
+    for utime, message in laser_geometry.geometry_messages(scans, mount, rotate, text):
+        stream.add(utime, message.encode())
+    return stream
+
+
 def _odometry_stream(channel, readings):
     stream = Stream(channel)
     for sequence, reading in enumerate(readings):
@@ -207,8 +218,15 @@ def _import_rosbag(args, channels, report):
     for what, (count, first) in sorted(content.skipped.items()):
         report.warning(f"skipped {count} {what} (first: {first})")
     mount = _choose_mount(args, content.tf_mount, report)
+    laser_name = f"laser topic {content.laser_topic} (frame {content.laser_frame})"
+    source = f"{pathlib.Path(args.input).name}, {laser_name}"
+    # The scans first: --rotate-to-base turns their beams, which gives the geometry's view.
+    scans = _scan_stream(channels["laser_scan"], content.scans, mount, args.rotate_to_base)
+    # Stream order is the tie order at equal utimes: the geometry before the scan it holds for.
     streams = [_odometry_stream(channels["odometry"], content.odometry),
-               _scan_stream(channels["laser_scan"], content.scans, mount, args.rotate_to_base)]
+               _geometry_stream(channels["laser_geometry"], content.scans, mount,
+                                args.rotate_to_base, laser_name),
+               scans]
     if content.odometry:
         report.info(f"{channels['odometry']}: {len(content.odometry)} messages")
     _report_scans(channels["laser_scan"], content.scans, report)
@@ -221,8 +239,6 @@ def _import_rosbag(args, channels, report):
         report.info(f"{channels['leg_labels']}: {len(content.labels)} labelled scans, "
                     f"{legs} legs")
         streams.append(labels)
-    source = f"{pathlib.Path(args.input).name}, laser topic {content.laser_topic} " \
-             f"(frame {content.laser_frame})"
     return streams, mount, source
 
 
@@ -244,9 +260,12 @@ def _import_breezyslam(args, channels, report):
     scans = [r.scan for r in readings]
     odometry_readings = [r.odometry for r in readings]
     mount = _choose_mount(args, breezyslam.MOUNT, report)
+    scan_stream = _scan_stream(channels["laser_scan"], scans, mount, args.rotate_to_base)
     streams = [_odometry_stream(channels["odometry"], [] if args.no_odometry
                                 else odometry_readings),
-               _scan_stream(channels["laser_scan"], scans, mount, args.rotate_to_base)]
+               _geometry_stream(channels["laser_geometry"], scans, mount, args.rotate_to_base,
+                                "BreezySLAM log"),
+               scan_stream]
     if not args.no_odometry:
         path_m = sum(math.hypot(b.x_m - a.x_m, b.y_m - a.y_m)
                      for a, b in zip(odometry_readings, odometry_readings[1:]))

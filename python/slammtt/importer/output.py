@@ -1,8 +1,9 @@
 """The imported messages as one LCM log: channels merged by utime, each in its source order.
 
 Every event's log timestamp is its message's utime. The channels are merged by utime (ties:
-ODOMETRY before LASER_SCAN before LEG_LABELS, so the odometry of a scan's moment is there when
-the scan is processed, and a scan's labels follow it); within a channel the order of the source
+ODOMETRY before LASER_GEOMETRY before LASER_SCAN before LEG_LABELS, so the odometry of a scan's
+moment and the laser's geometry are there when the scan is processed, and a scan's labels
+follow it); within a channel the order of the source
 is kept, never sorted. A channel whose utimes go backwards or repeat is reported: the stack
 drops a message that is not newer than the previous one of its stream (estimator
 messages_out_of_order), and starts its estimation over on a step back of more than

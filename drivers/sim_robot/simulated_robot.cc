@@ -1,0 +1,140 @@
+#include "drivers/sim_robot/simulated_robot.h"
+
+#include <algorithm>
+#include <chrono>
+#include <stdexcept>
+#include <thread>
+#include <vector>
+
+#include "drivers/sim_robot/world_laser_scene.h"
+#include "runtime/lcm_io.h"
+#include "runtime/log.h"
+#include "slammtt_msgs/laser_scan_t.hpp"
+#include "tools/world/world_messages.h"
+
+namespace slammtt {
+
+namespace {
+
+int64_t WallClockUtime() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+}  // namespace
+
+SimulatedRobot::SimulatedRobot(const Scenario& scenario, uint64_t seed,
+                               const SimulatedRobotOptions& options, lcm::LCM* lcm)
+    : options_(options), lcm_(lcm), world_(scenario, seed) {
+  world_start_us_ = P3dxEmulator::NowUs();
+  world_start_utime_ = WallClockUtime();
+  options_.laser.scene = std::make_shared<WorldLaserScene>(&world_, &world_mutex_, world_start_us_);
+  options_.laser.range_noise_m = scenario.laser.range_noise_m;
+  options_.laser.max_range_m = scenario.laser.max_range_m;
+  options_.laser.rotation_hz = scenario.laser.rate_hz;
+  base_ = std::make_unique<P3dxEmulator>(options_.base);
+  laser_ = std::make_unique<rplidar::RplidarEmulatorServer>(options_.laser,
+                                                            options_.laser_transport);
+  Step();  // the robot stands at the scenario's start before any sample is measured
+}
+
+SimulatedRobot::~SimulatedRobot() = default;
+
+RobotTruth SimulatedRobot::robot() const {
+  std::lock_guard<std::mutex> lock(world_mutex_);
+  return world_.robot();
+}
+
+void SimulatedRobot::Step() {
+  const int64_t now_us = P3dxEmulator::NowUs();
+  const Pose2D encoders = base_->WithModel([now_us](P3dxRobotModel& model) {
+    model.AdvanceTo(now_us);
+    return Pose2D{model.x_mm() * 1e-3, model.y_mm() * 1e-3, model.heading_rad()};
+  });
+  std::lock_guard<std::mutex> lock(world_mutex_);
+  world_.Advance(now_us - world_start_us_, encoders);
+}
+
+void SimulatedRobot::OnLaserScan(const lcm::ReceiveBuffer* buffer) {
+  slammtt_msgs::laser_scan_t scan;
+  if (!Decode(buffer->data, static_cast<int>(buffer->data_size), &scan)) {
+    if (IsReportable(++stats_.bad_scans)) {
+      LogWarning() << "ignored an undecodable LASER_SCAN (" << stats_.bad_scans << " so far)";
+    }
+    return;
+  }
+  const std::vector<double> angles(scan.angle_rad.begin(), scan.angle_rad.end());
+  std::optional<TruthSnapshot> truth;
+  {
+    std::lock_guard<std::mutex> lock(world_mutex_);
+    truth = world_.TruthAt(scan.utime - world_start_utime_, angles);
+  }
+  if (!truth) {
+    if (IsReportable(++stats_.scans_outside_history)) {
+      LogWarning() << "no truth for a LASER_SCAN of utime " << scan.utime
+                   << ": outside the world's history (" << stats_.scans_outside_history
+                   << " so far)";
+    }
+    return;
+  }
+  const slammtt_msgs::ground_truth_t message = ToGroundTruthMessage(*truth, world_start_utime_);
+  const std::vector<uint8_t> bytes = Encode(message);
+  if (lcm_->publish(options_.ground_truth_channel, bytes.data(),
+                    static_cast<unsigned int>(bytes.size())) == 0) {
+    ++stats_.truth_published;
+  }
+}
+
+void SimulatedRobot::Run(const std::function<bool()>& stop_requested) {
+  // Both device threads stop and are joined on every way out of here, an exception included.
+  struct DeviceThreads {
+    explicit DeviceThreads(SimulatedRobot* owner) : robot(owner) {}
+    SimulatedRobot* robot;
+    std::atomic<bool> stop{false};
+    std::thread base;
+    ~DeviceThreads() {
+      robot->laser_->Stop();
+      stop = true;
+      if (base.joinable()) base.join();
+    }
+  } devices{this};
+  devices.base = std::thread([this, &devices] {
+    try {
+      base_->Run([&devices] { return devices.stop.load(); });
+    } catch (const std::exception& e) {
+      LogError() << "the base emulator stopped: " << e.what();
+    }
+  });
+  laser_->Start();
+  lcm::Subscription* subscription = lcm_->subscribeFunction(
+      options_.laser_scan_channel,
+      +[](const lcm::ReceiveBuffer* buffer, const std::string&, SimulatedRobot* robot) {
+        robot->OnLaserScan(buffer);
+      },
+      this);
+  try {
+    // handleTimeout fails once when a signal interrupts it (the SIGINT that stops us); a bus
+    // that fails for a whole second is broken.
+    const int max_failures = std::max(1, 1000 / options_.step_ms);
+    int failures = 0;
+    while (!stop_requested()) {
+      Step();
+      if (lcm_->handleTimeout(options_.step_ms) >= 0) {
+        failures = 0;
+        continue;
+      }
+      if (stop_requested()) break;
+      if (++failures >= max_failures) {
+        throw std::runtime_error("LCM stopped receiving (handleTimeout failed for 1 s)");
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(options_.step_ms));
+    }
+  } catch (...) {
+    lcm_->unsubscribe(subscription);  // no handler left pointing at this robot
+    throw;
+  }
+  lcm_->unsubscribe(subscription);
+}
+
+}  // namespace slammtt

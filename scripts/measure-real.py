@@ -1,0 +1,179 @@
+#!/usr/bin/env python3
+"""Measures the estimator on the real recordings of ../shared/data/real, which have no ground
+truth (issue 13, "Real recordings"; definitions in python/slammtt/recording_figures.py):
+
+    build/venv/bin/python scripts/measure-real.py OUTDIR [--bin DIR] [--real DIR] [--json FILE]
+
+- negative_2 (leg_tracker_training/negative_2.bag, /left_scan: a wheelchair driven through
+  empty rooms, no odometry): reported person identities per minute (every one is false);
+- leg_tracker_demo (a still Hokuyo, 1-3 people walking): reported person identities per minute,
+  and the share of scans whose count of reported people equals the count of leg pairs
+  perception made (and of all its person features);
+- breezyslam_mines exp1, exp2 (a lab robot with wheel odometry): sharpness of the walls (the
+  beams on perception's line features) with every scan placed by the estimated poses (POSE)
+  and by the raw odometry (ODOMETRY).
+
+For each recording:
+
+    slammtt-import REC -o OUTDIR/NAME.lcm                 # writes NAME.lcm.mount.yaml
+    slammtt-replay OUTDIR/NAME.lcm -o OUTDIR/NAME-mount.lcm --config OUTDIR/NAME.lcm.mount.yaml
+    slammtt-replay OUTDIR/NAME.lcm -o OUTDIR/NAME-sensor.lcm --config OUTDIR/NAME.sensor.yaml
+
+Two configurations, no parameter chosen for a recording: `mount` is the import's file as it is
+(the README's command: the estimator's defaults, a 360-degree view of 30 m); `sensor` is that
+file plus the scanner's own field of view and range, read from the first LASER_SCAN of the
+import (first and last beam angle, range_max_m), as estimator/config/office-hokuyo.yaml describes
+its simulated scanner. Prints the tables and writes every figure as JSON (OUTDIR/real.json, or
+--json). Runs with the Python tools' venv (scripts/python-env.sh); started with another python
+it runs itself again with build/venv/bin/python when that exists.
+"""
+import argparse
+import json
+import math
+import os
+import subprocess
+import sys
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+try:
+    from slammtt import recording_figures as figures
+    from slammtt.stackconfig import StackConfig
+except ImportError:
+    venv_python = os.path.join(ROOT, "build", "venv", "bin", "python")
+    if os.path.exists(venv_python) and os.path.realpath(sys.executable) != \
+            os.path.realpath(venv_python):
+        os.execv(venv_python, [venv_python, *sys.argv])
+    sys.exit("measure-real: the slammtt package is not importable: run it with the venv of "
+             "scripts/python-env.sh (build/venv/bin/python scripts/measure-real.py OUTDIR)")
+
+RECORDINGS = (
+    # name, path under the real-data folder, figures
+    ("negative_2", "leg_tracker_training/negative_2.bag", "people"),
+    ("leg_tracker_demo", "leg_tracker_demo/demo_stationary_simple_environment.bag", "people"),
+    ("mines_exp1", "breezyslam_mines/exp1.dat", "sharpness"),
+    ("mines_exp2", "breezyslam_mines/exp2.dat", "sharpness"),
+)
+CONFIGS = ("mount", "sensor")
+
+
+def run(command):
+    done = subprocess.run([str(c) for c in command], capture_output=True, text=True)
+    if done.returncode != 0:
+        last = (done.stderr.strip().splitlines() or [f"exit {done.returncode}"])[-1]
+        sys.exit(f"measure-real: {' '.join(map(str, command))}: {last}")
+
+
+def write_sensor_config(mount_yaml, scan, path):
+    """The import's mount file plus the scanner's field of view and range (module docstring)."""
+    from ruamel.yaml import YAML
+    yaml = YAML(typ="safe", pure=True)
+    with open(mount_yaml, encoding="utf-8") as f:
+        config = yaml.load(f)
+    angles = [math.degrees(a) for a in scan.angle_rad]
+    estimator = config.setdefault("estimator", {})
+    estimator["field_of_view_start_deg"] = round(min(angles), 6)
+    estimator["field_of_view_end_deg"] = round(max(angles), 6)
+    estimator["max_range_m"] = round(float(scan.range_max_m), 6)
+    with open(path, "w", encoding="utf-8") as f:
+        f.write(f"# {os.path.basename(mount_yaml)} plus the field of view and range of the "
+                "scanner's first LASER_SCAN (scripts/measure-real.py).\n")
+        YAML().dump(config, f)
+
+
+def mount_of(config_path):
+    config = StackConfig(config_path)
+    forward_m, left_m = config.mount()
+    yaw_deg = config.number("estimator", "sensor_yaw_deg", 0.0, -360.0, 360.0)
+    return forward_m, left_m, math.radians(yaw_deg)
+
+
+def people_figures(log):
+    tracks, features = log["TRACKS"], log["FEATURES"]
+    identities, per_minute = figures.person_identities_per_minute(tracks)
+    return {"minutes": figures.span_minutes(tracks), "person_identities": identities,
+            "person_identities_per_minute": per_minute,
+            **figures.count_agreement(tracks, features)}
+
+
+def sharpness_figures(log, config_path):
+    scans, mount = log["LASER_SCAN"], mount_of(config_path)
+    features = {f.utime: f for f in log["FEATURES"]}
+    masks = [figures.wall_beams(scan, features[scan.utime]) for scan in scans]
+    segments = figures.line_segments(log["MAP"][-1])
+    utimes = [s.utime for s in scans]
+    result = {"map_lines": len(segments)}
+    for name, poses in (("estimate", log["POSE"]), ("odometry", log["ODOMETRY"])):
+        points = figures.scan_points(scans, figures.trajectory_at(poses, utimes), mount, masks)
+        result[name] = figures.sharpness(points, segments)
+    return result
+
+
+def measure(bin_dir, real_dir, outdir, name, relative, kind):
+    stem = os.path.join(outdir, name)
+    imported = stem + ".lcm"
+    run([os.path.join(bin_dir, "slammtt-import"), "-q", os.path.join(real_dir, relative),
+         "-o", imported])
+    first_scan = next(iter(figures.read_channels(imported)["LASER_SCAN"]))
+    config_paths = {"mount": imported + ".mount.yaml", "sensor": stem + ".sensor.yaml"}
+    write_sensor_config(config_paths["mount"], first_scan, config_paths["sensor"])
+    result = {}
+    for config in CONFIGS:
+        out = f"{stem}-{config}.lcm"
+        run([os.path.join(bin_dir, "slammtt-replay"), "-q", "--no-timing", imported, "-o", out,
+             "--config", config_paths[config]])
+        log = figures.read_channels(out)
+        result[config] = (people_figures(log) if kind == "people"
+                          else sharpness_figures(log, config_paths[config]))
+    return result
+
+
+def print_tables(results):
+    print("| recording | config | minutes | person identities | per minute | reported people "
+          "per scan | leg pairs per scan | scans where reported = leg pairs | reported = "
+          "person features |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for name, by_config in results.items():
+        for config, f in by_config.items():
+            if "person_identities" in f:
+                print(f"| {name} | {config} | {f['minutes']:.2f} | {f['person_identities']} | "
+                      f"{f['person_identities_per_minute']:.1f} | {f['mean_reported']:.2f} | "
+                      f"{f['mean_pairs']:.2f} | {f['match_pairs']:.3f} | "
+                      f"{f['match_person_features']:.3f} |")
+    print()
+    print("| recording | config | placed by | wall spread m (1 m cells) | occupied 5 cm cells | "
+          "RMS to final MAP lines m | share within 0.5 m of a MAP line | wall points |")
+    print("|---|---|---|---|---|---|---|---|")
+    for name, by_config in results.items():
+        for config, f in by_config.items():
+            for trajectory in ("estimate", "odometry"):
+                if trajectory in f:
+                    s = f[trajectory]
+                    print(f"| {name} | {config} | {trajectory} | {s['wall_spread_m']:.4f} | "
+                          f"{s['occupied_cells']} | {s['map_line_rms_m']:.4f} | "
+                          f"{s['map_line_share']:.3f} | {s['wall_points']} |")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("outdir")
+    parser.add_argument("--bin", default=os.path.join(ROOT, "build", "bin"))
+    parser.add_argument("--real", default=os.path.join(ROOT, "..", "shared", "data", "real"),
+                        help="the real recordings (default ../shared/data/real)")
+    parser.add_argument("--json", default=None, help="default OUTDIR/real.json")
+    args = parser.parse_args()
+    if not os.path.isdir(args.real):
+        sys.exit(f"measure-real: {args.real}: no such folder (the real recordings)")
+    os.makedirs(args.outdir, exist_ok=True)
+    results = {name: measure(args.bin, args.real, args.outdir, name, relative, kind)
+               for name, relative, kind in RECORDINGS}
+    print_tables(results)
+    path = args.json or os.path.join(args.outdir, "real.json")
+    with open(path, "w", encoding="utf-8") as f:
+        json.dump(results, f, indent=2, sort_keys=True)
+        f.write("\n")
+    print(f"\nmeasure-real: figures in {path}", file=sys.stderr)
+
+
+if __name__ == "__main__":
+    main()
