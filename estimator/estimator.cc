@@ -222,8 +222,9 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
   // Line 9 (optional): the third level EKF update with gate d2 > d1 (step 6).
   UpdateThirdLevel(&s);
   lap(Substage::kLevel23);
-  // Lines 11-13: prune, determine static or dynamic, initialise new tracks (steps 7-10).
-  ManageTracks(&s);
+  // Lines 11-13: prune, determine static or dynamic, initialise new tracks (steps 7-10); what
+  // the scan measured of the static landmarks is kept for the smoother.
+  result.static_observations = ManageTracks(&s);
   FinishScan(&s);
   lap(Substage::kTrackManagement);
   ++counters_.scans_processed;
@@ -295,7 +296,7 @@ void Estimator::UpdateThirdLevel(ScanInProgress* s) {
   s->counts->speeds_limited = LimitSpeedsToTheirKind(options_.people, &state_);
 }
 
-void Estimator::ManageTracks(ScanInProgress* s) {
+std::vector<StaticObservation> Estimator::ManageTracks(ScanInProgress* s) {
   const ScanAssociation association = s->association();
   // 7. Hits and misses (line 11), judged at the state after the updates; the take-overs of
   // lost movers' identities tagged at an earlier scan.
@@ -307,6 +308,10 @@ void Estimator::ManageTracks(ScanInProgress* s) {
   // 8. Static or dynamic (line 12).
   ClassifyObjects(association, s->gating.gated, options_, after_updates, s->assignment,
                   &state_, s->counts);
+  // The measurements of confirmed static landmarks, taken while the assignment's object indices
+  // are still those of the state (pruning and new objects renumber them).
+  std::vector<StaticObservation> static_observations =
+      StaticObservations(s->features.measurements, s->assignment, state_);
   // 9. Re-acquisition tags, then pruning (line 11).
   const std::vector<int64_t> continues_id =
       TagPossibleContinuations(association, s->gating.nearest_nis, taken_over, options_,
@@ -316,6 +321,7 @@ void Estimator::ManageTracks(ScanInProgress* s) {
   // 10. New tracks outside gate dn of every object (line 13).
   AddNewObjects(association, s->gating.nearest_nis, continues_id, options_, s->assignment,
                 &next_id_, &state_, s->counts);
+  return static_observations;
 }
 
 void Estimator::FinishScan(ScanInProgress* s) {
@@ -379,6 +385,7 @@ ValidatedFeatures Estimator::TakeFeatures(const std::vector<FeatureReading>& fea
 
 void Estimator::Predict(int64_t utime, const ScanInterval& interval) {
   const PredictionNotes notes = PredictToScan(utime, interval, options_, &odometry_, &state_);
+  last_motion_ = notes.motion;
   if (notes.without_odometry) {
     ++counters_.scans_without_odometry;
     Event("scan at utime " + std::to_string(utime) +
@@ -462,6 +469,7 @@ void Estimator::ReportEstimate(int64_t utime, ScanResult* result) const {
   result->processed = true;
   result->pose = state_.robot_pose();
   result->pose_covariance = state_.robot_covariance();
+  result->motion = last_motion_;
   result->objects.reserve(static_cast<size_t>(state_.num_objects()));
   for (int j = 0; j < state_.num_objects(); ++j) {
     const ObjectRecord& record = state_.object(j).record;

@@ -70,6 +70,7 @@
 #include "estimator/odometry_plausibility.h"
 #include "estimator/scan_prediction.h"
 #include "estimator/slam_state.h"
+#include "estimator/static_observations.h"
 #include "estimator/step_counts.h"
 #include "estimator/time_base.h"
 
@@ -131,6 +132,10 @@ struct ScanResult {
   std::vector<ObjectEstimate> objects;
   std::vector<LineEstimate> lines;
   StepCounts counts;
+  // For the smoother (smoother_input.h): the robot's motion the prediction applied, and the
+  // measurements associated with confirmed static point landmarks (static_observations.h).
+  RobotMotion motion;
+  std::vector<StaticObservation> static_observations;
 };
 
 // Cumulative counters (estimator_status_t).
@@ -219,8 +224,9 @@ class Estimator {
   // (people.h).
   void UpdateThirdLevel(ScanInProgress* s);
   // Lines 11-13: hits and misses, take-overs, classification, re-acquisition tags, pruning,
-  // new objects (steps 7-10 above).
-  void ManageTracks(ScanInProgress* s);
+  // new objects (steps 7-10 above). Returns the scan's measurements of confirmed static point
+  // landmarks, taken right after classification (static_observations.h).
+  std::vector<StaticObservation> ManageTracks(ScanInProgress* s);
   // The scan's problems reported, the state made finite (EnsureFiniteState).
   void FinishScan(ScanInProgress* s);
   // Step 1 (scan_prediction.h), with what it made up for counted and described.
@@ -249,6 +255,7 @@ class Estimator {
   Eigen::Vector3d last_finite_pose_;
   Eigen::Matrix3d last_finite_pose_covariance_ = Eigen::Matrix3d::Zero();
   std::vector<LineCandidate> line_candidates_;  // straight runs not yet line landmarks
+  RobotMotion last_motion_;  // of the last prediction (ScanResult::motion)
   int64_t next_id_ = 1;
 };
 

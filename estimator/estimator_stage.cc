@@ -6,6 +6,7 @@
 #include <cstring>
 #include <utility>
 
+#include "estimator/smoother_input_message.h"
 #include "runtime/config_options.h"
 #include "runtime/log.h"
 #include "slammtt_msgs/estimator_status_t.hpp"
@@ -308,6 +309,7 @@ EstimatorStage::EstimatorStage(const EstimatorStageOptions& options, const Chann
       pose_channel_(channels.Get("pose")),
       map_channel_(channels.Get("map")),
       tracks_channel_(channels.Get("tracks")),
+      smoother_input_channel_(channels.Get("smoother_input")),
       status_channel_(channels.Get("estimator_status")),
       timing_channel_(channels.Get("stage_timing")) {}
 
@@ -414,9 +416,15 @@ void EstimatorStage::HandleFeatures(const void* data, int size, MessageSink& out
   out.PublishMessage(pose_channel_, PoseMessage(message.utime, result));
   out.PublishMessage(map_channel_, MapMessage(message.utime, result));
   out.PublishMessage(tracks_channel_, TracksMessage(message.utime, result));
+  PublishSmootherInput(result, out);
   PublishStatus(message.utime, out);
   out.PublishMessage(timing_channel_, timing);
   ++counters_.scans_published;
+}
+
+void EstimatorStage::PublishSmootherInput(const ScanResult& result, MessageSink& out) {
+  const SmootherScanInput input = smoother_input_.Build(result, estimator_.options().sensor);
+  out.PublishMessage(smoother_input_channel_, SmootherInputMessage(input));
 }
 
 void EstimatorStage::PublishStatus(int64_t utime, MessageSink& out) {

@@ -1,5 +1,5 @@
 // The estimator as a processing stage (runtime/stage.h): ODOMETRY, FEATURES and LASER_GEOMETRY
-// in; POSE, MAP, TRACKS, ESTIMATOR_STATUS and STAGE_TIMING out. The live process
+// in; POSE, MAP, TRACKS, SMOOTHER_INPUT, ESTIMATOR_STATUS and STAGE_TIMING out. The live process
 // (slammtt-estimator) and slammtt-replay run this same object; it depends on nothing live (no
 // clock except StageTimer's durations, no LCM handle), and its RANSAC generator is seeded from
 // the configuration, so a replay gives the same bytes every time.
@@ -14,6 +14,8 @@
 //  - tracks_t (`tracks`): every object, with its class (STATIC / MOVING / UNDECIDED), its kind
 //    (PERSON / OTHER), whether it is confirmed, measured in this scan, how long it has coasted
 //    and whether it is a reported track (track_management.h);
+//  - smoother_input_t (`smoother_input`): the scan's motion and static associations for the
+//    smoother (smoother_input.h, docs/smoother.md);
 //  - estimator_status_t (`estimator_status`): cumulative counters and the last unusual event;
 //  - stage_timing_t (`stage_timing`): stage "estimator", substages "predict", "gating",
 //    "level1", "ransac", "level2_3", "track_management"; counters "features" (received),
@@ -40,6 +42,7 @@
 
 #include "estimator/estimator.h"
 #include "estimator/laser_geometry.h"
+#include "estimator/smoother_input.h"
 #include "runtime/config.h"
 #include "runtime/config_options.h"
 #include "runtime/process.h"
@@ -113,6 +116,7 @@ class EstimatorStage : public Stage {
   void HandleFeatures(const void* data, int size, MessageSink& out);
   void HandleLaserGeometry(const void* data, int size);
   void PublishStatus(int64_t utime, MessageSink& out);
+  void PublishSmootherInput(const ScanResult& result, MessageSink& out);
   void Undecodable(const std::string& what);
 
   Estimator estimator_;
@@ -129,9 +133,11 @@ class EstimatorStage : public Stage {
   std::string pose_channel_;
   std::string map_channel_;
   std::string tracks_channel_;
+  std::string smoother_input_channel_;
   std::string status_channel_;
   std::string timing_channel_;
   EstimatorStageCounters counters_;
+  SmootherInputBuilder smoother_input_;
 };
 
 // The factory slammtt-replay and slammtt-estimator use.

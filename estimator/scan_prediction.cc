@@ -61,6 +61,10 @@ PredictionNotes PredictToScan(int64_t utime, const ScanInterval& interval,
   notes.without_odometry = !interval.first_scan && !covered;
   notes.time_gap = interval.gap_s > options.max_time_gap_s;
   if (notes.time_gap) InflateForTimeGap(interval.dt_s, options, &motion, state);
+  notes.motion.continues = !interval.first_scan;
+  notes.motion.from_pose = state->robot_pose();
+  notes.motion.to_pose = motion.pose();
+  notes.motion.noise = motion.noise().topLeftCorner<3, 3>();
   ApplyRobotPrediction(motion.pose(), motion.jacobian(), motion.noise(), state);
   if (interval.dt_s > 0.0) {
     PredictMovers(interval.dt_s, options.mover_acceleration_sigma_mps2,

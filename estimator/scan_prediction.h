@@ -14,6 +14,7 @@
 //    with their own acceleration sigma); landmarks are unchanged.
 #pragma once
 
+#include <Eigen/Core>
 #include <cstdint>
 
 #include "estimator/estimator_options.h"
@@ -29,10 +30,22 @@ struct ScanInterval {
   double dt_s = 0.0;   // the part of it predicted: at most max_prediction_s
 };
 
-// What the prediction had to make up for, for the estimator's counters and events.
+// The robot's part of one prediction, for the smoother (smoother_input.h): the pose before
+// and after it (map frame) and the pose noise it added, G Q G^T with the time-gap inflation
+// (3x3 over x, y, heading of the map frame; the heading drift's random walk left out).
+struct RobotMotion {
+  bool continues = false;  // false at the first scan: no previous scan to move from
+  Eigen::Vector3d from_pose = Eigen::Vector3d::Zero();
+  Eigen::Vector3d to_pose = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d noise = Eigen::Matrix3d::Zero();
+};
+
+// What the prediction had to make up for, for the estimator's counters and events, and the
+// robot's motion it applied.
 struct PredictionNotes {
   bool without_odometry = false;  // not the first scan, and no reading covered the interval
   bool time_gap = false;          // gap_s > max_time_gap_s: uncertainty inflated
+  RobotMotion motion;
 };
 
 PredictionNotes PredictToScan(int64_t utime, const ScanInterval& interval,

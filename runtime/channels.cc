@@ -24,6 +24,9 @@ const std::map<std::string, std::string>& Channels::Defaults() {
       {"lidar_status", "LIDAR_STATUS"},
       {"base_status", "BASE_STATUS"},
       {"estimator_status", "ESTIMATOR_STATUS"},
+      {"smoother_input", "SMOOTHER_INPUT"},
+      {"smoothed_pose", "SMOOTHED_POSE"},
+      {"smoothed_map", "SMOOTHED_MAP"},
   };
   return defaults;
 }

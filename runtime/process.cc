@@ -10,7 +10,8 @@ namespace slammtt {
 
 const std::vector<std::string>& KnownConfigSections() {
   static const std::vector<std::string> sections = {
-      "lcm", "channels", "segmenter", "estimator", "rplidar", "p3dx", "robot", "replay", "eval"};
+      "lcm",     "channels", "segmenter", "estimator", "smoother",
+      "rplidar", "p3dx",     "robot",     "replay",    "eval"};
   return sections;
 }
 

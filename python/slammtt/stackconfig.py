@@ -15,11 +15,11 @@ from ruamel.yaml import YAML
 from ruamel.yaml.error import YAMLError
 
 # runtime/process.cc's list of sections.
-SECTIONS = ("lcm", "channels", "segmenter", "estimator", "rplidar", "p3dx", "robot", "replay",
-            "eval")
+SECTIONS = ("lcm", "channels", "segmenter", "estimator", "smoother", "rplidar", "p3dx", "robot",
+            "replay", "eval")
 
-# runtime/channels.cc, plus the channel slammtt-import writes (leg_labels) and the smoother's
-# output (smoothed_pose), which the exports read when a log has it.
+# runtime/channels.cc, plus the channel slammtt-import writes (leg_labels). The exports read the
+# smoother's pose (smoothed_pose) when a log has it.
 CHANNEL_DEFAULTS = {
     "odometry": "ODOMETRY", "velocity_command": "VELOCITY_COMMAND",
     "laser_scan": "LASER_SCAN", "laser_geometry": "LASER_GEOMETRY", "features": "FEATURES",
@@ -27,7 +27,8 @@ CHANNEL_DEFAULTS = {
     "tracks": "TRACKS", "ground_truth": "GROUND_TRUTH", "stage_timing": "STAGE_TIMING",
     "lidar_status": "LIDAR_STATUS", "base_status": "BASE_STATUS",
     "estimator_status": "ESTIMATOR_STATUS", "leg_labels": "LEG_LABELS",
-    "smoothed_pose": "SMOOTHED_POSE",
+    "smoother_input": "SMOOTHER_INPUT", "smoothed_pose": "SMOOTHED_POSE",
+    "smoothed_map": "SMOOTHED_MAP",
 }
 
 DEFAULT_LCM_URL = "udpm://239.255.76.67:7667?ttl=0"

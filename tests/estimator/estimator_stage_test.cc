@@ -16,6 +16,7 @@
 #include "slammtt_msgs/map_t.hpp"
 #include "slammtt_msgs/odometry_t.hpp"
 #include "slammtt_msgs/pose_t.hpp"
+#include "slammtt_msgs/smoother_input_t.hpp"
 #include "slammtt_msgs/stage_timing_t.hpp"
 #include "slammtt_msgs/tracks_t.hpp"
 
@@ -283,12 +284,13 @@ TEST(EstimatorStageTest, PublishesEveryOutputWithTheFeaturesUtime) {
   Feed(&stage, "ODOMETRY", OdometryBytes(100000, 0.05, 0.5), out);
   EXPECT_TRUE(out.messages.empty());
   Feed(&stage, "FEATURES", FeaturesBytes(100000, {{5.0, 0.2}, {7.0, -0.4}}), out);
-  ASSERT_EQ(out.messages.size(), 5u);
+  ASSERT_EQ(out.messages.size(), 6u);
   EXPECT_EQ(out.messages[0].channel, "POSE");
   EXPECT_EQ(out.messages[1].channel, "MAP");
   EXPECT_EQ(out.messages[2].channel, "TRACKS");
-  EXPECT_EQ(out.messages[3].channel, "ESTIMATOR_STATUS");
-  EXPECT_EQ(out.messages[4].channel, "STAGE_TIMING");
+  EXPECT_EQ(out.messages[3].channel, "SMOOTHER_INPUT");
+  EXPECT_EQ(out.messages[4].channel, "ESTIMATOR_STATUS");
+  EXPECT_EQ(out.messages[5].channel, "STAGE_TIMING");
   const auto pose = out.Get<slammtt_msgs::pose_t>(0);
   EXPECT_EQ(pose.utime, 100000);
   EXPECT_NEAR(pose.x_m, 0.05, 1e-9);
@@ -300,7 +302,14 @@ TEST(EstimatorStageTest, PublishesEveryOutputWithTheFeaturesUtime) {
   EXPECT_EQ(tracks.tracks[0].object_class, static_cast<int8_t>(slammtt_msgs::track_t::CLASS_UNDECIDED));
   EXPECT_FALSE(tracks.tracks[0].confirmed);
   EXPECT_EQ(tracks.tracks[0].first_seen_utime, 100000);
-  const auto status = out.Get<slammtt_msgs::estimator_status_t>(3);
+  // The first scan: no motion from a previous one; both features start objects (no
+  // association yet), so there is no observation for the smoother.
+  const auto smoother_input = out.Get<slammtt_msgs::smoother_input_t>(3);
+  EXPECT_EQ(smoother_input.utime, 100000);
+  EXPECT_FALSE(smoother_input.continues);
+  EXPECT_EQ(smoother_input.num_observations, 0);
+  EXPECT_NEAR(smoother_input.x_m, 0.05, 1e-9);
+  const auto status = out.Get<slammtt_msgs::estimator_status_t>(4);
   EXPECT_EQ(status.utime, 100000);
   EXPECT_EQ(status.scans_processed, 1);
   EXPECT_EQ(status.odometry_processed, 2);
@@ -317,7 +326,7 @@ TEST(EstimatorStageTest, PublishesEveryOutputWithTheFeaturesUtime) {
   EXPECT_NEAR(status.heading_drift_sigma_rad_per_m,
               std::sqrt(prior_sigma * prior_sigma + 0.05 * defaults.heading_drift_walk_var_per_m),
               1e-12);
-  const auto timing = out.Get<slammtt_msgs::stage_timing_t>(4);
+  const auto timing = out.Get<slammtt_msgs::stage_timing_t>(5);
   EXPECT_EQ(timing.utime, 100000);
   EXPECT_EQ(timing.stage, "estimator");
   EXPECT_EQ(timing.substage, (std::vector<std::string>{"predict", "gating", "level1", "ransac",
@@ -341,11 +350,11 @@ TEST(EstimatorStageTest, StaticObjectsReachTheMap) {
     Feed(&stage, "ODOMETRY", OdometryBytes(t, 0.0, 0.0), out);
     Feed(&stage, "FEATURES", FeaturesBytes(t, {{5.0, 0.2}, {7.0, -0.4}}), out);
   }
-  const auto map = out.Get<slammtt_msgs::map_t>(out.messages.size() - 4);
+  const auto map = out.Get<slammtt_msgs::map_t>(out.messages.size() - 5);
   ASSERT_EQ(map.num_landmarks, 2);
   EXPECT_NEAR(map.landmarks[0].x_m, 5.0 * std::cos(0.2), 0.05);
   EXPECT_NEAR(map.landmarks[0].y_m, 5.0 * std::sin(0.2), 0.05);
-  const auto tracks = out.Get<slammtt_msgs::tracks_t>(out.messages.size() - 3);
+  const auto tracks = out.Get<slammtt_msgs::tracks_t>(out.messages.size() - 4);
   EXPECT_EQ(tracks.tracks[1].object_class, static_cast<int8_t>(slammtt_msgs::track_t::CLASS_STATIC));
   EXPECT_TRUE(tracks.tracks[1].confirmed);
   EXPECT_EQ(tracks.tracks[1].vx_mps, 0.0);
@@ -366,8 +375,8 @@ TEST(EstimatorStageTest, AStandingPersonIsAStaticPersonTrackNeverInTheMap) {
     m.utime = t;
     Feed(&stage, "FEATURES", Encode(m), out);
   }
-  const auto map = out.Get<slammtt_msgs::map_t>(out.messages.size() - 4);
-  const auto tracks = out.Get<slammtt_msgs::tracks_t>(out.messages.size() - 3);
+  const auto map = out.Get<slammtt_msgs::map_t>(out.messages.size() - 5);
+  const auto tracks = out.Get<slammtt_msgs::tracks_t>(out.messages.size() - 4);
   ASSERT_EQ(tracks.num_tracks, 2);
   using Track = slammtt_msgs::track_t;
   const Track& person = tracks.tracks[0];
@@ -408,7 +417,7 @@ TEST(EstimatorStageTest, ACoastingTrackSaysSoAndIsNotReported) {
       m.num_people = 0;
     }
     Feed(&stage, "FEATURES", Encode(m), out);
-    tracks.push_back(out.Get<slammtt_msgs::tracks_t>(out.messages.size() - 3));
+    tracks.push_back(out.Get<slammtt_msgs::tracks_t>(out.messages.size() - 4));
   }
   auto person_at = [&](int k) {
     for (const auto& t : tracks[static_cast<size_t>(k)].tracks) {
@@ -464,7 +473,7 @@ TEST(EstimatorStageTest, LineFeaturesBecomeTheLinesOfTheMap) {
     Feed(&stage, "ODOMETRY", OdometryBytes(t, 0.0, 0.0), out);
     Feed(&stage, "FEATURES", WallFeaturesBytes(t), out);
   }
-  const auto map = out.Get<slammtt_msgs::map_t>(out.messages.size() - 4);
+  const auto map = out.Get<slammtt_msgs::map_t>(out.messages.size() - 5);
   EXPECT_EQ(map.num_landmarks, 0);
   ASSERT_EQ(map.num_lines, 2);
   EXPECT_NEAR(map.lines[0].rho_m, 3.0, 1e-6);
@@ -476,7 +485,7 @@ TEST(EstimatorStageTest, LineFeaturesBecomeTheLinesOfTheMap) {
   EXPECT_NEAR(map.lines[0].to_y_m, 2.0, 1e-6);
   EXPECT_GT(map.lines[0].covariance[0], 0.0);
   EXPECT_NE(map.lines[0].id, map.lines[1].id);
-  const auto tracks = out.Get<slammtt_msgs::tracks_t>(out.messages.size() - 3);
+  const auto tracks = out.Get<slammtt_msgs::tracks_t>(out.messages.size() - 4);
   EXPECT_EQ(tracks.num_tracks, 0);  // a line is never a track
   const auto timing = out.Get<slammtt_msgs::stage_timing_t>(out.messages.size() - 1);
   EXPECT_EQ(timing.counter_value[5], 2);  // lines

@@ -100,7 +100,7 @@ TEST(EvaluationTest, HandBuiltLogGivesHandComputedFigures) {
 
   // The JSON carries exactly the top-level keys the issues list (written out here, not taken
   // from the code under test: issue 5's, plus IDF1 and HOTA of issue 16, the coasting and
-  // people scores of issue 13) plus the detail and
+  // people scores of issue 13, the smoother's of issue 14) plus the detail and
   // the warnings (issue 15: what withholds a headline figure).
   const nlohmann::json j = ReportToJson(input, r);
   std::vector<std::string> keys;
@@ -111,6 +111,7 @@ TEST(EvaluationTest, HandBuiltLogGivesHandComputedFigures) {
       "movers_in_static_map", "landmark_rmse_m", "static_recall", "classification_accuracy",
       "idf1",           "hota",                 "mota_with_coasting",
       "id_switches_with_coasting",              "people_mota",    "people_id_switches",
+      "smoothed_ate_rmse_m",                    "smoothed_landmark_rmse_m",
       "detail",         "warnings"};
   std::sort(expected.begin(), expected.end());
   EXPECT_EQ(keys, expected);  // nlohmann::json iterates objects in key order

@@ -126,6 +126,11 @@ struct EvalInput {
   std::vector<TimedPose> odometry;    // odometry frame, sorted, unique
   std::vector<TimedPose> estimate;    // POSE, map frame, sorted, unique
   std::vector<TrackScan> tracks;      // sorted, unique
+  // The smoother's outputs (slammtt-smoother), in the estimator's map frame: SMOOTHED_POSE
+  // (sorted, unique) and the last SMOOTHED_MAP.
+  std::vector<TimedPose> smoothed_estimate;
+  std::optional<std::vector<LandmarkSample>> final_smoothed_map;
+  int64_t final_smoothed_map_utime = 0;
   std::optional<std::vector<LandmarkSample>> final_map;  // the last MAP message
   std::vector<LineLandmarkSample> final_map_lines;       // its lines
   int64_t final_map_utime = 0;
@@ -138,8 +143,9 @@ struct EvalInput {
   // The laser's mount (forward, left, yaw) of the log's first usable LASER_GEOMETRY: the scan
   // picture's mount when the configuration gives none (EvalOptions::sensor_mount_given).
   std::optional<Pose2> laser_mount;
-  // Messages per channel key ("ground_truth", "odometry", "pose", "tracks", "map") that were
-  // undecodable, carried NaN/inf or an unknown class, or repeated an earlier utime.
+  // Messages per channel key ("ground_truth", "odometry", "pose", "tracks", "map"; and
+  // "smoothed_pose", "smoothed_map" when the log has any) that were undecodable, carried NaN/inf
+  // or an unknown class, or repeated an earlier utime.
   std::map<std::string, int64_t> rejected;
   std::map<std::string, int64_t> accepted;
 };

@@ -162,6 +162,49 @@ std::optional<ScanSnapshot> SnapshotFromFeatures(const slammtt_msgs::features_t&
   return snapshot;
 }
 
+// A pose_t into `poses`, or counted as rejected under `key` (undecodable, a bad utime, not
+// finite). The key is counted (accepted) from its first message on.
+void ReadPose(const LogEventView& e, const std::string& key, EvalInput* input,
+              std::vector<TimedPose>* poses) {
+  input->accepted[key] += 0;
+  slammtt_msgs::pose_t msg{};
+  if (!Decode(e.data, e.size, &msg) || !ValidUtime(msg.utime) ||
+      !Finite({msg.x_m, msg.y_m, msg.heading_rad})) {
+    ++input->rejected[key];
+    return;
+  }
+  input->rejected[key] += 0;
+  poses->push_back({msg.utime, Pose2{msg.x_m, msg.y_m, WrapAngle(msg.heading_rad)}});
+}
+
+// A map_t's landmarks and lines; false when it is undecodable, has a bad utime or a number
+// that is not finite.
+bool ReadMap(const LogEventView& e, std::vector<LandmarkSample>* landmarks,
+             std::vector<LineLandmarkSample>* lines, int64_t* utime) {
+  slammtt_msgs::map_t msg{};
+  if (!Decode(e.data, e.size, &msg)) return false;
+  bool ok = ValidUtime(msg.utime);
+  *utime = msg.utime;
+  for (const auto& l : msg.landmarks) {
+    ok = ok && Finite({l.x_m, l.y_m}) && AllFinite(l.covariance, 4);
+    LandmarkSample sample;
+    sample.id = l.id;
+    sample.position_m = Eigen::Vector2d(l.x_m, l.y_m);
+    sample.covariance << l.covariance[0], l.covariance[1], l.covariance[2], l.covariance[3];
+    landmarks->push_back(sample);
+  }
+  for (const auto& l : msg.lines) {
+    ok = ok && Finite({l.rho_m, l.alpha_rad, l.from_x_m, l.from_y_m, l.to_x_m, l.to_y_m});
+    LineLandmarkSample sample;
+    sample.id = l.id;
+    sample.line = Eigen::Vector2d(l.rho_m, l.alpha_rad);
+    sample.from_m = Eigen::Vector2d(l.from_x_m, l.from_y_m);
+    sample.to_m = Eigen::Vector2d(l.to_x_m, l.to_y_m);
+    lines->push_back(sample);
+  }
+  return ok;
+}
+
 }  // namespace
 
 EvalInput ReadEvalInput(const std::string& path, const Channels& channels, LogReadResult* read) {
@@ -174,6 +217,8 @@ EvalInput ReadEvalInput(const std::string& path, const Channels& channels, LogRe
   const std::string map_channel = channels.Get("map");
   const std::string laser_scan_channel = channels.Get("laser_scan");
   const std::string features_channel = channels.Get("features");
+  const std::string smoothed_pose_channel = channels.Get("smoothed_pose");
+  const std::string smoothed_map_channel = channels.Get("smoothed_map");
   const std::string laser_geometry_channel = channels.Get("laser_geometry");
   int64_t last_scan_utime = -1;  // the last decodable LASER_SCAN, kept for the snapshot
   std::vector<Eigen::Vector2d> last_scan_beams;
@@ -231,13 +276,23 @@ EvalInput ReadEvalInput(const std::string& path, const Channels& channels, LogRe
       }
       input.odometry.push_back({msg.utime, Pose2{msg.x_m, msg.y_m, WrapAngle(msg.heading_rad)}});
     } else if (e.channel == pose_channel) {
-      slammtt_msgs::pose_t msg{};
-      if (!Decode(e.data, e.size, &msg) || !ValidUtime(msg.utime) ||
-          !Finite({msg.x_m, msg.y_m, msg.heading_rad})) {
-        ++input.rejected["pose"];
+      ReadPose(e, "pose", &input, &input.estimate);
+    } else if (e.channel == smoothed_pose_channel) {
+      ReadPose(e, "smoothed_pose", &input, &input.smoothed_estimate);
+    } else if (e.channel == smoothed_map_channel) {
+      input.accepted["smoothed_map"] += 0;
+      input.rejected["smoothed_map"] += 0;
+      std::vector<LandmarkSample> landmarks;
+      std::vector<LineLandmarkSample> lines;
+      int64_t utime = 0;
+      if (!ReadMap(e, &landmarks, &lines, &utime) ||
+          (input.final_smoothed_map && utime < input.final_smoothed_map_utime)) {
+        ++input.rejected["smoothed_map"];
         return;
       }
-      input.estimate.push_back({msg.utime, Pose2{msg.x_m, msg.y_m, WrapAngle(msg.heading_rad)}});
+      ++input.accepted["smoothed_map"];
+      input.final_smoothed_map = std::move(landmarks);
+      input.final_smoothed_map_utime = utime;
     } else if (e.channel == tracks_channel) {
       slammtt_msgs::tracks_t msg{};
       if (!Decode(e.data, e.size, &msg)) {
@@ -275,45 +330,28 @@ EvalInput ReadEvalInput(const std::string& path, const Channels& channels, LogRe
       }
       input.tracks.push_back(std::move(scan));
     } else if (e.channel == map_channel) {
-      slammtt_msgs::map_t msg{};
-      if (!Decode(e.data, e.size, &msg)) {
-        ++input.rejected["map"];
-        return;
-      }
-      bool ok = ValidUtime(msg.utime);
       std::vector<LandmarkSample> landmarks;
-      for (const auto& l : msg.landmarks) {
-        ok = ok && Finite({l.x_m, l.y_m}) && AllFinite(l.covariance, 4);
-        LandmarkSample sample;
-        sample.id = l.id;
-        sample.position_m = Eigen::Vector2d(l.x_m, l.y_m);
-        sample.covariance << l.covariance[0], l.covariance[1], l.covariance[2], l.covariance[3];
-        landmarks.push_back(sample);
-      }
       std::vector<LineLandmarkSample> lines;
-      for (const auto& l : msg.lines) {
-        ok = ok && Finite({l.rho_m, l.alpha_rad, l.from_x_m, l.from_y_m, l.to_x_m, l.to_y_m});
-        LineLandmarkSample sample;
-        sample.id = l.id;
-        sample.line = Eigen::Vector2d(l.rho_m, l.alpha_rad);
-        sample.from_m = Eigen::Vector2d(l.from_x_m, l.from_y_m);
-        sample.to_m = Eigen::Vector2d(l.to_x_m, l.to_y_m);
-        lines.push_back(sample);
-      }
-      if (!ok || (input.final_map && msg.utime < input.final_map_utime)) {
+      int64_t utime = 0;
+      if (!ReadMap(e, &landmarks, &lines, &utime) ||
+          (input.final_map && utime < input.final_map_utime)) {
         ++input.rejected["map"];
         return;
       }
       ++input.accepted["map"];
       input.final_map = std::move(landmarks);
       input.final_map_lines = std::move(lines);
-      input.final_map_utime = msg.utime;
+      input.final_map_utime = utime;
     }
   });
   input.rejected["ground_truth"] += SortUnique(&input.truth);
   input.rejected["odometry"] += SortUnique(&input.odometry);
   input.rejected["pose"] += SortUnique(&input.estimate);
   input.rejected["tracks"] += SortUnique(&input.tracks);
+  if (input.accepted.count("smoothed_pose") != 0 || input.rejected.count("smoothed_pose") != 0) {
+    input.rejected["smoothed_pose"] += SortUnique(&input.smoothed_estimate);
+    input.accepted["smoothed_pose"] = static_cast<int64_t>(input.smoothed_estimate.size());
+  }
   input.accepted["ground_truth"] = static_cast<int64_t>(input.truth.size());
   input.accepted["odometry"] = static_cast<int64_t>(input.odometry.size());
   input.accepted["pose"] = static_cast<int64_t>(input.estimate.size());

@@ -82,6 +82,26 @@ std::optional<TrajectoryResult> ScoreInterpolated(const std::vector<TruthScan>& 
   return ScorePairs(std::move(pairs));
 }
 
+// The smoother's trajectory and final map (EvaluationReport::smoothed_robot, smoothed_map);
+// report->static_objects and mover_paths must be filled.
+void ScoreSmoother(const EvalInput& input, const EvalOptions& options,
+                   EvaluationReport* report) {
+  if (input.smoothed_estimate.empty()) return;
+  report->smoothed_robot = ScoreExactTimes(input.truth, input.smoothed_estimate);
+  if (!report->smoothed_robot) {
+    report->notes.push_back("no SMOOTHED_POSE has the utime of a GROUND_TRUTH scan: smoother "
+                            "not scored");
+    return;
+  }
+  if (!input.final_smoothed_map) return;
+  std::vector<IdentifiedPoint> landmarks;
+  for (const LandmarkSample& l : *input.final_smoothed_map) {
+    landmarks.push_back({l.id, TransformPoint(report->smoothed_robot->anchor, l.position_m)});
+  }
+  report->smoothed_map = ScoreMap(landmarks, report->static_objects, report->mover_paths,
+                                  options.match_threshold_m);
+}
+
 std::string Count(int64_t n, const std::string& what) {
   return std::to_string(n) + " " + what;
 }
@@ -363,6 +383,7 @@ EvaluationReport Evaluate(const EvalInput& input, const EvalOptions& options) {
                                    "GROUND_TRUTH scans have no POSE of the same utime"));
     }
   }
+  ScoreSmoother(input, options, &report);
   if (!report.robot) return report;
   const Pose2 anchor = report.robot->anchor;
 

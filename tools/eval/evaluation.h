@@ -7,6 +7,8 @@
 // - Robot: absolute trajectory error of POSE at every ground-truth scan with a POSE of the same
 //   utime; of ODOMETRY interpolated at the ground-truth times (dead reckoning, for comparison).
 // - Map: the final MAP against the static objects that were ever visible (map_score.h).
+// - Smoother (issue 14): SMOOTHED_POSE and the final SMOOTHED_MAP, when present, scored by the
+//   same rules, each anchored at the first ground-truth scan with a SMOOTHED_POSE.
 // - Visibility: in a log with LASER_SCAN (raw scans, features made by the segmenter) an object
 //   is visible at a scan when beams_on_object >= min_beams (the segmenter's minimum cluster
 //   size: fewer points never make a feature); in a feature log, the world's `visible` flag (a
@@ -200,6 +202,11 @@ struct EvaluationReport {
   std::optional<TrajectoryResult> robot;     // POSE
   std::optional<TrajectoryResult> odometry;  // ODOMETRY
   std::optional<MapScore> map;
+  // The smoother's outputs (slammtt-smoother), when the log has them: SMOOTHED_POSE scored as
+  // POSE (anchored at its own first scan with a ground-truth pose), and the last SMOOTHED_MAP
+  // as MAP, anchored by the smoothed trajectory's anchor.
+  std::optional<TrajectoryResult> smoothed_robot;
+  std::optional<MapScore> smoothed_map;
   // With a MAP and true surfaces (or line landmarks): the lines' score and the point landmarks
   // on walls (ids).
   std::optional<LineMapScore> line_map;

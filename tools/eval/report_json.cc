@@ -179,7 +179,8 @@ const std::vector<std::string>& TopLevelMetricKeys() {
       "mota",            "motp_m",               "id_switches",     "fragmentations",
       "idf1",            "hota",                 "mota_with_coasting",
       "id_switches_with_coasting",               "people_mota",     "people_id_switches",
-      "movers_in_static_map", "landmark_rmse_m", "static_recall",   "classification_accuracy"};
+      "movers_in_static_map", "landmark_rmse_m", "static_recall",   "classification_accuracy",
+      "smoothed_ate_rmse_m",  "smoothed_landmark_rmse_m"};
   return keys;
 }
 
@@ -245,6 +246,10 @@ json ReportToJson(const EvalInput& input, const EvaluationReport& report,
   j["static_recall"] = report.map ? OrNull(report.map->static_recall) : json(nullptr);
   j["classification_accuracy"] =
       report.classification ? OrNull(report.classification->accuracy) : json(nullptr);
+  j["smoothed_ate_rmse_m"] =
+      report.smoothed_robot ? json(report.smoothed_robot->error.rmse_m) : json(nullptr);
+  j["smoothed_landmark_rmse_m"] =
+      report.smoothed_map ? OrNull(report.smoothed_map->landmark_rmse_m) : json(nullptr);
 
   json detail;
   json channels;
@@ -267,6 +272,18 @@ json ReportToJson(const EvalInput& input, const EvaluationReport& report,
                                           : "the world's visible flag (log without LASER_SCAN)"}};
   detail["robot"] = report.robot ? TrajectoryJson(*report.robot) : json(nullptr);
   detail["odometry"] = report.odometry ? TrajectoryJson(*report.odometry) : json(nullptr);
+  // The smoother's parts only when the log has its outputs.
+  if (report.smoothed_robot) detail["smoothed_robot"] = TrajectoryJson(*report.smoothed_robot);
+  if (report.smoothed_map) {
+    const MapScore& m = *report.smoothed_map;
+    detail["smoothed_map"] = {{"final_map_utime", input.final_smoothed_map_utime},
+                              {"landmarks", m.num_landmarks},
+                              {"matched", m.num_matched},
+                              {"static_recall", OrNull(m.static_recall)},
+                              {"landmark_rmse_m", OrNull(m.landmark_rmse_m)},
+                              {"landmark_max_error_m", m.landmark_max_error_m},
+                              {"movers_in_static_map", m.num_movers_in_static_map}};
+  }
   if (report.map) {
     const MapScore& m = *report.map;
     json matches = json::array();
@@ -373,6 +390,16 @@ std::string ReportSummaryText(const EvaluationReport& report,
         << " deg";
   } else {
     out << "n/a";
+  }
+  if (report.smoothed_robot) {
+    const TrajectoryError& e = report.smoothed_robot->error;
+    out << "\n  smoothed robot: ATE RMSE " << Fixed(e.rmse_m, 3) << " m, max " << Fixed(e.max_m, 3)
+        << " m";
+    if (report.smoothed_map) {
+      out << "; smoothed map: landmark RMSE "
+          << FixedOr(report.smoothed_map->landmark_rmse_m, 3, " m") << ", recall "
+          << FixedOr(report.smoothed_map->static_recall, 3);
+    }
   }
   out << "\n  map:            ";
   if (report.map) {

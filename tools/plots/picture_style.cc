@@ -20,6 +20,10 @@ const LineStyle& EstimateStyle() {
   static const LineStyle style{"#1f77b4", 1.6, "", 1.0};
   return style;
 }
+const LineStyle& SmoothedStyle() {
+  static const LineStyle style{"#9467bd", 1.6, "2 2", 1.0};
+  return style;
+}
 const LineStyle& MoverPathStyle() {
   static const LineStyle style{"#9a9a9a", 5.0, "", 0.45};
   return style;

@@ -20,6 +20,8 @@ inline constexpr int kMapPanelHeightPx = 684;  // a map panel, axes and title in
 const LineStyle& TruthStyle();
 const LineStyle& OdometryStyle();
 const LineStyle& EstimateStyle();
+// The smoother's trajectory (SMOOTHED_POSE), beside the filter's estimate.
+const LineStyle& SmoothedStyle();
 const LineStyle& MoverPathStyle();
 
 std::vector<Eigen::Vector2d> Positions(const std::vector<TimedPose>& poses);

@@ -12,11 +12,15 @@ std::string TrajectorySvg(const EvaluationReport& report) {
   const auto truth = Positions(report.truth_trajectory);
   const auto odometry = OdometryPath(report);
   const auto estimate = EstimatedPath(report);
-  panel.FitRange({truth, odometry, estimate}, true);
+  const std::vector<Eigen::Vector2d> smoothed =
+      report.smoothed_robot ? Positions(report.smoothed_robot->anchored)
+                            : std::vector<Eigen::Vector2d>();
+  panel.FitRange({truth, odometry, estimate, smoothed}, true);
   panel.DrawAxes("Robot trajectory (" + PictureFrame(report) + ")", "x [m]", "y [m]");
   panel.Polyline(truth, TruthStyle());
   panel.Polyline(odometry, OdometryStyle());
   panel.Polyline(estimate, EstimateStyle());
+  if (!smoothed.empty()) panel.Polyline(smoothed, SmoothedStyle());
   const LineStyle start{"#2ca02c"};
   for (const auto* path : {&truth, &estimate, &odometry}) {
     if (path->empty()) continue;
@@ -40,6 +44,11 @@ std::string TrajectorySvg(const EvaluationReport& report) {
                       EstimateStyle()});
   } else if (!estimate.empty()) {
     legend.push_back({"estimate (POSE)", EstimateStyle()});
+  }
+  if (report.smoothed_robot) {
+    legend.push_back({"smoothed (ATE RMSE " +
+                          FormatNumber(report.smoothed_robot->error.rmse_m, 3) + " m)",
+                      SmoothedStyle()});
   }
   legend.push_back({"start", start, LegendMark::kDot});
   if (truth.empty() && estimate.empty() && odometry.empty()) {

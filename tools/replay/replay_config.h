@@ -1,5 +1,6 @@
 // The `replay:` section of the stack configuration, read for slammtt-replay (docs/tools.md):
-//   stages                 [segmenter, estimator]  stages that may run (pipeline order)
+//   stages                 [segmenter, estimator]  stages that may run (pipeline order; and
+//                                                  smoother with a `smoother:` section)
 //   progress_every_events  20000                   a progress line every this many events...
 //   progress_every_log_s   30                      ...or this many seconds of log time
 //   truncated_tail         warn                    warn | error (as --strict)

@@ -1,5 +1,6 @@
 // slammtt-replay IN.lcm -o OUT.lcm [--config FILE]: deterministic replay of a log through the
 // processing stages (log_replay.h; usage and semantics in docs/tools.md).
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <stdexcept>
@@ -28,7 +29,10 @@ int Run(int argc, char** argv) {
   cl.AddOption("timing-log", "FILE", "STAGE_TIMING log (default: OUT.lcm.timing.lcm)");
   cl.AddFlag("no-timing", "write no timing log");
   cl.AddRepeatedOption("stage", "NAME",
-                       "run only these stages (segmenter, estimator; overrides replay.stages)");
+                       "run only these stages (segmenter, estimator, smoother; overrides "
+                       "replay.stages)");
+  cl.AddFlag("smoother",
+            "run the smoother as well (slammtt-smoother; as a `smoother:` section does)");
   cl.AddFlag("strict", "treat a truncated final event as an error (default: a warning)");
   if (!cl.Parse(argc, argv)) return 0;
   const std::string input = *cl.Positional("IN.lcm");
@@ -40,10 +44,13 @@ int Run(int argc, char** argv) {
 
   ProcessSettings settings = LoadProcessSettings(cl);
   const ReplaySettings replay =
-      ReadReplaySettings(settings.config.Child("replay"), StackStageNames());
+      ReadReplaySettings(settings.config.Child("replay"), DefaultStackStages(settings.config));
   ReplayFileOptions options = replay.file_options;
-  const std::vector<std::string> enabled =
-      cl.Values("stage").empty() ? replay.stages : cl.Values("stage");
+  std::vector<std::string> enabled = cl.Values("stage").empty() ? replay.stages : cl.Values("stage");
+  if (cl.Flag("smoother") &&
+      std::find(enabled.begin(), enabled.end(), "smoother") == enabled.end()) {
+    enabled.push_back("smoother");
+  }
   if (cl.Flag("strict")) options.truncated_tail_is_error = true;
   options.timing_channel = settings.channels.Get("stage_timing");
   if (!cl.Flag("no-timing")) {

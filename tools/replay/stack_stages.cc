@@ -5,11 +5,12 @@
 #include "estimator/estimator_stage.h"
 #include "estimator/laser_geometry.h"
 #include "perception/segmenter_stage.h"
+#include "smoother/smoother_stage.h"
 
 namespace slammtt {
 
 const std::vector<std::string>& StackStageNames() {
-  static const std::vector<std::string> names = {"segmenter", "estimator"};
+  static const std::vector<std::string> names = {"segmenter", "estimator", "smoother"};
   return names;
 }
 
@@ -19,7 +20,7 @@ std::vector<ReplayStage> CreateStackStages(const ProcessSettings& settings,
     if (std::find(StackStageNames().begin(), StackStageNames().end(), name) ==
         StackStageNames().end()) {
       throw ConfigError("replay.stages: unknown stage '" + name +
-                        "' (known: segmenter, estimator)");
+                        "' (known: segmenter, estimator, smoother)");
     }
   }
   auto wanted = [&](const std::string& name) {
@@ -35,8 +36,19 @@ std::vector<ReplayStage> CreateStackStages(const ProcessSettings& settings,
   if (wanted("estimator")) {
     stages.push_back(ReplayStage{CreateEstimatorStage(settings),
                                  {channels.Get("pose"), channels.Get("map"),
-                                  channels.Get("tracks"), channels.Get("estimator_status")}});
+                                  channels.Get("tracks"), channels.Get("smoother_input"),
+                                  channels.Get("estimator_status")}});
   }
+  if (wanted("smoother")) {
+    stages.push_back(ReplayStage{CreateSmootherStage(settings),
+                                 {channels.Get("smoothed_pose"), channels.Get("smoothed_map")}});
+  }
+  return stages;
+}
+
+std::vector<std::string> DefaultStackStages(const Config& config) {
+  std::vector<std::string> stages = {"segmenter", "estimator"};
+  if (config.Has("smoother")) stages.push_back("smoother");
   return stages;
 }
 

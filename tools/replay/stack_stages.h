@@ -1,5 +1,6 @@
 // The processing stages of the stack as replay runs them: created by the same factories as the
-// live processes (perception/segmenter_stage.h, estimator/estimator_stage.h) from the same stack
+// live processes (perception/segmenter_stage.h, estimator/estimator_stage.h,
+// smoother/smoother_stage.h) from the same stack
 // configuration, with the channels each one publishes.
 #pragma once
 
@@ -12,8 +13,12 @@
 
 namespace slammtt {
 
-// "segmenter", "estimator": the names the `replay.stages` setting accepts, in pipeline order.
+// "segmenter", "estimator", "smoother": the names the `replay.stages` setting accepts, in pipeline order.
 const std::vector<std::string>& StackStageNames();
+
+// The stages a replay runs when neither replay.stages nor --stage names them: the segmenter and
+// the estimator, and the smoother when the configuration has a `smoother:` section.
+std::vector<std::string> DefaultStackStages(const Config& config);
 
 // Creates the stages named in `enabled` (a subset of StackStageNames(), any order; they run in
 // pipeline order). Each factory reads its own configuration section and rejects unknown keys.

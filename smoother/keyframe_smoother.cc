@@ -1,0 +1,370 @@
+#include "smoother/keyframe_smoother.h"
+
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+
+#include "common/angle.h"
+#include "common/utime.h"
+#include "smoother/pose2.h"
+
+namespace slammtt {
+namespace {
+
+using R = OptionRange;
+
+// a * b with its covariance: J_a C_a J_a^T + J_b C_b J_b^T (a and b independent).
+void ComposeWithCovariance(const Eigen::Vector3d& a, const Eigen::Matrix3d& a_covariance,
+                           const Eigen::Vector3d& b, const Eigen::Matrix3d& b_covariance,
+                           Eigen::Vector3d* composed, Eigen::Matrix3d* covariance) {
+  const double c = std::cos(a(2));
+  const double s = std::sin(a(2));
+  Eigen::Matrix3d jacobian_a = Eigen::Matrix3d::Identity();
+  jacobian_a(0, 2) = -s * b(0) - c * b(1);
+  jacobian_a(1, 2) = c * b(0) - s * b(1);
+  Eigen::Matrix3d jacobian_b = Eigen::Matrix3d::Identity();
+  jacobian_b.topLeftCorner<2, 2>() << c, -s, s, c;
+  *composed = ComposePoses(a, b);
+  const Eigen::Matrix3d sum = jacobian_a * a_covariance * jacobian_a.transpose() +
+                              jacobian_b * b_covariance * jacobian_b.transpose();
+  *covariance = 0.5 * (sum + sum.transpose());
+}
+
+Eigen::Matrix3d PoseFloor(double sigma_m, double sigma_rad) {
+  return Eigen::Vector3d(sigma_m * sigma_m, sigma_m * sigma_m, sigma_rad * sigma_rad)
+      .asDiagonal();
+}
+
+// Why an observation cannot be a factor (a range that is not positive, a number that is not
+// finite, a covariance that is not positive definite), or nullopt.
+std::optional<std::string> ObservationProblem(const StaticObservation& o) {
+  const std::string what = "landmark " + std::to_string(o.landmark_id) + ": ";
+  if (!o.range_bearing.allFinite() || !(o.range_bearing(0) > 0.0)) {
+    return what + "range " + std::to_string(o.range_bearing(0)) + " m, bearing " +
+           std::to_string(o.range_bearing(1)) + " rad: not a measurement";
+  }
+  const Eigen::LLT<Eigen::Matrix2d> llt(o.covariance);
+  if (!o.covariance.allFinite() || llt.info() != Eigen::Success ||
+      !(o.covariance - o.covariance.transpose()).isZero(1e-12 * o.covariance.norm())) {
+    return what + "measurement covariance is not symmetric positive definite";
+  }
+  return std::nullopt;
+}
+
+const KeyframeSmootherOptions& Checked(const KeyframeSmootherOptions& options) {
+  const std::string problem = CheckKeyframeSmootherOptions(options);
+  if (!problem.empty()) throw std::invalid_argument("smoother options: " + problem);
+  return options;
+}
+
+}  // namespace
+
+void VisitKeyframeSmootherOptions(OptionVisitor* v, KeyframeSmootherOptions* o) {
+  v->Double("keyframe_distance_m", &o->keyframe_distance_m, R::AtLeast(0),
+            "a keyframe when the robot moved this far since the last one (0: not this rule)");
+  v->Double("keyframe_rotation_rad", &o->keyframe_rotation_rad, R::Between(0, 180),
+            "... or turned this much (0: not this rule)", OptionUnit::kDegrees);
+  v->Double("keyframe_interval_s", &o->keyframe_interval_s, R::AtLeast(0),
+            "... or this much time passed (all three 0: every scan is a keyframe)");
+  v->Int("optimize_every_keyframes", &o->optimize_every_keyframes, R::Between(0, 1e9),
+         "a batch Levenberg-Marquardt solve every this many keyframes (0: never)");
+  v->Double("odometry_min_sigma_m", &o->odometry_min_sigma_m, R::Above(0),
+            "added in quadrature to each scan's odometry increment, x and y");
+  v->Double("odometry_min_sigma_rad", &o->odometry_min_sigma_rad, R::Above(0),
+            "the same for its heading", OptionUnit::kDegrees);
+  v->Double("prior_min_sigma_m", &o->prior_min_sigma_m, R::Above(0),
+            "added in quadrature to the filter's first pose covariance, x and y");
+  v->Double("prior_min_sigma_rad", &o->prior_min_sigma_rad, R::Above(0),
+            "the same for its heading", OptionUnit::kDegrees);
+  v->Bool("covariances", &o->covariances,
+          "publish the marginal covariances of the pose and the landmarks");
+  v->Int("max_held_observations", &o->max_held_observations, R::Between(0, 1e9),
+         "tentative observations held per object until it is a static landmark");
+  v->Int("map_every_keyframes", &o->map_every_keyframes, R::Between(1, 1e9),
+         "SMOOTHED_MAP at every this many keyframes (its covariances cost the most)");
+  v->BeginGroup("solver");
+  VisitSmootherOptions(v, &o->solver);
+  v->EndGroup();
+}
+
+std::string CheckKeyframeSmootherOptions(const KeyframeSmootherOptions& options) {
+  KeyframeSmootherOptions o = options;
+  OptionRangeCheck check;
+  VisitKeyframeSmootherOptions(&check, &o);
+  if (!check.problem().empty()) return check.problem();
+  // The solver's own rules beyond its ranges (max_lambda >= initial_lambda).
+  const std::string solver_problem = CheckSmootherOptions(o.solver);
+  return solver_problem.empty() ? "" : "solver: " + solver_problem;
+}
+
+KeyframeSmoother::KeyframeSmoother(const KeyframeSmootherOptions& options)
+    : options_(Checked(options)) {}
+
+SmoothedScan KeyframeSmoother::AddScan(const SmootherScanInput& scan) {
+  SmoothedScan out;
+  out.utime = scan.utime;
+  if (last_utime_ && scan.utime <= *last_utime_ && scan.continues) {
+    ++counters_.scans_out_of_order;
+    return out;
+  }
+  last_utime_ = scan.utime;
+  ++counters_.scans;
+  out.processed = true;
+  if (!scan.continues || !smoother_) {
+    StartProblem(scan);
+    out.keyframe = true;
+    Solve(&out);
+    FillPose(&out);
+    return out;
+  }
+  RemoveLandmarks(scan.removed_landmark_ids);
+  AccumulateMotion(scan);
+  if (IsKeyframe(scan.utime)) {
+    AddKeyframe(scan, &out);
+    Solve(&out);
+  } else {
+    counters_.observations_between_keyframes += static_cast<int64_t>(scan.observations.size());
+  }
+  FillPose(&out);
+  return out;
+}
+
+void KeyframeSmoother::StartProblem(const SmootherScanInput& scan) {
+  if (smoother_) ++counters_.restarts;
+  smoother_ = std::make_unique<Smoother>(options_.solver);
+  keyframe_utimes_.clear();
+  held_.clear();
+  keyframes_since_batch_ = 0;
+  motion_.setZero();
+  motion_covariance_.setZero();
+  last_keyframe_ = 0;
+  last_keyframe_utime_ = scan.utime;
+  keyframe_utimes_.push_back(scan.utime);
+  ++counters_.keyframes;
+  Eigen::Vector3d pose = scan.pose;
+  if (!pose.allFinite()) {
+    Refused("first pose is not finite: the map frame's origin taken instead");
+    pose.setZero();
+  }
+  Refused(smoother_->AddPose(0, pose));
+  const Eigen::Matrix3d covariance =
+      scan.pose_covariance + PoseFloor(options_.prior_min_sigma_m, options_.prior_min_sigma_rad);
+  std::optional<std::string> error = smoother_->AddPosePrior(0, pose, covariance.inverse());
+  if (error) {
+    // A covariance that is not usable: the floor alone anchors the map frame.
+    Refused(error);
+    Refused(smoother_->AddPosePrior(
+        0, pose,
+        PoseFloor(options_.prior_min_sigma_m, options_.prior_min_sigma_rad).inverse()));
+  }
+  AddObservations(scan);
+}
+
+void KeyframeSmoother::AccumulateMotion(const SmootherScanInput& scan) {
+  const Eigen::Matrix3d increment_covariance =
+      scan.increment_covariance +
+      PoseFloor(options_.odometry_min_sigma_m, options_.odometry_min_sigma_rad);
+  if (!scan.increment.allFinite() || !increment_covariance.allFinite()) {
+    Refused(std::string("odometry increment is not finite: taken as standing still"));
+    ComposeWithCovariance(motion_, motion_covariance_, Eigen::Vector3d::Zero(),
+                          PoseFloor(options_.odometry_min_sigma_m, options_.odometry_min_sigma_rad),
+                          &motion_, &motion_covariance_);
+    return;
+  }
+  ComposeWithCovariance(motion_, motion_covariance_, scan.increment, increment_covariance,
+                        &motion_, &motion_covariance_);
+}
+
+bool KeyframeSmoother::IsKeyframe(int64_t utime) const {
+  const KeyframeSmootherOptions& o = options_;
+  if (o.keyframe_distance_m == 0.0 && o.keyframe_rotation_rad == 0.0 &&
+      o.keyframe_interval_s == 0.0) {
+    return true;
+  }
+  if (o.keyframe_distance_m > 0.0 && motion_.head<2>().norm() >= o.keyframe_distance_m) {
+    return true;
+  }
+  if (o.keyframe_rotation_rad > 0.0 && std::abs(motion_(2)) >= o.keyframe_rotation_rad) {
+    return true;
+  }
+  return o.keyframe_interval_s > 0.0 &&
+         SecondsBetween(utime, last_keyframe_utime_) >= o.keyframe_interval_s;
+}
+
+void KeyframeSmoother::AddKeyframe(const SmootherScanInput& scan, SmoothedScan* out) {
+  const PoseId id = last_keyframe_ + 1;
+  const Eigen::LLT<Eigen::Matrix3d> llt(motion_covariance_);
+  if (llt.info() != Eigen::Success || !motion_covariance_.allFinite()) {
+    // Cannot happen with the floor added to every increment; kept so that a keyframe never
+    // floats free of its odometry.
+    Refused("odometry covariance since keyframe " + std::to_string(last_keyframe_) +
+            " is not positive definite: the floor taken instead");
+    motion_covariance_ = PoseFloor(options_.odometry_min_sigma_m, options_.odometry_min_sigma_rad);
+  }
+  const Eigen::Vector3d start = ComposePoses(*smoother_->PoseEstimate(last_keyframe_), motion_);
+  std::optional<std::string> error = smoother_->AddPose(id, start);
+  if (error) {
+    Refused(error);
+    return;
+  }
+  error = smoother_->AddOdometry(last_keyframe_, id, motion_, motion_covariance_.inverse());
+  if (error) {
+    // Without its odometry the keyframe would float free: it leaves the problem unused.
+    Refused(error);
+    return;
+  }
+  last_keyframe_ = id;
+  last_keyframe_utime_ = scan.utime;
+  keyframe_utimes_.push_back(scan.utime);
+  motion_.setZero();
+  motion_covariance_.setZero();
+  ++counters_.keyframes;
+  out->keyframe = true;
+  AddObservations(scan);
+}
+
+void KeyframeSmoother::AddObservations(const SmootherScanInput& scan) {
+  for (const StaticObservation& o : scan.observations) {
+    // Checked before a new landmark is added: a landmark without its factor would leave the
+    // problem unconstrained.
+    const std::optional<std::string> problem = ObservationProblem(o);
+    if (problem) {
+      Refused(problem);
+      continue;
+    }
+    if (!smoother_->LandmarkEstimate(o.landmark_id)) {
+      if (o.tentative) {
+        Hold(o);
+        continue;
+      }
+      if (!AddLandmarkWithHeld(o, scan.mount)) continue;
+    }
+    AddRangeBearing(last_keyframe_, o, scan.mount);
+  }
+}
+
+void KeyframeSmoother::Hold(const StaticObservation& observation) {
+  std::deque<Held>& held = held_[observation.landmark_id];
+  held.push_back(Held{last_keyframe_, observation});
+  ++counters_.observations_held;
+  if (static_cast<int>(held.size()) > options_.max_held_observations) {
+    held.pop_front();
+    ++counters_.held_observations_dropped;
+  }
+}
+
+bool KeyframeSmoother::AddLandmarkWithHeld(const StaticObservation& observation,
+                                           const SensorMount& mount) {
+  const auto held = held_.find(observation.landmark_id);
+  const bool has_held = held != held_.end() && !held->second.empty();
+  const PoseId first_pose = has_held ? held->second.front().keyframe : last_keyframe_;
+  const Eigen::Vector2d first_range_bearing =
+      has_held ? held->second.front().observation.range_bearing : observation.range_bearing;
+  const std::optional<std::string> error = smoother_->AddLandmark(
+      observation.landmark_id,
+      PointFromRangeBearing(*smoother_->PoseEstimate(first_pose), first_range_bearing, mount));
+  if (error) {
+    Refused(error);
+    return false;
+  }
+  if (has_held) {
+    for (const Held& h : held->second) AddRangeBearing(h.keyframe, h.observation, mount);
+    held_.erase(held);
+  }
+  return true;
+}
+
+void KeyframeSmoother::AddRangeBearing(PoseId pose, const StaticObservation& o,
+                                       const SensorMount& mount) {
+  const std::optional<std::string> error = smoother_->AddRangeBearing(
+      pose, o.landmark_id, o.range_bearing, o.covariance.inverse(), mount);
+  if (error) {
+    Refused(error);
+  } else {
+    ++counters_.observations_used;
+  }
+}
+
+void KeyframeSmoother::RemoveLandmarks(const std::vector<int64_t>& ids) {
+  for (const int64_t id : ids) {
+    const auto held = held_.find(id);
+    if (held != held_.end()) {
+      counters_.held_observations_dropped += static_cast<int64_t>(held->second.size());
+      held_.erase(held);
+    }
+    // A landmark the smoother never got (its observations fell between keyframes) is no error.
+    if (!smoother_->LandmarkEstimate(id)) continue;
+    Refused(smoother_->RemoveLandmark(id));
+    ++counters_.landmarks_removed;
+  }
+}
+
+void KeyframeSmoother::Refused(const std::optional<std::string>& error) {
+  if (!error) return;
+  ++counters_.inputs_refused;
+  last_error_ = *error;
+}
+
+void KeyframeSmoother::Solve(SmoothedScan* out) {
+  out->update = smoother_->Update();
+  if (!out->update.ok) {
+    ++counters_.solves_failed;
+    last_error_ = "update: " + out->update.error;
+  }
+  last_keyframe_covariance_.reset();
+  if (options_.optimize_every_keyframes > 0 &&
+      ++keyframes_since_batch_ >= options_.optimize_every_keyframes) {
+    keyframes_since_batch_ = 0;
+    out->batch = smoother_->Optimize();
+    ++counters_.batch_optimizations;
+    if (!out->batch->ok) {
+      ++counters_.solves_failed;
+      last_error_ = "optimize: " + out->batch->error;
+    }
+  }
+}
+
+void KeyframeSmoother::FillPose(SmoothedScan* out) {
+  const Eigen::Vector3d keyframe = *smoother_->PoseEstimate(last_keyframe_);
+  out->pose = ComposePoses(keyframe, motion_);
+  out->pose(2) = WrapAngle(out->pose(2));
+  if (!options_.covariances) return;
+  if (!last_keyframe_covariance_) {
+    const std::optional<Eigen::Matrix3d> covariance = smoother_->PoseCovariance(last_keyframe_);
+    last_keyframe_covariance_ = covariance ? *covariance : Eigen::Matrix3d::Zero();
+  }
+  Eigen::Vector3d composed;
+  ComposeWithCovariance(keyframe, *last_keyframe_covariance_, motion_, motion_covariance_,
+                        &composed, &out->pose_covariance);
+}
+
+std::vector<SmoothedLandmark> KeyframeSmoother::Landmarks() {
+  std::vector<SmoothedLandmark> landmarks;
+  if (!smoother_) return landmarks;
+  const std::vector<LandmarkId> ids = smoother_->LandmarkIds();
+  std::vector<std::optional<Eigen::Matrix2d>> covariances;
+  if (options_.covariances) covariances = smoother_->LandmarkCovariances(ids);
+  for (size_t k = 0; k < ids.size(); ++k) {
+    SmoothedLandmark landmark;
+    landmark.id = ids[k];
+    landmark.position = *smoother_->LandmarkEstimate(ids[k]);
+    if (k < covariances.size() && covariances[k]) landmark.covariance = *covariances[k];
+    landmarks.push_back(landmark);
+  }
+  return landmarks;
+}
+
+std::vector<std::pair<int64_t, Eigen::Vector3d>> KeyframeSmoother::Keyframes() const {
+  std::vector<std::pair<int64_t, Eigen::Vector3d>> keyframes;
+  if (!smoother_) return keyframes;
+  const std::vector<PoseId> ids = smoother_->PoseIds();
+  for (const PoseId id : ids) {
+    if (id < 0 || static_cast<size_t>(id) >= keyframe_utimes_.size()) continue;
+    keyframes.emplace_back(keyframe_utimes_[static_cast<size_t>(id)], *smoother_->PoseEstimate(id));
+  }
+  return keyframes;
+}
+
+}  // namespace slammtt
