@@ -182,6 +182,18 @@ bool PlausibleLaserGeometry(const void* data, int size) {
   return w.End();
 }
 
+bool PlausibleSmootherInput(const void* data, int size) {
+  EncodedWalk w(data, size);
+  // utime; x, y, heading, pose_covariance[9]; continues; dx, dy, dtheta,
+  // increment_covariance[9]; sensor forward, left, yaw
+  w.Fixed(kFingerprint + kInt64 + 12 * kDouble + kBoolean + 12 * kDouble + 3 * kDouble);
+  const int32_t observations = w.Count(kSmootherObservation);
+  w.Elements(observations, kSmootherObservation);
+  const int32_t removed = w.Count(kInt64);
+  w.Elements(removed, kInt64);  // removed_landmark_ids[]
+  return w.End();
+}
+
 bool PlausibleEstimatorStatus(const void* data, int size) {
   EncodedWalk w(data, size);
   // utime, scans/odometry processed, features_rejected, messages_out_of_order, time_gaps,

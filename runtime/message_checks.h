@@ -43,6 +43,7 @@
 #include "slammtt_msgs/laser_geometry_t.hpp"
 #include "slammtt_msgs/lidar_status_t.hpp"
 #include "slammtt_msgs/map_t.hpp"
+#include "slammtt_msgs/smoother_input_t.hpp"
 #include "slammtt_msgs/stage_timing_t.hpp"
 #include "slammtt_msgs/tracks_t.hpp"
 
@@ -90,6 +91,8 @@ inline constexpr int64_t kLandmark = kInt64 + 2 * kDouble + 4 * kDouble;
 // hits.
 inline constexpr int64_t kLineLandmark =
     kInt64 + 2 * kDouble + 4 * kDouble + 4 * kDouble + kInt32;
+// smoother_observation_t: landmark_id, range_m, bearing_rad, covariance[4], tentative.
+inline constexpr int64_t kSmootherObservation = kInt64 + 2 * kDouble + 4 * kDouble + kBoolean;
 }  // namespace encoded_bytes
 
 // One function per type of lcmtypes/ with a variable-length array or a string; see above.
@@ -104,6 +107,7 @@ bool PlausibleBaseStatus(const void* data, int size);
 bool PlausibleEstimatorStatus(const void* data, int size);
 bool PlausibleLegLabels(const void* data, int size);
 bool PlausibleLaserGeometry(const void* data, int size);
+bool PlausibleSmootherInput(const void* data, int size);
 
 // The check of a type, chosen by overload on a (never dereferenced) pointer to the type.
 inline bool PlausibleEncoding(const slammtt_msgs::laser_scan_t*, const void* data, int size) {
@@ -140,6 +144,10 @@ inline bool PlausibleEncoding(const slammtt_msgs::leg_labels_t*, const void* dat
 inline bool PlausibleEncoding(const slammtt_msgs::laser_geometry_t*, const void* data,
                               int size) {
   return PlausibleLaserGeometry(data, size);
+}
+inline bool PlausibleEncoding(const slammtt_msgs::smoother_input_t*, const void* data,
+                              int size) {
+  return PlausibleSmootherInput(data, size);
 }
 // Every other type (odometry_t, pose_t, velocity_command_t and the nested element types) has a
 // fixed size: the generated decoder checks each read against `size` before it makes it and

@@ -19,6 +19,7 @@
 #include "slammtt_msgs/smoother_input_t.hpp"
 #include "slammtt_msgs/stage_timing_t.hpp"
 #include "slammtt_msgs/tracks_t.hpp"
+#include "tests/support/options_table.h"
 
 namespace slammtt {
 namespace {
@@ -160,32 +161,16 @@ TEST(EstimatorOptionsTest, RenamedKeysNameTheirNewKey) {
 // generated table and the migration note.
 TEST(EstimatorOptionsTest, EveryKeyOfTheSchemaIsReadAndDocumented) {
   const std::string table = EstimatorStageOptionsTable();
-  std::string yaml = "estimator:\n";
-  std::vector<std::string> keys;
-  std::istringstream rows(table);
-  std::string row;
-  while (std::getline(rows, row)) {
-    if (row.rfind("| `", 0) != 0) continue;
-    const size_t end = row.find('`', 3);
-    const std::string key = row.substr(3, end - 3);
-    const size_t value_end = row.find(" |", end + 4);
-    std::string value = row.substr(end + 4, value_end - end - 4);
-    keys.push_back(key);
-    yaml += "  " + key + ": " + value + "\n";
-  }
-  ASSERT_GE(keys.size(), 60u);
-  std::vector<std::string> sorted = keys;
-  std::sort(sorted.begin(), sorted.end());
-  EXPECT_EQ(std::adjacent_find(sorted.begin(), sorted.end()), sorted.end()) << "a key twice";
-  const EstimatorStageOptions o =
-      ReadEstimatorOptions(Config::FromString(yaml, "every.yaml").Child("estimator"));
+  const std::vector<slammtt::testing::OptionsTableRow> rows = slammtt::testing::ParseOptionsTable(table);
+  ASSERT_GE(rows.size(), 60u);
+  EXPECT_TRUE(slammtt::testing::KeysAreUnique(rows)) << "a key twice";
+  const EstimatorStageOptions o = ReadEstimatorOptions(
+      Config::FromString(slammtt::testing::SectionOfDefaults("estimator", rows), "every.yaml")
+          .Child("estimator"));
   EXPECT_EQ(o.estimator.tracks.confirm_hits, EstimatorOptions().tracks.confirm_hits);
   EXPECT_EQ(o.estimator.gate_d1_chi2, EstimatorOptions().gate_d1_chi2);
-  std::ifstream file(std::string(SLAMMTT_SOURCE_DIR) + "/docs/estimator.md");
-  ASSERT_TRUE(file.good()) << "docs/estimator.md is part of the checkout";
-  std::ostringstream text;
-  text << file.rdbuf();
-  const std::string docs = text.str();
+  const std::string docs = slammtt::testing::ReadCheckoutFile("docs/estimator.md");
+  ASSERT_FALSE(docs.empty()) << "docs/estimator.md is part of the checkout";
   EXPECT_NE(docs.find(table), std::string::npos)
       << "docs/estimator.md: replace the options table by `slammtt-estimator --options-table`";
   for (const RenamedKey& r : RenamedEstimatorKeys()) {

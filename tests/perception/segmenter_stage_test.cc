@@ -22,6 +22,7 @@
 #include "slammtt_msgs/stage_timing_t.hpp"
 #include "tests/perception/scan_message.h"
 #include "tests/perception/synthetic_scan.h"
+#include "tests/support/options_table.h"
 
 namespace slammtt {
 namespace {
@@ -360,28 +361,20 @@ TEST(SegmenterStageTest, RenamedKeysNameTheirNewKey) {
 // carries the generated table and the migration note.
 TEST(SegmenterStageTest, EveryKeyOfTheSchemaIsReadAndDocumented) {
   const std::string table = SegmenterOptionsTable();
-  std::string yaml = "segmenter:\n";
-  std::vector<std::string> keys;
-  std::istringstream rows(table);
-  std::string row;
-  while (std::getline(rows, row)) {
-    if (row.rfind("| `", 0) != 0) continue;
-    const size_t end = row.find('`', 3);
-    const std::string key = row.substr(3, end - 3);
-    const size_t value_end = row.find(" |", end + 4);
-    keys.push_back(key);
-    yaml += "  " + key + ": " + row.substr(end + 4, value_end - end - 4) + "\n";
-  }
-  ASSERT_EQ(keys.size(), 34u) << table;
-  std::vector<std::string> sorted = keys;
-  std::sort(sorted.begin(), sorted.end());
-  EXPECT_EQ(std::adjacent_find(sorted.begin(), sorted.end()), sorted.end()) << "a key twice";
+  const std::vector<slammtt::testing::OptionsTableRow> rows = slammtt::testing::ParseOptionsTable(table);
+  ASSERT_EQ(rows.size(), 34u) << table;
+  EXPECT_TRUE(slammtt::testing::KeysAreUnique(rows)) << "a key twice";
   for (const RenamedKey& r : RenamedSegmenterKeys()) {
-    EXPECT_TRUE(std::binary_search(sorted.begin(), sorted.end(), r.new_key)) << r.new_key;
-    EXPECT_FALSE(std::binary_search(sorted.begin(), sorted.end(), r.old_key)) << r.old_key;
+    const auto named = [&](const std::string& key) {
+      return std::any_of(rows.begin(), rows.end(),
+                         [&](const slammtt::testing::OptionsTableRow& row) { return row.key == key; });
+    };
+    EXPECT_TRUE(named(r.new_key)) << r.new_key;
+    EXPECT_FALSE(named(r.old_key)) << r.old_key;
   }
-  const SegmenterOptions o =
-      ReadSegmenterOptions(Config::FromString(yaml, "every.yaml").Child("segmenter"));
+  const SegmenterOptions o = ReadSegmenterOptions(
+      Config::FromString(slammtt::testing::SectionOfDefaults("segmenter", rows), "every.yaml")
+          .Child("segmenter"));
   const SegmenterOptions d;
   EXPECT_EQ(o.lambda_rad, d.lambda_rad);
   EXPECT_EQ(o.bearing_sigma_rad, d.bearing_sigma_rad);
@@ -390,11 +383,8 @@ TEST(SegmenterStageTest, EveryKeyOfTheSchemaIsReadAndDocumented) {
   EXPECT_EQ(o.centre_rule, d.centre_rule);
   EXPECT_EQ(o.leg.convexity_floor, d.leg.convexity_floor);
   EXPECT_EQ(o.person.single_leg_offset_sigma_m, d.person.single_leg_offset_sigma_m);
-  std::ifstream file(std::string(SLAMMTT_SOURCE_DIR) + "/docs/perception.md");
-  ASSERT_TRUE(file.good()) << "docs/perception.md is part of the checkout";
-  std::ostringstream text;
-  text << file.rdbuf();
-  const std::string docs = text.str();
+  const std::string docs = slammtt::testing::ReadCheckoutFile("docs/perception.md");
+  ASSERT_FALSE(docs.empty()) << "docs/perception.md is part of the checkout";
   EXPECT_NE(docs.find(table), std::string::npos)
       << "docs/perception.md: replace the options table by `slammtt-segmenter --options-table`";
   for (const RenamedKey& r : RenamedSegmenterKeys()) {

@@ -25,6 +25,7 @@
 #include "slammtt_msgs/laser_geometry_t.hpp"
 #include "slammtt_msgs/lidar_status_t.hpp"
 #include "slammtt_msgs/map_t.hpp"
+#include "slammtt_msgs/smoother_input_t.hpp"
 #include "slammtt_msgs/stage_timing_t.hpp"
 #include "slammtt_msgs/tracks_t.hpp"
 
@@ -512,6 +513,50 @@ struct Sample<slammtt_msgs::laser_geometry_t> {
   static bool ArraysMatchCounts(const slammtt_msgs::laser_geometry_t&) { return true; }
 };
 
+template <>
+struct Sample<slammtt_msgs::smoother_input_t> {
+  static slammtt_msgs::smoother_input_t Make() {
+    slammtt_msgs::smoother_input_t m{};
+    m.utime = 1700000001000000;
+    m.x_m = 1.5;
+    m.y_m = -0.5;
+    m.heading_rad = 0.3;
+    for (int k = 0; k < 9; k += 4) m.pose_covariance[k] = 0.01;
+    m.continues = true;
+    m.dx_m = 0.1;
+    m.dtheta_rad = 0.02;
+    for (int k = 0; k < 9; k += 4) m.increment_covariance[k] = 0.001;
+    m.sensor_forward_m = 0.1;
+    m.num_observations = 3;
+    for (int k = 0; k < m.num_observations; ++k) {
+      slammtt_msgs::smoother_observation_t o{};
+      o.landmark_id = 40 + k;
+      o.range_m = 2.0 + k;
+      o.bearing_rad = 0.2 * k - 0.2;
+      o.covariance[0] = 0.04;
+      o.covariance[3] = 0.001;
+      o.tentative = k == 2;
+      m.observations.push_back(o);
+    }
+    m.num_removed = 2;
+    m.removed_landmark_ids = {7, 9};
+    return m;
+  }
+  static std::vector<CountField> Counts(const slammtt_msgs::smoother_input_t& m) {
+    // utime, 12 doubles, continues, 12 doubles, 3 doubles; then the observations (landmark_id,
+    // range, bearing, covariance[4], tentative).
+    const size_t observations_at = kFingerprint + 8 + 12 * 8 + 1 + 12 * 8 + 3 * 8;
+    const size_t removed_at = observations_at + 4 + m.observations.size() * (8 + 6 * 8 + 1);
+    return {{"num_observations", observations_at, m.num_observations},
+            {"num_removed", removed_at, m.num_removed}};
+  }
+  static bool ArraysMatchCounts(const slammtt_msgs::smoother_input_t& m) {
+    return m.num_observations >= 0 &&
+           m.observations.size() == static_cast<size_t>(m.num_observations) &&
+           m.num_removed >= 0 && m.removed_landmark_ids.size() == static_cast<size_t>(m.num_removed);
+  }
+};
+
 // Every type with a Sample above, for the typed tests of the checks and of the fuzzer: a new
 // type is added here once.
 using SampledTypes =
@@ -519,7 +564,8 @@ using SampledTypes =
                      slammtt_msgs::ground_truth_t, slammtt_msgs::tracks_t, slammtt_msgs::map_t,
                      slammtt_msgs::stage_timing_t, slammtt_msgs::lidar_status_t,
                      slammtt_msgs::base_status_t, slammtt_msgs::estimator_status_t,
-                     slammtt_msgs::leg_labels_t, slammtt_msgs::laser_geometry_t>;
+                     slammtt_msgs::leg_labels_t, slammtt_msgs::laser_geometry_t,
+                     slammtt_msgs::smoother_input_t>;
 
 // Names each typed test after its message type ("laser_scan_t") instead of a number.
 class SampledTypeNames {
