@@ -16,7 +16,8 @@ from slammtt.lcmlog import LogReader
 # The message type of each channel key.
 EXPECTED_TYPES = {
     "odometry": "odometry_t", "laser_scan": "laser_scan_t", "features": "features_t",
-    "pose": "pose_t", "smoothed_pose": "pose_t", "map": "map_t", "tracks": "tracks_t",
+    "pose": "pose_t", "smoothed_pose": "pose_t", "map": "map_t", "smoothed_map": "map_t",
+    "tracks": "tracks_t",
     "ground_truth": "ground_truth_t", "leg_labels": "leg_labels_t",
 }
 
@@ -38,7 +39,7 @@ def _problem(key, m):
             return "duplicate object ids"
     elif key == "tracks":
         ok = all(_finite(t.x_m, t.y_m, t.vx_mps, t.vy_mps) for t in m.tracks)
-    elif key == "map":
+    elif key in ("map", "smoothed_map"):
         ok = all(_finite(l.x_m, l.y_m) for l in m.landmarks)
     else:
         return ""

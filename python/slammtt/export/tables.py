@@ -40,11 +40,19 @@ def _track_rows(data):
                    TRACK_KINDS.get(t.kind, str(t.kind)), t.measured, t.coasting_s, t.reported)
 
 
-def _map_rows(data):
-    for m in data["map"]:
+def _landmark_rows(data, key):
+    for m in data[key]:
         for l in m.landmarks:
             c = list(l.covariance)
             yield (m.utime, l.id, l.x_m, l.y_m, c[0], c[1], c[3])
+
+
+def _map_rows(data):
+    return _landmark_rows(data, "map")
+
+
+def _smoothed_map_rows(data):
+    return _landmark_rows(data, "smoothed_map")
 
 
 def _map_line_rows(data):
@@ -99,6 +107,8 @@ TABLES = {
                     "coasting_s", "reported"), _track_rows),
     "map.csv": (("utime_us", "id", "x_m", "y_m", "var_x_m2", "cov_xy_m2", "var_y_m2"),
                 _map_rows),
+    "smoothed_map.csv": (("utime_us", "id", "x_m", "y_m", "var_x_m2", "cov_xy_m2", "var_y_m2"),
+                         _smoothed_map_rows),
     "map_lines.csv": (("utime_us", "id", "rho_m", "alpha_rad", "var_rho_m2", "cov_rho_alpha_m_rad",
                        "var_alpha_rad2", "from_x_m", "from_y_m", "to_x_m", "to_y_m", "hits"),
                       _map_line_rows),

@@ -47,6 +47,9 @@ TOPICS = {
     "/ground_truth/pose": (fc.PoseInFrameChannel, "GROUND_TRUTH robot pose, frame world"),
     "/map": (fc.SceneUpdateChannel,
              "MAP: landmarks with 2-sigma ellipses and ids, line landmarks, frame map"),
+    "/smoothed_map": (fc.SceneUpdateChannel,
+                      "SMOOTHED_MAP: the smoother's landmarks with 2-sigma ellipses and ids, "
+                      "frame map"),
     "/tracks": (fc.SceneUpdateChannel,
                 "TRACKS: tracks with 2-sigma ellipses, velocity arrows, ids, frame map"),
     "/features": (fc.SceneUpdateChannel,
@@ -82,6 +85,7 @@ def _color(hex_or_rgb, alpha=1.0):
 GREY = (0.55, 0.55, 0.6)
 STATIC_COLOR = (0.3, 0.4, 0.8)
 UNDECIDED_COLOR = (0.95, 0.7, 0.1)
+SMOOTHED_COLOR = (0.2, 0.65, 0.3)
 TRUTH_COLOR = (0.1, 0.6, 0.1)
 LINE_COLOR = (0.9, 0.2, 0.6)
 PERSON_COLOR = (0.85, 0.1, 0.1)
@@ -190,6 +194,7 @@ class Converter:
         self._have_pose = False
         self._track_ids = set()
         self._landmark_ids = set()
+        self._smoothed_ids = set()
         self._truth_ids = set()
         self._walls = None
         self._last_walls_us = None
@@ -362,7 +367,9 @@ class Converter:
                                        type=fm.SceneEntityDeletionType.MatchingId, id=i)
                 for i in sorted(previous - current)]
 
-    def _map(self, m):
+    def _map_update(self, m, previous_ids, point_rgb):
+        """A map_t as a SceneUpdate (landmarks with ellipses and ids, line landmarks) and the
+        ids of its entities, deleting those of `previous_ids` that are gone."""
         stamp = timestamp(m.utime)
         entities, ids = [], set()
         for l in m.landmarks:
@@ -371,7 +378,7 @@ class Converter:
                 raise _Skip()
             entity_id = f"landmark/{l.id}"
             ids.add(entity_id)
-            color = _color(STATIC_COLOR)
+            color = _color(point_rgb)
             entities.append(fm.SceneEntity(
                 timestamp=stamp, frame_id=MAP, id=entity_id,
                 spheres=[_sphere(l.x_m, l.y_m, 0.15, color)],
@@ -395,10 +402,16 @@ class Converter:
                              color)],
                 metadata=_metadata(id=l.id, rho_m=l.rho_m, alpha_rad=l.alpha_rad,
                                    hits=l.hits)))
-        deletions = self._deletions(stamp, self._landmark_ids, ids)
-        self._landmark_ids = ids
-        return [Output("/map", fm.SceneUpdate(deletions=deletions, entities=entities),
-                       m.utime * 1000)]
+        deletions = self._deletions(stamp, previous_ids, ids)
+        return fm.SceneUpdate(deletions=deletions, entities=entities), ids
+
+    def _map(self, m):
+        update, self._landmark_ids = self._map_update(m, self._landmark_ids, STATIC_COLOR)
+        return [Output("/map", update, m.utime * 1000)]
+
+    def _smoothed_map(self, m):
+        update, self._smoothed_ids = self._map_update(m, self._smoothed_ids, SMOOTHED_COLOR)
+        return [Output("/smoothed_map", update, m.utime * 1000)]
 
     def _tracks(self, m):
         stamp = timestamp(m.utime)
