@@ -27,26 +27,8 @@ using testing::Shell;
 
 std::string Bin(const std::string& program) { return std::string(SLAMMTT_BIN_DIR) + "/" + program; }
 
-// Polls `condition` every 20 ms for at most `timeout_s`: synchronisation, never a measurement.
-template <class Condition>
-bool WaitFor(Condition condition, double timeout_s) {
-  const auto deadline = std::chrono::steady_clock::now() +
-                        std::chrono::milliseconds(static_cast<int64_t>(timeout_s * 1000));
-  while (std::chrono::steady_clock::now() < deadline) {
-    if (condition()) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  return condition();
-}
-
-std::map<std::string, std::vector<std::string>> MessagesByChannel(const std::string& path) {
-  std::map<std::string, std::vector<std::string>> out;
-  if (!testing::FileExists(path)) return out;
-  for (const LogEvent& e : testing::ReadLog(path)) {
-    out[e.channel].emplace_back(e.data.begin(), e.data.end());
-  }
-  return out;
-}
+using testing::MessagesByChannel;
+using testing::WaitFor;
 
 int Interrupt(ChildProcess* child) {
   child->Signal(SIGINT);

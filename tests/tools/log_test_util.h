@@ -4,10 +4,13 @@
 
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdint>
 #include <cstdio>
+#include <map>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "runtime/lcm_io.h"
@@ -53,5 +56,29 @@ inline void WriteFileBytes(const std::string& path, const std::string& bytes) {
 }
 
 inline bool FileExists(const std::string& path) { return access(path.c_str(), F_OK) == 0; }
+
+// Every message of a log, by channel, in log order (empty when there is no file yet).
+inline std::map<std::string, std::vector<std::string>> MessagesByChannel(
+    const std::string& path) {
+  std::map<std::string, std::vector<std::string>> out;
+  if (!FileExists(path)) return out;
+  for (const LogEvent& e : ReadLog(path)) {
+    out[e.channel].emplace_back(e.data.begin(), e.data.end());
+  }
+  return out;
+}
+
+// Polls `condition` every 20 ms for at most `timeout_s`: synchronisation with other processes,
+// never a measurement.
+template <class Condition>
+bool WaitFor(Condition condition, double timeout_s) {
+  const auto deadline = std::chrono::steady_clock::now() +
+                        std::chrono::milliseconds(static_cast<int64_t>(timeout_s * 1000));
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (condition()) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return condition();
+}
 
 }  // namespace slammtt::testing
