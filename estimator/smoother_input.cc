@@ -38,9 +38,7 @@ SmootherScanInput SmootherInputBuilder::Build(const ScanResult& result,
   std::set<int64_t> still_static;
   for (const StaticObservation& o : input.observations) still_static.insert(o.landmark_id);
   for (const ObjectEstimate& e : result.objects) {
-    if (e.object_class != ObjectClass::kMoving && e.kind == ObjectKind::kOther) {
-      still_static.insert(e.id);
-    }
+    if (MayBePointLandmark(e.object_class, e.kind)) still_static.insert(e.id);
   }
   for (auto it = reported_.begin(); it != reported_.end();) {
     if (still_static.count(*it) == 0) {

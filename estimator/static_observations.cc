@@ -15,10 +15,7 @@ std::vector<StaticObservation> StaticObservations(const std::vector<PointMeasure
     if (j < 0 || j >= state.num_objects()) continue;
     const PointMeasurement& m = measurements[static_cast<size_t>(i)];
     const ObjectRecord& record = state.object(j).record;
-    if (m.person || record.object_class == ObjectClass::kMoving ||
-        record.kind != ObjectKind::kOther) {
-      continue;
-    }
+    if (m.person || !MayBePointLandmark(record.object_class, record.kind)) continue;
     const bool landmark = record.object_class == ObjectClass::kStatic && record.confirmed;
     observations.push_back(StaticObservation{record.id, m.range_bearing, m.covariance, !landmark});
   }

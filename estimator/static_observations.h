@@ -18,6 +18,12 @@
 
 namespace slammtt {
 
+// Whether an object of this class and kind may be a point landmark (now or once classified):
+// not MOVING, and of kind OTHER (a standing person is no landmark: map_t leaves it out too).
+inline bool MayBePointLandmark(ObjectClass object_class, ObjectKind kind) {
+  return object_class != ObjectClass::kMoving && kind == ObjectKind::kOther;
+}
+
 struct StaticObservation {
   int64_t landmark_id = 0;
   Eigen::Vector2d range_bearing = Eigen::Vector2d::Zero();  // [m, rad] from the laser (eq. 10)

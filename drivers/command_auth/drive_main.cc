@@ -27,7 +27,7 @@ int Run(int argc, char** argv) {
   cl.AddOption("linear-mps", "V", "forward speed (default 0)");
   cl.AddOption("angular-radps", "W", "turn rate, CCW positive (default 0)");
   cl.AddOption("duration-s", "S", "how long to send (default 1, at most 3600)");
-  cl.AddOption("rate-hz", "HZ", "commands per second (default 10, 1 to 100)");
+  AddCommandRateOption(&cl);
   if (!cl.Parse(argc, argv)) return 0;
   const ProcessSettings settings = LoadProcessSettings(cl);
   const auto key_path = cl.Value("key");
@@ -35,27 +35,24 @@ int Run(int argc, char** argv) {
   const double linear = cl.DoubleValue("linear-mps").value_or(0.0);
   const double angular = cl.DoubleValue("angular-radps").value_or(0.0);
   const double duration_s = cl.DoubleValue("duration-s").value_or(1.0);
-  const double rate_hz = cl.DoubleValue("rate-hz").value_or(kDefaultCommandRateHz);
   if (!(duration_s >= 0.0 && duration_s <= 3600.0)) {
     throw UsageError("--duration-s must be in [0, 3600]");
   }
-  if (!(rate_hz >= 1.0 && rate_hz <= 100.0)) throw UsageError("--rate-hz must be in [1, 100]");
+  const int64_t period_us = CommandPeriodUs(cl);
 
   const CommandKey key = LoadCommandKeyFile(*key_path);
   std::unique_ptr<lcm::LCM> lcm = OpenLcm(settings.lcm_url);
   SystemDriverClock clock;
   SignedVelocitySender sender(key, settings.channels.Get("velocity_command"), lcm.get(), &clock);
-  const auto send = [&](double v, double w) { sender.Send(v, w); };
-  const int64_t period_us = static_cast<int64_t>(std::llround(1e6 / rate_hz));
   const int64_t start_us = clock.NowMonotonicUs();
   const int64_t end_us = start_us + static_cast<int64_t>(std::llround(duration_s * 1e6));
   for (int64_t next_us = start_us; next_us < end_us && !ShutdownRequested(); next_us += period_us) {
     const int64_t wait_us = next_us - clock.NowMonotonicUs();
     if (wait_us > 0) clock.SleepUs(wait_us);
     if (ShutdownRequested()) break;
-    send(linear, angular);
+    sender.Send(linear, angular);
   }
-  send(0.0, 0.0);
+  sender.Send(0.0, 0.0);
   LogInfo() << "sent " << sender.sent() << " signed commands on " << sender.channel()
             << " (the last one a stop)";
   return 0;

@@ -1,8 +1,19 @@
 #include "drivers/command_auth/velocity_sender.h"
 
+#include <cmath>
 #include <stdexcept>
 
 namespace slammtt {
+
+void AddCommandRateOption(CommandLine* cl) {
+  cl->AddOption("rate-hz", "HZ", "commands per second (default 10, 1 to 100)");
+}
+
+int64_t CommandPeriodUs(const CommandLine& cl) {
+  const double rate_hz = cl.DoubleValue("rate-hz").value_or(kDefaultCommandRateHz);
+  if (!(rate_hz >= 1.0 && rate_hz <= 100.0)) throw UsageError("--rate-hz must be in [1, 100]");
+  return static_cast<int64_t>(std::llround(1e6 / rate_hz));
+}
 
 SignedVelocitySender::SignedVelocitySender(const CommandKey& key, const std::string& channel,
                                            lcm::LCM* lcm, DriverClock* clock)

@@ -11,12 +11,18 @@
 #include "drivers/command_auth/command_key.h"
 #include "drivers/command_auth/command_signature.h"
 #include "drivers/common/driver_clock.h"
+#include "runtime/command_line.h"
 
 namespace slammtt {
 
 // The base driver stops the robot when no command came for p3dx.command_timeout_s (0.5 s in
 // config/robot.yaml): a sender repeats its command at this rate, five per timeout.
 inline constexpr double kDefaultCommandRateHz = 10.0;
+
+// --rate-hz of a sending program (slammtt-drive, slammtt-teleop): declared on `cl`, and read as
+// the period between commands (default kDefaultCommandRateHz; UsageError outside 1-100 Hz).
+void AddCommandRateOption(CommandLine* cl);
+int64_t CommandPeriodUs(const CommandLine& cl);
 
 class SignedVelocitySender {
  public:

@@ -153,7 +153,7 @@ int Run(int argc, char** argv) {
   AddStandardOptions(&cl);
   cl.AddOption("key", "FILE", "the command key shared with the robot (required)");
   cl.AddOption("profile", "FILE", "drive this velocity profile instead of the keyboard");
-  cl.AddOption("rate-hz", "HZ", "commands per second (default 10, 1 to 100)");
+  AddCommandRateOption(&cl);
   cl.AddOption("linear-step-mps", "V", "keyboard: speed change per key press (default 0.05)");
   cl.AddOption("angular-step-radps", "W", "keyboard: turn rate change per key (default 0.1)");
   cl.AddOption("max-linear-mps", "V", "keyboard: speed limit (default 0.5)");
@@ -162,8 +162,7 @@ int Run(int argc, char** argv) {
   const ProcessSettings settings = LoadProcessSettings(cl);
   const auto key_path = cl.Value("key");
   if (!key_path) throw UsageError("--key FILE is required");
-  const double rate_hz = cl.DoubleValue("rate-hz").value_or(kDefaultCommandRateHz);
-  if (!(rate_hz >= 1.0 && rate_hz <= 100.0)) throw UsageError("--rate-hz must be in [1, 100]");
+  const int64_t period_us = CommandPeriodUs(cl);
   TeleopSteps steps;
   const auto positive = [&cl](const char* name, double fallback, double limit) {
     const double value = cl.DoubleValue(name).value_or(fallback);
@@ -189,7 +188,6 @@ int Run(int argc, char** argv) {
   std::unique_ptr<lcm::LCM> lcm = OpenLcm(settings.lcm_url);
   SystemDriverClock clock;
   SignedVelocitySender sender(key, settings.channels.Get("velocity_command"), lcm.get(), &clock);
-  const int64_t period_us = static_cast<int64_t>(std::llround(1e6 / rate_hz));
   StopOnExit stop(&sender);
   if (!profile.empty()) {
     LogInfo() << "profile of " << profile.size() << " steps, " << ProfileDurationS(profile)
