@@ -139,8 +139,6 @@ void KeyframeSmoother::StartProblem(const SmootherScanInput& scan) {
   keyframes_since_batch_ = 0;
   motion_.setZero();
   motion_covariance_.setZero();
-  last_keyframe_ = 0;
-  last_keyframe_utime_ = scan.utime;
   keyframe_utimes_.push_back(scan.utime);
   ++counters_.keyframes;
   Eigen::Vector3d pose = scan.pose;
@@ -190,33 +188,31 @@ bool KeyframeSmoother::IsKeyframe(int64_t utime) const {
     return true;
   }
   return o.keyframe_interval_s > 0.0 &&
-         SecondsBetween(utime, last_keyframe_utime_) >= o.keyframe_interval_s;
+         SecondsBetween(utime, LastKeyframeUtime()) >= o.keyframe_interval_s;
 }
 
 void KeyframeSmoother::AddKeyframe(const SmootherScanInput& scan, SmoothedScan* out) {
-  const PoseId id = last_keyframe_ + 1;
+  const PoseId id = LastKeyframe() + 1;
   const Eigen::LLT<Eigen::Matrix3d> llt(motion_covariance_);
   if (llt.info() != Eigen::Success || !motion_covariance_.allFinite()) {
     // Cannot happen with the floor added to every increment; kept so that a keyframe never
     // floats free of its odometry.
-    Refused("odometry covariance since keyframe " + std::to_string(last_keyframe_) +
+    Refused("odometry covariance since keyframe " + std::to_string(LastKeyframe()) +
             " is not positive definite: the floor taken instead");
     motion_covariance_ = PoseFloor(options_.odometry_min_sigma_m, options_.odometry_min_sigma_rad);
   }
-  const Eigen::Vector3d start = ComposePoses(*smoother_->PoseEstimate(last_keyframe_), motion_);
+  const Eigen::Vector3d start = ComposePoses(*smoother_->PoseEstimate(LastKeyframe()), motion_);
   std::optional<std::string> error = smoother_->AddPose(id, start);
   if (error) {
     Refused(error);
     return;
   }
-  error = smoother_->AddOdometry(last_keyframe_, id, motion_, motion_covariance_.inverse());
+  error = smoother_->AddOdometry(LastKeyframe(), id, motion_, motion_covariance_.inverse());
   if (error) {
     // Without its odometry the keyframe would float free: it leaves the problem unused.
     Refused(error);
     return;
   }
-  last_keyframe_ = id;
-  last_keyframe_utime_ = scan.utime;
   keyframe_utimes_.push_back(scan.utime);
   motion_.setZero();
   motion_covariance_.setZero();
@@ -241,13 +237,13 @@ void KeyframeSmoother::AddObservations(const SmootherScanInput& scan) {
       }
       if (!AddLandmarkWithHeld(o, scan.mount)) continue;
     }
-    AddRangeBearing(last_keyframe_, o, scan.mount);
+    AddRangeBearing(LastKeyframe(), o, scan.mount);
   }
 }
 
 void KeyframeSmoother::Hold(const StaticObservation& observation) {
   std::deque<Held>& held = held_[observation.landmark_id];
-  held.push_back(Held{last_keyframe_, observation});
+  held.push_back(Held{LastKeyframe(), observation});
   ++counters_.observations_held;
   if (static_cast<int>(held.size()) > options_.max_held_observations) {
     held.pop_front();
@@ -259,7 +255,7 @@ bool KeyframeSmoother::AddLandmarkWithHeld(const StaticObservation& observation,
                                            const SensorMount& mount) {
   const auto held = held_.find(observation.landmark_id);
   const bool has_held = held != held_.end() && !held->second.empty();
-  const PoseId first_pose = has_held ? held->second.front().keyframe : last_keyframe_;
+  const PoseId first_pose = has_held ? held->second.front().keyframe : LastKeyframe();
   const Eigen::Vector2d first_range_bearing =
       has_held ? held->second.front().observation.range_bearing : observation.range_bearing;
   const std::optional<std::string> error = smoother_->AddLandmark(
@@ -327,12 +323,12 @@ void KeyframeSmoother::Solve(SmoothedScan* out) {
 }
 
 void KeyframeSmoother::FillPose(SmoothedScan* out) {
-  const Eigen::Vector3d keyframe = *smoother_->PoseEstimate(last_keyframe_);
+  const Eigen::Vector3d keyframe = *smoother_->PoseEstimate(LastKeyframe());
   out->pose = ComposePoses(keyframe, motion_);
   out->pose(2) = WrapAngle(out->pose(2));
   if (!options_.covariances) return;
   if (!last_keyframe_covariance_) {
-    const std::optional<Eigen::Matrix3d> covariance = smoother_->PoseCovariance(last_keyframe_);
+    const std::optional<Eigen::Matrix3d> covariance = smoother_->PoseCovariance(LastKeyframe());
     last_keyframe_covariance_ = covariance ? *covariance : Eigen::Matrix3d::Zero();
   }
   Eigen::Vector3d composed;

@@ -147,9 +147,10 @@ class KeyframeSmoother {
   std::string last_error_;
   std::optional<int64_t> last_utime_;
   // The last keyframe and the motion since (in its frame) with its covariance.
-  PoseId last_keyframe_ = -1;
-  int64_t last_keyframe_utime_ = 0;
-  std::vector<int64_t> keyframe_utimes_;
+  std::vector<int64_t> keyframe_utimes_;  // by keyframe id (ids count from 0 in each problem)
+  // The newest keyframe (-1 before the first) and its utime, from keyframe_utimes_.
+  PoseId LastKeyframe() const { return static_cast<PoseId>(keyframe_utimes_.size()) - 1; }
+  int64_t LastKeyframeUtime() const { return keyframe_utimes_.back(); }
   Eigen::Vector3d motion_ = Eigen::Vector3d::Zero();
   Eigen::Matrix3d motion_covariance_ = Eigen::Matrix3d::Zero();
   int keyframes_since_batch_ = 0;
