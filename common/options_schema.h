@@ -114,6 +114,10 @@ class OptionVisitor {
   void Bool(const std::string& field, bool* value, const std::string& doc) {
     VisitBool(KeyOf(field, OptionUnit::kAsIs), value, doc);
   }
+  // A text (a device path, a file name); what makes it valid is the module's check.
+  void String(const std::string& field, std::string* value, const std::string& doc) {
+    VisitString(KeyOf(field, OptionUnit::kAsIs), value, doc);
+  }
   // An enumeration written as one of `names`; *index is the position of its name.
   void Choice(const std::string& field, int* index, const std::vector<std::string>& names,
               const std::string& doc) {
@@ -149,6 +153,8 @@ class OptionVisitor {
   virtual void VisitInt(const std::string& key, int64_t* value, const OptionRange& range,
                         const std::string& doc) = 0;
   virtual void VisitBool(const std::string& key, bool* value, const std::string& doc) = 0;
+  virtual void VisitString(const std::string& key, std::string* value,
+                           const std::string& doc) = 0;
   virtual void VisitChoice(const std::string& key, int* index,
                            const std::vector<std::string>& names, const std::string& doc) = 0;
   virtual void VisitDoubleList(const std::string& key, const std::vector<double*>& values,
@@ -165,6 +171,10 @@ class OptionVisitor {
 class OptionRangeCheck : public OptionVisitor {
  public:
   const std::string& problem() const { return problem_; }
+  // The same problem in two parts, for a caller that names the key its own way (a scenario's
+  // "laser.fov_deg"): the key, and what is wrong ("must be in (0, 360], got 400").
+  const std::string& problem_key() const { return problem_key_; }
+  const std::string& problem_detail() const { return problem_detail_; }
 
  protected:
   void VisitDouble(const std::string& key, double* value, const OptionRange& range,
@@ -176,29 +186,40 @@ class OptionRangeCheck : public OptionVisitor {
     Check(key, static_cast<double>(*value), range);
   }
   void VisitBool(const std::string&, bool*, const std::string&) override {}
+  void VisitString(const std::string&, std::string*, const std::string&) override {}
   void VisitChoice(const std::string& key, int* index, const std::vector<std::string>& names,
                    const std::string&) override {
-    if (problem_.empty() && (*index < 0 || static_cast<size_t>(*index) >= names.size())) {
-      problem_ = key + " is not one of its choices";
+    if (*index < 0 || static_cast<size_t>(*index) >= names.size()) {
+      Report(key, key + " is not one of its choices", "is not one of its choices");
     }
   }
   void VisitDoubleList(const std::string& key, const std::vector<double*>& values,
                        const std::vector<OptionUnit>&, const std::string& layout,
                        const std::string&) override {
     for (const double* value : values) {
-      if (problem_.empty() && !std::isfinite(*value)) {
-        problem_ = key + " must be finite " + layout;
+      if (!std::isfinite(*value)) {
+        Report(key, key + " must be finite " + layout, "must be finite " + layout);
       }
     }
   }
 
  private:
   void Check(const std::string& key, double value, const OptionRange& range) {
-    if (problem_.empty() && !range.Contains(value)) {
-      problem_ = key + " = " + OptionRange::Number(value) + ": must be " + range.Requirement();
+    if (!range.Contains(value)) {
+      const std::string number = OptionRange::Number(value);
+      Report(key, key + " = " + number + ": must be " + range.Requirement(),
+             "must be " + range.Requirement() + ", got " + number);
     }
   }
+  void Report(const std::string& key, const std::string& problem, const std::string& detail) {
+    if (!problem_.empty()) return;
+    problem_ = problem;
+    problem_key_ = key;
+    problem_detail_ = detail;
+  }
   std::string problem_;
+  std::string problem_key_;
+  std::string problem_detail_;
 };
 
 // The documentation visitor: one Markdown table row per option, | key | default | valid |
@@ -220,6 +241,9 @@ class OptionsMarkdownTable : public OptionVisitor {
   }
   void VisitBool(const std::string& key, bool* value, const std::string& doc) override {
     Row(key, *value ? "true" : "false", "true, false", doc);
+  }
+  void VisitString(const std::string& key, std::string* value, const std::string& doc) override {
+    Row(key, value->empty() ? "\"\"" : *value, "text", doc);
   }
   void VisitChoice(const std::string& key, int* index, const std::vector<std::string>& names,
                    const std::string& doc) override {

@@ -29,6 +29,11 @@ void ConfigOptionReader::VisitBool(const std::string& key, bool* value, const st
   *value = section_.GetBool(key, *value);
 }
 
+void ConfigOptionReader::VisitString(const std::string& key, std::string* value,
+                                     const std::string&) {
+  *value = section_.GetString(key, *value);
+}
+
 void ConfigOptionReader::VisitChoice(const std::string& key, int* index,
                                      const std::vector<std::string>& names,
                                      const std::string&) {
@@ -55,6 +60,24 @@ void ConfigOptionReader::VisitDoubleList(const std::string& key,
   const std::vector<double> list = section_.GetDoubles(key, {});
   if (list.size() != values.size()) section_.FailKey(key, "expected " + layout);
   for (size_t k = 0; k < values.size(); ++k) *values[k] = FromConfigUnit(list[k], units[k]);
+}
+
+void FailOptionsProblem(const Config& section, const std::string& problem) {
+  const size_t end = problem.find_first_of(" =:");
+  const std::string key = problem.substr(0, end);
+  if (end != std::string::npos && section.Has(key)) {
+    size_t rest = problem.find_first_not_of(" =:", end);
+    // "KEY = VALUE: must be ..." reads "KEY: must be ..., got VALUE" at the key's line.
+    if (problem.compare(end, 3, " = ") == 0) {
+      const size_t colon = problem.find(": ", end);
+      if (colon != std::string::npos) {
+        section.FailKey(key, problem.substr(colon + 2) + ", got " +
+                                 problem.substr(end + 3, colon - end - 3));
+      }
+    }
+    section.FailKey(key, problem.substr(rest == std::string::npos ? problem.size() : rest));
+  }
+  section.Fail(problem);
 }
 
 void RejectRenamedKeys(const Config& section, const std::vector<RenamedKey>& renamed,

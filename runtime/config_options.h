@@ -28,6 +28,7 @@ class ConfigOptionReader : public OptionVisitor {
   void VisitInt(const std::string& key, int64_t* value, const OptionRange& range,
                 const std::string& doc) override;
   void VisitBool(const std::string& key, bool* value, const std::string& doc) override;
+  void VisitString(const std::string& key, std::string* value, const std::string& doc) override;
   void VisitChoice(const std::string& key, int* index, const std::vector<std::string>& names,
                    const std::string& doc) override;
   void VisitDoubleList(const std::string& key, const std::vector<double*>& values,
@@ -37,6 +38,11 @@ class ConfigOptionReader : public OptionVisitor {
  private:
   Config section_;
 };
+
+// Throws ConfigError for a problem that a module's Check*Options found after reading (a
+// condition between options, "reconnect_max_s must not be less than reconnect_initial_s"): at
+// the line of the key it starts with when the section sets that key, at the section otherwise.
+[[noreturn]] void FailOptionsProblem(const Config& section, const std::string& problem);
 
 // A key an earlier version of a module's configuration used, and the key that replaced it.
 struct RenamedKey {

@@ -10,16 +10,19 @@
 
 namespace slammtt {
 
-// Reads the `p3dx:` section; ConfigError naming the key for a bad value. The caller runs
-// CheckUnused() on the section afterwards.
+// Reads the `p3dx:` section through the schema (VisitP3dxDriverOptions): absent keys keep the
+// defaults; ConfigError naming file, line and key for an unknown key (CheckUnused), a value of
+// the wrong type or out of range, a condition of CheckP3dxDriverOptions or a malformed port.
 P3dxDriverOptions ReadP3dxDriverOptions(const Config& section);
 
-// --port, --baud, --max-linear-mps, --max-angular-radps, --command-timeout-s.
+// --port, --baud, --max-linear-mps, --max-angular-radps, --command-timeout-s, from the schema
+// (runtime/command_line_options.h), and the flag --options-table (the program prints
+// P3dxDriverOptionsTable() and exits). Apply: UsageError naming the option for a bad value.
 void AddP3dxDriverOptions(CommandLine* command_line);
 void ApplyP3dxDriverCommandLine(const CommandLine& command_line, P3dxDriverOptions* options);
 
-// Throws std::invalid_argument, one line naming the option, when a value is out of range or the
-// port is not a well-formed endpoint (drivers/common CheckEndpoint).
+// Throws std::invalid_argument, one line naming the option, when CheckP3dxDriverOptions finds a
+// problem or the port is not a well-formed endpoint (drivers/common CheckEndpoint).
 void ValidateP3dxDriverOptions(const P3dxDriverOptions& options);
 
 // Throws std::invalid_argument, one line, when commands are unauthenticated (kNone) on a bus

@@ -1,9 +1,15 @@
 // Options of the P3-DX base driver: the `p3dx:` section of the stack configuration, then the
-// command line (which wins; both read by p3dx_driver_config.h). Every default is documented in
-// docs/p3dx.md. Pure: the device session (p3dx_session.h) takes them as they are.
+// command line (which wins; both read by p3dx_driver_config.h). Pure: the device session
+// (p3dx_session.h) checks them in its constructor (CheckP3dxDriverOptions).
+//
+// VisitP3dxDriverOptions lists every option once (key, range, doc; common/options_schema.h):
+// the reader of the `p3dx:` section, CheckP3dxDriverOptions and the table of docs/p3dx.md
+// ("Options", printed by slammtt-p3dx --options-table) come from it.
 #pragma once
 
 #include <string>
+
+#include "common/options_schema.h"
 
 namespace slammtt {
 
@@ -46,5 +52,19 @@ struct P3dxDriverOptions {
 
 // "hmac-sha256" or "none", the configuration's spelling.
 const char* CommandAuthenticationName(P3dxDriverOptions::CommandAuthentication mode);
+
+// The options schema of the driver, in the order of P3dxDriverOptions. Keys are the field names;
+// max_angular_radps is written in rad/s as the field holds it (as the velocity commands are).
+void VisitP3dxDriverOptions(OptionVisitor* visitor, P3dxDriverOptions* options);
+
+// Empty when the options are usable; otherwise one line naming the first bad option by its key
+// ("pulse_interval_s = 2.5: must be in (0, 2)"): each value within its range (the schema), then
+// reconnect_max_s >= reconnect_initial_s and a subclass with conversion factors. The port is
+// not judged here: the session opens it through its injected factory (the program checks it
+// with CheckEndpoint before, p3dx_driver_config.h).
+std::string CheckP3dxDriverOptions(const P3dxDriverOptions& options);
+
+// The Markdown table of every key of the `p3dx:` section (docs/p3dx.md, "Options").
+std::string P3dxDriverOptionsTable();
 
 }  // namespace slammtt

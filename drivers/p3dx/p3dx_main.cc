@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <iostream>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -36,6 +37,10 @@ int Main(int argc, char** argv) {
   AddStandardOptions(&cl);
   AddP3dxDriverOptions(&cl);
   if (!cl.Parse(argc, argv)) return 0;
+  if (cl.Flag("options-table")) {
+    std::cout << P3dxDriverOptionsTable();
+    return 0;
+  }
   const ProcessSettings settings = LoadProcessSettings(cl);
   const Config section = settings.config.Child("p3dx");
   P3dxDriverOptions options = ReadP3dxDriverOptions(section);

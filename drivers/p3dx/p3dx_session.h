@@ -78,7 +78,8 @@ class P3dxSession {
     kStopped,       // after Shutdown()
   };
 
-  // `clock`, `output` and `log` (may be null: no lines) outlive the session.
+  // `clock`, `output` and `log` (may be null: no lines) outlive the session. Throws
+  // std::invalid_argument, one line naming the key, for options CheckP3dxDriverOptions refuses.
   P3dxSession(const P3dxDriverOptions& options, ByteStreamFactory factory, DriverClock* clock,
               P3dxSessionOutput* output, DriverLog* log);
   // Shutdown() unless it ran.

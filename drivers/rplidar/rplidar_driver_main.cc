@@ -1,4 +1,5 @@
 // slammtt-rplidar: the RPLIDAR A2 driver process. Options in docs/rplidar.md.
+#include <iostream>
 #include <memory>
 #include <stdexcept>
 
@@ -17,27 +18,16 @@ int main(int argc, char** argv) {
                              "RPLIDAR A2 driver: publishes LASER_SCAN per revolution and "
                              "LIDAR_STATUS; serial port through libserialport or a TCP bridge.");
     AddStandardOptions(&command_line);
-    command_line.AddOption("port", "PORT",
-                           "serial port (/dev/ttyUSB0) or tcp://HOST:PORT (default: rplidar.port)");
-    command_line.AddOption("baud", "RATE", "serial baud rate (default: rplidar.baud, 115200)");
-    command_line.AddOption("mode", "MODE", "scan mode: standard or express (default: express)");
+    rplidar::AddRplidarDriverOptions(&command_line);
     if (!command_line.Parse(arg_count, args)) return 0;
+    if (command_line.Flag("options-table")) {
+      std::cout << rplidar::RplidarDriverOptionsTable();
+      return 0;
+    }
     ProcessSettings settings = LoadProcessSettings(command_line);
     const Config section = settings.config.Child("rplidar");
     rplidar::RplidarDriverOptions options = rplidar::ReadRplidarDriverOptions(section);
-    section.CheckUnused();
-    if (auto port = command_line.Value("port")) options.port = *port;
-    if (auto baud = command_line.IntValue("baud")) {
-      if (*baud <= 0 || *baud > 10000000) throw UsageError("--baud must be a positive rate");
-      options.baud = static_cast<int>(*baud);
-    }
-    if (auto mode = command_line.Value("mode")) {
-      try {
-        options.scan_mode = rplidar::ParseScanMode(*mode);
-      } catch (const std::invalid_argument& e) {
-        throw UsageError(std::string("--mode: ") + e.what());
-      }
-    }
+    rplidar::ApplyRplidarDriverCommandLine(command_line, &options);
     try {
       rplidar::CheckRplidarDriverOptions(options);
     } catch (const std::invalid_argument& e) {

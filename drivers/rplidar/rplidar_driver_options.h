@@ -1,9 +1,16 @@
 // Options of the RPLIDAR driver (`rplidar:` section of the stack configuration, read by
 // rplidar_driver_config.h; --port, --baud and --mode on the command line win). Defaults are the
-// A2M8's (datasheet, SDK). Pure: the device session (rplidar_session.h) takes them as they are.
+// A2M8's (datasheet, SDK). Pure: the device session (rplidar_session.h) checks them in its
+// constructor (CheckRplidarSessionOptions).
+//
+// VisitRplidarDriverOptions lists every option once (key, range, doc; common/options_schema.h):
+// the reader of the `rplidar:` section, the check and the table of docs/rplidar.md ("Options",
+// printed by slammtt-rplidar --options-table) come from it.
 #pragma once
 
 #include <string>
+
+#include "common/options_schema.h"
 
 #include "drivers/rplidar/rplidar_beams.h"
 #include "drivers/rplidar/rplidar_scan_decoder.h"
@@ -46,6 +53,22 @@ struct RplidarDriverOptions {
 
 // "standard" / "express"; std::invalid_argument otherwise.
 ScanMode ParseScanMode(const std::string& text);
+
+// The options schema of the driver, in the order of RplidarDriverOptions. Keys are the field
+// names; the fields of `beams` and `decoder` are keys of their own, without the struct's name
+// (angle_offset_deg, max_step_deg), as the section always wrote them. The decoder's confirm_run
+// and lookahead are not options (the decoder's design, rplidar_scan_decoder.h).
+void VisitRplidarDriverOptions(OptionVisitor* visitor, RplidarDriverOptions* options);
+
+// Empty when the session can run with the options; otherwise one line naming the first bad
+// option by its key ("motor_pwm = 2000: must be in [0, 1023]"): each value within its range (the
+// schema), then range_max_m > range_min_m and reconnect_max_ms >= reconnect_initial_ms. The
+// port is not judged here: the session opens it through its injected factory (the program checks
+// it with CheckEndpoint before, rplidar_driver_config.h).
+std::string CheckRplidarSessionOptions(const RplidarDriverOptions& options);
+
+// The Markdown table of every key of the `rplidar:` section (docs/rplidar.md, "Options").
+std::string RplidarDriverOptionsTable();
 
 }  // namespace rplidar
 }  // namespace slammtt

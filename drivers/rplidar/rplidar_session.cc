@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 namespace slammtt {
@@ -31,11 +33,18 @@ std::string Hex4(int value) {
   return text;
 }
 
+// The options as given, after CheckRplidarSessionOptions (std::invalid_argument naming the key).
+const RplidarDriverOptions& Checked(const RplidarDriverOptions& options) {
+  const std::string problem = CheckRplidarSessionOptions(options);
+  if (!problem.empty()) throw std::invalid_argument("RPLIDAR driver options: " + problem);
+  return options;
+}
+
 }  // namespace
 
 RplidarSession::RplidarSession(const RplidarDriverOptions& options, StreamFactory open_stream,
                                DriverClock* clock, RplidarSessionOutput* output, DriverLog* log)
-    : options_(options),
+    : options_(Checked(options)),
       open_stream_(std::move(open_stream)),
       clock_(clock),
       output_(output),

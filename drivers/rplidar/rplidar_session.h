@@ -54,7 +54,9 @@ class RplidarSession {
   // Opens a link: OpenByteStream(port, baud) in the program, something else in tests.
   using StreamFactory = std::function<std::unique_ptr<ByteStream>()>;
 
-  // `clock`, `output` and `log` (may be null: no lines) outlive the session.
+  // `clock`, `output` and `log` (may be null: no lines) outlive the session. Throws
+  // std::invalid_argument, one line naming the key, for options CheckRplidarSessionOptions
+  // refuses.
   RplidarSession(const RplidarDriverOptions& options, StreamFactory open_stream,
                  DriverClock* clock, RplidarSessionOutput* output, DriverLog* log);
 

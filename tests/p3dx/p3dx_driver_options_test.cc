@@ -4,7 +4,16 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <stdexcept>
 #include <string>
+#include <vector>
+
+#include "drivers/p3dx/p3dx_session.h"
+#include "simulated_robot_link.h"
+#include "tests/support/options_table.h"
 
 namespace slammtt {
 namespace {
@@ -92,9 +101,116 @@ TEST(P3dxDriverOptionsTest, MistakesNameTheKey) {
   ExpectConfigError("  pulse_interval_s: 2.5\n", "pulse_interval_s");
   ExpectConfigError("  reconnect_initial_s: 2\n  reconnect_max_s: 1\n", "reconnect_max_s");
   ExpectConfigError("  subclass: p3at\n", "p3at");
-  ExpectConfigError("  command_authentication: hmac\n", "must be hmac-sha256 or none");
+  ExpectConfigError("  command_authentication: hmac\n",
+                    "p3dx.command_authentication: expected hmac-sha256 or none, got 'hmac'");
   ExpectConfigError("  command_max_age_s: 0\n", "command_max_age_s");
   ExpectConfigError("  command_max_age_s: 61\n", "command_max_age_s");
+}
+
+// A condition between options is reported at the line of the key it names.
+TEST(P3dxDriverOptionsTest, ConditionsNameTheLineOfTheirKey) {
+  ExpectConfigError("  reconnect_initial_s: 2\n  reconnect_max_s: 1\n",
+                    "robot.yaml:3: p3dx.reconnect_max_s: must not be less than "
+                    "reconnect_initial_s");
+  ExpectConfigError("  pulse_interval_s: 2\n",
+                    "robot.yaml:2: p3dx.pulse_interval_s: must be in (0, 2), got 2");
+}
+
+// The schema names every key once, the reader reads every one (a section setting each key to its
+// default gives the defaults), and docs/p3dx.md carries the generated table.
+TEST(P3dxDriverOptionsTest, EveryKeyOfTheSchemaIsReadAndDocumented) {
+  const std::string table = P3dxDriverOptionsTable();
+  const std::vector<testing::OptionsTableRow> rows = testing::ParseOptionsTable(table);
+  ASSERT_EQ(rows.size(), 17u) << table;
+  EXPECT_TRUE(testing::KeysAreUnique(rows));
+  const Config config =
+      Config::FromString(testing::SectionOfDefaults("p3dx", rows), "every.yaml");
+  const P3dxDriverOptions o = ReadP3dxDriverOptions(config.Child("p3dx"));
+  const P3dxDriverOptions d;
+  EXPECT_EQ(o.port, d.port);
+  EXPECT_EQ(o.baud, d.baud);
+  EXPECT_EQ(o.max_angular_radps, d.max_angular_radps);
+  EXPECT_EQ(o.pulse_interval_s, d.pulse_interval_s);
+  EXPECT_EQ(o.subclass, d.subclass);
+  EXPECT_EQ(o.command_authentication, d.command_authentication);
+  EXPECT_EQ(o.command_key_file, d.command_key_file);
+  EXPECT_EQ(o.command_max_age_s, d.command_max_age_s);
+  const std::string docs = testing::ReadCheckoutFile("docs/p3dx.md");
+  ASSERT_FALSE(docs.empty()) << "docs/p3dx.md is part of the checkout";
+  EXPECT_NE(docs.find(table), std::string::npos)
+      << "docs/p3dx.md: replace the options table by `slammtt-p3dx --options-table`";
+}
+
+// The session refuses options the schema or a condition refuses, naming the key; the defaults
+// and the shipped robot's options are accepted.
+TEST(P3dxDriverOptionsTest, TheSessionChecksItsOptions) {
+  EXPECT_EQ(CheckP3dxDriverOptions(P3dxDriverOptions()), "");
+  SimulatedClock clock;
+  struct NoOutput : P3dxSessionOutput {
+    void OnBaseOdometry(const BaseOdometry&) override {}
+    void OnBaseStatus(const BaseStatus&) override {}
+  } output;
+  const auto never_opened = [](const std::string&, int) -> std::unique_ptr<ByteStream> {
+    return nullptr;
+  };
+  const auto refused = [&](const P3dxDriverOptions& options, const std::string& needle) {
+    try {
+      P3dxSession session(options, never_opened, &clock, &output, nullptr);
+      ADD_FAILURE() << "accepted, expected " << needle;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    }
+  };
+  P3dxDriverOptions o;
+  o.max_linear_mps = 2.5;
+  refused(o, "max_linear_mps = 2.5: must be in (0, 2]");
+  o = P3dxDriverOptions();
+  o.sync_attempts = 0;
+  refused(o, "sync_attempts");
+  o = P3dxDriverOptions();
+  o.reconnect_max_s = 0.1;
+  refused(o, "reconnect_max_s must not be less than reconnect_initial_s");
+  o = P3dxDriverOptions();
+  o.subclass = "p3at";
+  refused(o, "p3at");
+  o = P3dxDriverOptions();
+  o.command_max_age_s = std::nan("");
+  refused(o, "command_max_age_s");
+}
+
+// --port, --baud, --max-linear-mps, --max-angular-radps, --command-timeout-s: declared from the
+// schema, held to its ranges, winning over the configuration.
+TEST(P3dxDriverOptionsTest, TheCommandLineSetsItsKeysWithinTheirRanges) {
+  const auto parse = [](std::vector<const char*> args) {
+    auto command_line = std::make_unique<CommandLine>("slammtt-p3dx", "[options]", "test");
+    AddP3dxDriverOptions(command_line.get());
+    args.insert(args.begin(), "slammtt-p3dx");
+    command_line->Parse(static_cast<int>(args.size()), args.data());
+    return command_line;
+  };
+  P3dxDriverOptions o;
+  ApplyP3dxDriverCommandLine(*parse({"--port", "tcp://10.0.0.3:4002", "--baud", "19200",
+                                     "--max-linear-mps", "0.3", "--max-angular-radps", "0.8",
+                                     "--command-timeout-s", "0.25"}),
+                             &o);
+  EXPECT_EQ(o.port, "tcp://10.0.0.3:4002");
+  EXPECT_EQ(o.baud, 19200);
+  EXPECT_EQ(o.max_linear_mps, 0.3);
+  EXPECT_EQ(o.max_angular_radps, 0.8);
+  EXPECT_EQ(o.command_timeout_s, 0.25);
+  const auto usage_error = [&](std::vector<const char*> args, const std::string& needle) {
+    P3dxDriverOptions options;
+    try {
+      ApplyP3dxDriverCommandLine(*parse(args), &options);
+      ADD_FAILURE() << "accepted, expected " << needle;
+    } catch (const UsageError& e) {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    }
+  };
+  usage_error({"--max-linear-mps", "3"}, "--max-linear-mps: must be in (0, 2], got 3");
+  usage_error({"--baud", "4294976896"}, "--baud: must be in [1, 1e+07], got 4294976896");
+  usage_error({"--port", "ttyUSB0"}, "ttyUSB0");
+  usage_error({"--command-timeout-s", "fast"}, "--command-timeout-s");
 }
 
 // Unauthenticated commands only on a bus whose packets stay on the computer.

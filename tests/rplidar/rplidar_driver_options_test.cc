@@ -2,7 +2,14 @@
 
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "drivers/rplidar/rplidar_session.h"
+#include "rplidar_test_support.h"
+#include "tests/support/options_table.h"
 
 namespace slammtt {
 namespace rplidar {
@@ -82,6 +89,89 @@ TEST(RplidarDriverOptionsTest, BadValuesNameTheKey) {
   ExpectConfigError("  mount_forward_m: 12\n", "rplidar.mount_forward_m");
   ExpectConfigError("  mount_left_m: .nan\n", "rplidar.mount_left_m");
   ExpectConfigError("  mount_yaw_deg: 181\n", "rplidar.mount_yaw_deg");
+}
+
+// A condition between options is reported at the line of the key it names.
+TEST(RplidarDriverOptionsTest, ConditionsNameTheLineOfTheirKey) {
+  ExpectConfigError("  range_min_m: 5\n  range_max_m: 1\n",
+                    "robot.yaml:3: rplidar.range_max_m: must be > range_min_m");
+  ExpectConfigError("  motor_pwm: 2000\n",
+                    "robot.yaml:2: rplidar.motor_pwm: must be in [0, 1023], got 2000");
+}
+
+// The schema names every key once, the reader reads every one (a section setting each key to its
+// default gives the defaults), and docs/rplidar.md carries the generated table.
+TEST(RplidarDriverOptionsTest, EveryKeyOfTheSchemaIsReadAndDocumented) {
+  const std::string table = RplidarDriverOptionsTable();
+  const std::vector<slammtt::testing::OptionsTableRow> rows =
+      slammtt::testing::ParseOptionsTable(table);
+  ASSERT_EQ(rows.size(), 23u) << table;
+  EXPECT_TRUE(slammtt::testing::KeysAreUnique(rows));
+  const Config config =
+      Config::FromString(slammtt::testing::SectionOfDefaults("rplidar", rows), "every.yaml");
+  const RplidarDriverOptions o = ReadRplidarDriverOptions(config.Child("rplidar"));
+  const RplidarDriverOptions d;
+  EXPECT_EQ(o.port, d.port);
+  EXPECT_EQ(o.scan_mode, d.scan_mode);
+  EXPECT_EQ(o.motor_control, d.motor_control);
+  EXPECT_EQ(o.beams.range_min_m, d.beams.range_min_m);
+  EXPECT_EQ(o.decoder.max_back_step_deg, d.decoder.max_back_step_deg);
+  EXPECT_EQ(o.reconnect_max_ms, d.reconnect_max_ms);
+  EXPECT_EQ(o.mount_yaw_deg, d.mount_yaw_deg);
+  const std::string docs = slammtt::testing::ReadCheckoutFile("docs/rplidar.md");
+  ASSERT_FALSE(docs.empty()) << "docs/rplidar.md is part of the checkout";
+  EXPECT_NE(docs.find(table), std::string::npos)
+      << "docs/rplidar.md: replace the options table by `slammtt-rplidar --options-table`";
+}
+
+// The session refuses options the schema or a condition refuses, naming the key.
+TEST(RplidarDriverOptionsTest, TheSessionChecksItsOptions) {
+  EXPECT_EQ(CheckRplidarSessionOptions(RplidarDriverOptions()), "");
+  testing_support::VirtualClock clock;
+  struct NoOutput : RplidarSessionOutput {
+    void OnLaserScan(const LaserScan&) override {}
+    void OnLidarStatus(const LidarStatus&) override {}
+  } output;
+  const auto refused = [&](const RplidarDriverOptions& options, const std::string& needle) {
+    try {
+      RplidarSession session(
+          options, []() -> std::unique_ptr<ByteStream> { return nullptr; }, &clock, &output,
+          nullptr);
+      ADD_FAILURE() << "accepted, expected " << needle;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    }
+  };
+  RplidarDriverOptions o;
+  o.motor_pwm = -1;
+  refused(o, "motor_pwm = -1: must be in [0, 1023]");
+  o = RplidarDriverOptions();
+  o.beams.range_max_m = 0.1;
+  refused(o, "range_max_m must be > range_min_m");
+  o = RplidarDriverOptions();
+  o.reconnect_initial_ms = 9000;
+  refused(o, "reconnect_max_ms must be at least reconnect_initial_ms");
+  o = RplidarDriverOptions();
+  o.decoder.max_step_deg = 180;
+  refused(o, "max_step_deg");
+}
+
+// --port and --baud from the schema, --mode for scan_mode; they win over the configuration.
+TEST(RplidarDriverOptionsTest, TheCommandLineSetsItsKeysWithinTheirRanges) {
+  const auto apply = [](std::vector<const char*> args, RplidarDriverOptions* options) {
+    CommandLine command_line("slammtt-rplidar", "[options]", "test");
+    AddRplidarDriverOptions(&command_line);
+    args.insert(args.begin(), "slammtt-rplidar");
+    command_line.Parse(static_cast<int>(args.size()), args.data());
+    ApplyRplidarDriverCommandLine(command_line, options);
+  };
+  RplidarDriverOptions o;
+  apply({"--port", "tcp://10.0.0.2:4001", "--baud", "256000", "--mode", "standard"}, &o);
+  EXPECT_EQ(o.port, "tcp://10.0.0.2:4001");
+  EXPECT_EQ(o.baud, 256000);
+  EXPECT_EQ(o.scan_mode, ScanMode::kStandard);
+  EXPECT_THROW(apply({"--baud", "0"}, &o), UsageError);
+  EXPECT_THROW(apply({"--mode", "turbo"}, &o), UsageError);
 }
 
 TEST(RplidarDriverOptionsTest, MalformedPortIsRefusedBeforeAnyOpen) {
