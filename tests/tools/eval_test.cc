@@ -6,7 +6,11 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
+#include "tests/support/options_table.h"
 #include "tests/tools/hand_built_log.h"
 #include "tests/tools/log_test_util.h"
 #include "tools/eval/eval_log.h"
@@ -216,6 +220,39 @@ TEST(EvalOptionsTest, ReadsTheEvalSectionAndNamesBadKeys) {
       EXPECT_NE(std::string(e.what()).find("stack.yaml:2"), std::string::npos) << e.what();
       EXPECT_NE(std::string(e.what()).find(name), std::string::npos) << e.what();
     }
+  }
+}
+
+// The schema names every key once, the reader reads every one (a section setting each key to its
+// default gives the defaults), docs/evaluation.md carries the generated table, and Evaluate()
+// names the key it refuses.
+TEST(EvalOptionsTest, EveryKeyOfTheSchemaIsReadAndDocumented) {
+  const std::string table = EvalOptionsTable();
+  const std::vector<slammtt::testing::OptionsTableRow> rows =
+      slammtt::testing::ParseOptionsTable(table);
+  ASSERT_EQ(rows.size(), 6u) << table;
+  EXPECT_TRUE(slammtt::testing::KeysAreUnique(rows));
+  const EvalOptions o = ReadEvalOptions(
+      Config::FromString(slammtt::testing::SectionOfDefaults("eval", rows), "every.yaml")
+          .Child("eval"));
+  const EvalOptions d;
+  EXPECT_EQ(o.match_threshold_m, d.match_threshold_m);
+  EXPECT_EQ(o.ospa_order, d.ospa_order);
+  EXPECT_EQ(o.gospa_alpha, d.gospa_alpha);
+  EXPECT_EQ(o.min_beams, d.min_beams);
+  EXPECT_EQ(o.min_moving_speed_mps, d.min_moving_speed_mps);
+  const std::string docs = slammtt::testing::ReadCheckoutFile("docs/evaluation.md");
+  ASSERT_FALSE(docs.empty()) << "docs/evaluation.md is part of the checkout";
+  EXPECT_NE(docs.find(table), std::string::npos)
+      << "docs/evaluation.md: replace the options table by `slammtt-eval --options-table`";
+  EvalOptions bad;
+  bad.gospa_alpha = 3.0;
+  try {
+    Evaluate(EvalInput(), bad);
+    ADD_FAILURE() << "gospa_alpha 3 accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("gospa_alpha = 3: must be in (0, 2]"), std::string::npos)
+        << e.what();
   }
 }
 

@@ -11,6 +11,8 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "runtime/command_line_options.h"
+#include "runtime/config_options.h"
 #include "runtime/lcm_io.h"
 #include "runtime/output_file.h"
 #include "slammtt_msgs/features_t.hpp"
@@ -361,26 +363,8 @@ EvalInput ReadEvalInput(const std::string& path, const Channels& channels, LogRe
 
 EvalOptions ReadEvalOptions(const Config& section) {
   EvalOptions options;
-  options.match_threshold_m = section.GetDouble("match_threshold_m", options.match_threshold_m);
-  if (!(options.match_threshold_m > 0.0)) section.FailKey("match_threshold_m", "must be > 0");
-  options.ospa_cutoff_m = section.GetDouble("ospa_cutoff_m", options.ospa_cutoff_m);
-  if (!(options.ospa_cutoff_m > 0.0)) section.FailKey("ospa_cutoff_m", "must be > 0");
-  options.ospa_order = section.GetDouble("ospa_order", options.ospa_order);
-  if (!(options.ospa_order >= 1.0)) section.FailKey("ospa_order", "must be >= 1");
-  options.gospa_alpha = section.GetDouble("gospa_alpha", options.gospa_alpha);
-  if (!(options.gospa_alpha > 0.0 && options.gospa_alpha <= 2.0)) {
-    section.FailKey("gospa_alpha", "must be in (0, 2]");
-  }
-  const int64_t min_beams = section.GetInt("min_beams", options.min_beams);
-  if (min_beams < 1 || min_beams > kMaxMinBeams) {
-    section.FailKey("min_beams", "must be in [1, " + std::to_string(kMaxMinBeams) + "]");
-  }
-  options.min_beams = static_cast<int>(min_beams);
-  const double speed_mps = section.GetDouble("min_moving_speed_mps", options.min_moving_speed_mps);
-  options.min_moving_speed_mps = speed_mps;
-  if (!(speed_mps >= 0.0 && speed_mps <= kMaxMinMovingSpeedMps)) {
-    section.FailKey("min_moving_speed_mps", "must be in [0, 100] m/s");
-  }
+  ConfigOptionReader reader(section);
+  VisitEvalOptions(&reader, &options);
   section.CheckUnused();
   return options;
 }
@@ -409,35 +393,26 @@ EvalOptions ReadStackEvalOptions(const Config& stack) {
   return options;
 }
 
+namespace {
+
+// The keys of the `eval:` section the command line may set (runtime/command_line_options.h).
+const CommandLineOptions& EvalCommandLineOptions() {
+  static const CommandLineOptions options(
+      {"min_beams", "min_moving_speed_mps", "match_threshold_m"}, "eval");
+  return options;
+}
+
+}  // namespace
+
 void AddEvalCommandLineOptions(CommandLine* command_line) {
-  command_line->AddOption("min-beams", "N",
-                          "in a log with LASER_SCAN, an object is visible at a scan when at least "
-                          "N beams hit it (eval.min_beams, else segmenter.min_points, else 3)");
-  command_line->AddOption("min-moving-speed-mps", "MPS",
-                          "a mover slower than this stands still: don't care for tracking "
-                          "(eval.min_moving_speed_mps, default 0.2; 0 turns it off)");
-  command_line->AddOption("match-threshold-m", "M",
-                          "CLEAR-MOT, map and classification match distance "
-                          "(eval.match_threshold_m, default 1.0)");
+  EvalCommandLineOptions().Declare(command_line, VisitEvalOptions);
+  command_line->AddFlag("options-table",
+                        "print the table of every key of the eval: section (Markdown, "
+                        "docs/evaluation.md) and exit");
 }
 
 void ApplyEvalCommandLine(const CommandLine& command_line, EvalOptions* options) {
-  if (const auto n = command_line.IntValue("min-beams")) {
-    if (*n < 1 || *n > kMaxMinBeams) {
-      throw UsageError("--min-beams must be in [1, " + std::to_string(kMaxMinBeams) + "]");
-    }
-    options->min_beams = static_cast<int>(*n);
-  }
-  if (const auto v = command_line.DoubleValue("min-moving-speed-mps")) {
-    if (!(*v >= 0.0 && *v <= kMaxMinMovingSpeedMps)) {
-      throw UsageError("--min-moving-speed-mps must be in [0, 100]");
-    }
-    options->min_moving_speed_mps = *v;
-  }
-  if (const auto m = command_line.DoubleValue("match-threshold-m")) {
-    if (!(*m > 0.0 && *m <= 1000.0)) throw UsageError("--match-threshold-m must be in (0, 1000]");
-    options->match_threshold_m = *m;
-  }
+  EvalCommandLineOptions().Apply(command_line, VisitEvalOptions, options);
 }
 
 void WriteFileAtomically(const std::string& path, const std::string& text) {

@@ -29,9 +29,9 @@ namespace slammtt {
 // Throws std::runtime_error when the log cannot be opened. `read` receives the damage report.
 EvalInput ReadEvalInput(const std::string& path, const Channels& channels, LogReadResult* read);
 
-// The `eval:` section (docs/evaluation.md): match_threshold_m (1.0), ospa_cutoff_m (1.0),
-// ospa_order (2), gospa_alpha (2), min_beams (3), min_moving_speed_mps (0.2). ConfigError naming
-// file, line and key for an unknown key or a value outside the range Evaluate() accepts.
+// The `eval:` section (docs/evaluation.md, "Options"), through the schema (VisitEvalOptions,
+// evaluation.h): absent keys keep the defaults. ConfigError naming file, line and key for an
+// unknown key or a value outside the range Evaluate() accepts.
 EvalOptions ReadEvalOptions(const Config& section);
 
 // The options of slammtt-eval from a whole-stack configuration: its `eval:` section
@@ -41,9 +41,11 @@ EvalOptions ReadEvalOptions(const Config& section);
 // ConfigError naming segmenter.min_points for a value outside [1, kMaxMinBeams].
 EvalOptions ReadStackEvalOptions(const Config& stack);
 
-// Declares --min-beams N and --min-moving-speed-mps MPS, which override the `eval:` section.
+// Declares --min-beams, --min-moving-speed-mps and --match-threshold-m from the schema
+// (runtime/command_line_options.h), which override the `eval:` section, and the flag
+// --options-table (the program prints EvalOptionsTable() and exits).
 void AddEvalCommandLineOptions(CommandLine* command_line);
-// Applies them to `options`; UsageError naming the option for a value out of range.
+// Applies them to `options`; UsageError naming the option for a value out of the schema's range.
 void ApplyEvalCommandLine(const CommandLine& command_line, EvalOptions* options);
 
 // Writes `text` as an OutputFile (runtime/output_file.h): it appears under `path` only when

@@ -30,13 +30,19 @@ int Run(int argc, char** argv) {
   AddStandardOptions(&cl);
   cl.AddPositional("LOG.lcm",
                    "a log with GROUND_TRUTH (slammtt-world, or slammtt-replay's output); "
-                   "without it only --plots does anything (exit status 1)");
+                   "without it only --plots does anything (exit status 1)",
+                   /*required=*/false);  // not with --options-table
   cl.AddOption("json", "REPORT.json", "write the full report as JSON");
   cl.AddOption("plots", "DIR",
                "write trajectory.svg, map.svg, tracks.svg, identities.svg, errors.svg, scan.svg "
                "into DIR (also for a log without GROUND_TRUTH: what the log holds)");
   AddEvalCommandLineOptions(&cl);
   if (!cl.Parse(argc, argv)) return 0;
+  if (cl.Flag("options-table")) {
+    std::cout << EvalOptionsTable();
+    return 0;
+  }
+  if (!cl.Positional("LOG.lcm")) throw UsageError("missing argument LOG.lcm (see --help)");
   const std::string path = *cl.Positional("LOG.lcm");
   // A configuration mistake is a usage error (exit 2), as a command-line one is.
   ProcessSettings settings;

@@ -14,17 +14,6 @@
 namespace slammtt {
 namespace {
 
-void CheckOptions(const EvalOptions& o) {
-  if (!(o.match_threshold_m > 0.0) || !(o.ospa_cutoff_m > 0.0) || !(o.ospa_order >= 1.0) ||
-      !(o.gospa_alpha > 0.0 && o.gospa_alpha <= 2.0) || o.min_beams < 1 ||
-      o.min_beams > kMaxMinBeams ||
-      !(o.min_moving_speed_mps >= 0.0 && o.min_moving_speed_mps <= kMaxMinMovingSpeedMps)) {
-    throw std::invalid_argument(
-        "evaluation options: thresholds must be positive, order >= 1, 0 < alpha <= 2, "
-        "min_beams >= 1, min_moving_speed_mps >= 0");
-  }
-}
-
 // The evaluation's visibility rule (evaluation.h): beams in a scan log, the world's flag in a
 // feature log.
 bool Visible(const TruthObjectSample& o, bool scan_log, int min_beams) {
@@ -289,8 +278,43 @@ void ScoreLines(const EvalInput& input, const Pose2& anchor, EvaluationReport* r
 
 }  // namespace
 
+void VisitEvalOptions(OptionVisitor* v, EvalOptions* o) {
+  using R = OptionRange;
+  v->Double("match_threshold_m", &o->match_threshold_m, R::Above(0),
+            "CLEAR-MOT, map and classification match distance");
+  v->Double("ospa_cutoff_m", &o->ospa_cutoff_m, R::Above(0), "`c` of OSPA and GOSPA");
+  v->Double("ospa_order", &o->ospa_order, R::AtLeast(1), "`p` of OSPA and GOSPA");
+  v->Double("gospa_alpha", &o->gospa_alpha, R::AboveUpTo(0, 2), "`alpha` of GOSPA");
+  v->Int("min_beams", &o->min_beams, R::Between(1, kMaxMinBeams),
+         "in a log with `LASER_SCAN`, visible = `beams_on_object >= min_beams` (without this "
+         "key: `segmenter.min_points` when the file sets it)");
+  v->Double("min_moving_speed_mps", &o->min_moving_speed_mps,
+            R::Between(0, kMaxMinMovingSpeedMps),
+            "a mover slower than this stands still (\"Movers standing still\"); 0 turns the "
+            "rule off");
+}
+
+std::string CheckEvalOptions(const EvalOptions& options) {
+  EvalOptions o = options;
+  OptionRangeCheck check;
+  VisitEvalOptions(&check, &o);
+  if (!check.problem().empty()) return check.problem();
+  if (!std::isfinite(o.sensor_forward_m) || !std::isfinite(o.sensor_left_m)) {
+    return "the sensor mount must be finite";
+  }
+  return "";
+}
+
+std::string EvalOptionsTable() {
+  EvalOptions defaults;
+  OptionsMarkdownTable table;
+  VisitEvalOptions(&table, &defaults);
+  return table.Table();
+}
+
 EvaluationReport Evaluate(const EvalInput& input, const EvalOptions& options) {
-  CheckOptions(options);
+  const std::string problem = CheckEvalOptions(options);
+  if (!problem.empty()) throw std::invalid_argument("evaluation options: " + problem);
   EvaluationReport report;
   report.options = options;
   report.source = input.source;

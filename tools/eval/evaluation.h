@@ -42,6 +42,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/options_schema.h"
 #include "tools/eval/eval_input.h"
 #include "tools/metrics/classification_score.h"
 #include "tools/metrics/clear_mot.h"
@@ -73,6 +74,19 @@ struct EvalOptions {
   double sensor_left_m = 0.0;
   bool sensor_mount_given = false;
 };
+
+// The options schema of the evaluation: the keys of the `eval:` section, in the order of
+// EvalOptions (the reader is ReadEvalOptions, eval_log.h; the table is docs/evaluation.md's,
+// printed by slammtt-eval --options-table). The sensor mount is not among them: slammtt-eval
+// takes it from the estimator's section or the log (ReadStackEvalOptions).
+void VisitEvalOptions(OptionVisitor* visitor, EvalOptions* options);
+
+// Empty when Evaluate() can use the options; otherwise one line naming the first bad option by
+// its key ("gospa_alpha = 3: must be in (0, 2]"), and the sensor mount when it is not finite.
+std::string CheckEvalOptions(const EvalOptions& options);
+
+// The Markdown table of every key of the `eval:` section.
+std::string EvalOptionsTable();
 
 // Line landmarks (docs/evaluation.md, "Line landmarks"): a line matches a true surface within
 // these of its direction and its line; a point landmark within kWallDistance_m of a wall is a
@@ -236,6 +250,7 @@ struct EvaluationReport {
 // Scores `input`. Throws std::invalid_argument for options out of range (thresholds not
 // positive, order < 1, alpha outside (0, 2], min_beams outside [1, kMaxMinBeams],
 // min_moving_speed_mps outside [0, kMaxMinMovingSpeedMps]).
+// Throws std::invalid_argument naming the key for options CheckEvalOptions refuses.
 EvaluationReport Evaluate(const EvalInput& input, const EvalOptions& options);
 
 }  // namespace slammtt
