@@ -7,7 +7,9 @@
 #include <fstream>
 
 #include "tests/support/child_process.h"
+#include "tests/support/options_table.h"
 #include "tools/world/scenario_loader.h"
+#include "tools/world/scenario_options.h"
 
 namespace slammtt {
 namespace {
@@ -162,29 +164,84 @@ TEST_F(ScenarioLoaderTest, RobotFasterThanTwoMetresPerSecondIsRejected) {
   EXPECT_EQ(error, BadPath() + ":3: robot.profile[0].linear_mps: must be within [-2, 2], got 2.5");
   const std::string waypoint_error =
       ErrorOf("robot:\n  waypoints: [[1, 0], [2, 0]]\n  speed_mps: 3\n");
-  EXPECT_EQ(waypoint_error.rfind(BadPath() + ":3: robot.speed_mps: must be within (0, 2]", 0), 0u)
-      << waypoint_error;
+  EXPECT_EQ(waypoint_error, BadPath() + ":3: robot.speed_mps: must be in (0, 2], got 3");
 }
 
 TEST_F(ScenarioLoaderTest, OtherValueChecksNameTheirKeys) {
   EXPECT_EQ(ErrorOf("laser: {fov_deg: 400}\n"),
-            BadPath() + ":1: laser.fov_deg: must be within (0, 360], got 400");
+            BadPath() + ":1: laser.fov_deg: must be in (0, 360], got 400");
   EXPECT_EQ(ErrorOf("output: pictures\n"),
-            BadPath() + ":1: output: expected features, scans or both, got \"pictures\"");
+            BadPath() + ":1: output: expected features, scans or both, got 'pictures'");
   EXPECT_EQ(ErrorOf("movers:\n  - {type: teleport}\n").rfind(BadPath() + ":2: movers[0].type:", 0),
             0u);
   EXPECT_EQ(ErrorOf("statics:\n  - {id: 3, x_m: 0, y_m: 0}\n  - {id: 3, x_m: 1, y_m: 0}\n"),
             BadPath() + ":3: statics[1].id: duplicate object id 3");
   EXPECT_EQ(ErrorOf("movers:\n  - {type: random_walk, start: [9, 9], area: [0, 0, 5, 5]}\n"),
             BadPath() + ":2: movers[0].start: must lie inside the area");
-  EXPECT_EQ(ErrorOf("duration_s: -1\n"), BadPath() + ":1: duration_s: must be positive, got -1");
+  EXPECT_EQ(ErrorOf("duration_s: -1\n"),
+            BadPath() + ":1: duration_s: must be in (0, 1e+06], got -1");
   // Magnitudes that would overflow are refused, not simulated.
-  EXPECT_EQ(ErrorOf("duration_s: 1e300\n"), BadPath() + ":1: duration_s: must not exceed 1e6 s");
+  EXPECT_EQ(ErrorOf("duration_s: 1e300\n"),
+            BadPath() + ":1: duration_s: must be in (0, 1e+06], got 1e+300");
   EXPECT_EQ(ErrorOf("statics:\n  - {x_m: 1e200, y_m: 0}\n"),
             BadPath() + ":2: statics[0].x_m: must be within +-1e+06 m, got 1e+200");
   EXPECT_EQ(
       ErrorOf("movers:\n  - {type: constant_velocity, start: [0, 0], velocity_mps: [1e9, 0]}\n"),
             BadPath() + ":2: movers[0].velocity_mps: speed must not exceed 50 m/s");
+}
+
+// The settings' schemas name every key once, the loader reads every one (a file that sets each
+// key to its default gives the defaults), and docs/world.md carries the generated tables.
+TEST_F(ScenarioLoaderTest, EverySettingOfTheSchemasIsReadAndDocumented) {
+  std::string yaml;
+  size_t keys = 0;
+  for (const auto& [section, table] : ScenarioOptionsTables()) {
+    const std::vector<slammtt::testing::OptionsTableRow> rows =
+        slammtt::testing::ParseOptionsTable(table);
+    EXPECT_TRUE(slammtt::testing::KeysAreUnique(rows)) << section;
+    keys += rows.size();
+    if (section.empty()) {
+      for (const auto& row : rows) yaml += row.key + ": " + row.default_text + "\n";
+    } else {
+      yaml += slammtt::testing::SectionOfDefaults(section, rows);
+    }
+  }
+  EXPECT_EQ(keys, 3u + 17u + 3u + 7u + 5u + 3u);
+  const Scenario s = LoadScenarioFromString(yaml, "every.yaml", ".");
+  const Scenario d;
+  EXPECT_EQ(s.duration_s, d.duration_s);
+  EXPECT_EQ(s.start_utime, d.start_utime);
+  EXPECT_EQ(s.output, d.output);
+  EXPECT_EQ(s.laser.fov_deg, d.laser.fov_deg);
+  EXPECT_EQ(s.laser.artefacts.beam_divergence_deg, d.laser.artefacts.beam_divergence_deg);
+  EXPECT_EQ(s.features.bearing_noise_deg, d.features.bearing_noise_deg);
+  EXPECT_EQ(s.odometry.wheel_radius_m, d.odometry.wheel_radius_m);
+  EXPECT_EQ(s.legs.radius_m, d.legs.radius_m);
+  EXPECT_EQ(s.robot.turn_gain_per_s, d.robot.turn_gain_per_s);
+  // Written as 57.2958 deg/s (six digits): within 1e-6 of 1 rad/s.
+  EXPECT_NEAR(s.robot.max_angular_radps, d.robot.max_angular_radps, 1e-6);
+  const std::string docs = slammtt::testing::ReadCheckoutFile("docs/world.md");
+  ASSERT_FALSE(docs.empty()) << "docs/world.md is part of the checkout";
+  EXPECT_NE(docs.find(ScenarioOptionsMarkdown()), std::string::npos)
+      << "docs/world.md: replace the settings' tables by `slammtt-world --options-table`";
+}
+
+// A condition between settings names the line of its key; a scenario built in code gets the
+// schema's check through FindScenarioProblems.
+TEST_F(ScenarioLoaderTest, SettingsConditionsNameTheirLine) {
+  EXPECT_EQ(ErrorOf("laser:\n  min_range_m: 5\n  max_range_m: 4\n"),
+            BadPath() + ":3: laser.max_range_m: must exceed laser.min_range_m");
+  EXPECT_EQ(ErrorOf("robot:\n  max_angular_degps: 0\n"),
+            BadPath() + ":2: robot.max_angular_degps: must be > 0, got 0");
+  Scenario s;
+  s.odometry.right_slip_bias = 0.7;
+  s.laser.rate_hz = 0.0;
+  const std::vector<std::string> problems = FindScenarioProblems(s);
+  ASSERT_FALSE(problems.empty());
+  EXPECT_EQ(problems.front(), "laser.rate_hz: must be in [0.01, 1000], got 0");
+  s.laser.rate_hz = 10.0;
+  EXPECT_EQ(FindScenarioProblems(s).front(),
+            "odometry.right_slip_bias: must be in [-0.5, 0.5], got 0.7");
 }
 
 TEST_F(ScenarioLoaderTest, MissingScenarioFileIsAnError) {
@@ -304,7 +361,7 @@ movers:
 )",
                                             "inline", ".");
   EXPECT_EQ(s.people, MoverBody::kLegs);
-  EXPECT_DOUBLE_EQ(s.legs.leg_radius_m, 0.055);
+  EXPECT_DOUBLE_EQ(s.legs.radius_m, 0.055);
   EXPECT_DOUBLE_EQ(s.legs.hip_width_m, 0.22);
   EXPECT_DOUBLE_EQ(s.laser.artefacts.mixed_pixel_probability, 0.5);
   EXPECT_DOUBLE_EQ(s.laser.artefacts.grazing_dropout_deg, 80.0);
@@ -365,13 +422,13 @@ TEST_F(ScenarioLoaderTest, BadRoomsAndPeopleNameFileLineAndKey) {
                     " body: wheel}\n"),
             BadPath() + ":2: movers[0].body: expected disc or legs, got \"wheel\"");
   EXPECT_EQ(ErrorOf("legs: {radius_m: 0.9}\n"),
-            BadPath() + ":1: legs.radius_m: must be within [0.001, 0.5], got 0.9");
+            BadPath() + ":1: legs.radius_m: must be in [0.001, 0.5], got 0.9");
   // A person's legs take ids 10 * id + 1 and + 2.
   EXPECT_EQ(ErrorOf("people: legs\nstatics:\n  - {id: 11, x_m: 5, y_m: 5}\nmovers:\n"
                     "  - {id: 1, type: constant_velocity, start: [0, 0], velocity_mps: [1, 0]}\n"),
             BadPath() + ":5: movers[0].id: duplicate object id 11");
   EXPECT_EQ(ErrorOf("laser: {grazing_dropout_deg: 0}\n"),
-            BadPath() + ":1: laser.grazing_dropout_deg: must be within (0, 90], got 0");
+            BadPath() + ":1: laser.grazing_dropout_deg: must be in (0, 90], got 0");
   EXPECT_EQ(ErrorOf("laser: {sample_rate_hz: 5}\n"),
             BadPath() + ":1: laser.sample_rate_hz: must be 0 (even beams) or within [10, 1e6], "
                         "got 5");
@@ -379,7 +436,7 @@ TEST_F(ScenarioLoaderTest, BadRoomsAndPeopleNameFileLineAndKey) {
             BadPath() + ":1: laser.sample_rate_hz: sampled beam angles need a 360-degree laser "
                         "(fov_deg 360)");
   EXPECT_EQ(ErrorOf("laser: {mixed_pixel_probability: 1.5}\n"),
-            BadPath() + ":1: laser.mixed_pixel_probability: must be within [0, 1], got 1.5");
+            BadPath() + ":1: laser.mixed_pixel_probability: must be in [0, 1], got 1.5");
   EXPECT_EQ(ErrorOf("statics:\n  - {x_m: 0, y_m: 0, dropout_probability: -0.1}\n"),
             BadPath() + ":2: statics[0].dropout_probability: must be within [0, 1], got -0.1");
 }

@@ -446,10 +446,10 @@ TEST(WorldSimulatorTest, EveryMoverKindCanWalkOnLegs) {
       const ObjectTruth& right = objects[i + 2];
       EXPECT_EQ(left.parent_id, objects[i].id);
       EXPECT_EQ(right.parent_id, objects[i].id);
-      EXPECT_DOUBLE_EQ(left.radius_m, s.legs.leg_radius_m);
+      EXPECT_DOUBLE_EQ(left.radius_m, s.legs.radius_m);
       const double apart = std::hypot(left.x_m - right.x_m, left.y_m - right.y_m);
       widest[objects[i].id] = std::max(widest[objects[i].id], apart);
-      EXPECT_NEAR(objects[i].radius_m, 0.5 * apart + s.legs.leg_radius_m, 1e-12);
+      EXPECT_NEAR(objects[i].radius_m, 0.5 * apart + s.legs.radius_m, 1e-12);
       // The legs stay with the body.
       EXPECT_LT(std::hypot(left.x_m - objects[i].x_m, left.y_m - objects[i].y_m), 0.9);
       const bool moving = left.vx_mps != 0.0 || left.vy_mps != 0.0;

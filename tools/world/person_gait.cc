@@ -8,7 +8,7 @@ namespace slammtt {
 
 GaitSpec GaitFromLegs(const LegSpec& legs) {
   GaitSpec gait;
-  gait.leg_radius_m = legs.leg_radius_m;
+  gait.leg_radius_m = legs.radius_m;
   gait.hip_width_m = legs.hip_width_m;
   gait.sway_m = legs.sway_m;
   return gait;

@@ -5,6 +5,8 @@
 #include <set>
 #include <sstream>
 
+#include "tools/world/scenario_options.h"
+
 namespace slammtt {
 
 bool ParseSensorOutput(const std::string& text, SensorOutput* output) {
@@ -216,42 +218,17 @@ void FindShapeProblems(const std::string& path, const StaticObjectSpec& o, Probl
 
 std::vector<std::string> FindScenarioProblems(const Scenario& s) {
   Problems p;
-  p.Positive("duration_s", s.duration_s);
-  if (s.duration_s > kMaxScenarioDurationS) p.Add("duration_s", "must not exceed 1e6 s");
-  if (s.start_utime < 0 || s.start_utime > 4000000000000000000) {
-    p.Add("start_utime", "must be within [0, 4e18] us");
-  }
+  // Every setting within its range (scenario_options.h), then the conditions between them.
+  const auto [setting, problem] = FindScenarioSettingsProblem(s);
+  if (!setting.empty()) p.Add(setting, problem);
 
   const LaserSpec& l = s.laser;
-  if (!(l.fov_deg > 0.0 && l.fov_deg <= 360.0)) {
-    p.Add("laser.fov_deg", "must be within (0, 360], got " + Problems::Text(l.fov_deg));
-  }
-  p.Positive("laser.resolution_deg", l.resolution_deg);
   if (l.resolution_deg > 0.0 && l.fov_deg > 0.0 && l.fov_deg / l.resolution_deg > 100000.0) {
     p.Add("laser.resolution_deg", "gives more than 100000 beams per scan");
   }
-  p.NonNegative("laser.min_range_m", l.min_range_m);
-  p.Positive("laser.max_range_m", l.max_range_m);
   if (l.max_range_m <= l.min_range_m) p.Add("laser.max_range_m", "must exceed laser.min_range_m");
-  p.Between("laser.rate_hz", l.rate_hz, 0.01, 1000.0);
-  p.NonNegative("laser.range_noise_m", l.range_noise_m);
-  p.Coordinate("laser.mount_a_m", l.mount_a_m);
-  p.Coordinate("laser.mount_b_m", l.mount_b_m);
-  p.Between("laser.mount_yaw_deg", l.mount_yaw_deg, -180.0, 180.0);
   const LaserArtefactSpec& a = l.artefacts;
-  p.Between("laser.mixed_pixel_probability", a.mixed_pixel_probability, 0.0, 1.0);
-  if (!(a.beam_divergence_deg > 0.0 && a.beam_divergence_deg <= 10.0)) {
-    p.Add("laser.beam_divergence_deg",
-          "must be within (0, 10], got " + Problems::Text(a.beam_divergence_deg));
-  }
-  p.Positive("laser.mixed_pixel_min_gap_m", a.mixed_pixel_min_gap_m);
-  if (!(a.grazing_dropout_deg > 0.0 && a.grazing_dropout_deg <= 90.0)) {
-    p.Add("laser.grazing_dropout_deg",
-          "must be within (0, 90], got " + Problems::Text(a.grazing_dropout_deg));
-  }
-  p.NonNegative("laser.range_noise_per_m", a.range_noise_per_m);
-  if (a.range_noise_per_m > 1.0) p.Add("laser.range_noise_per_m", "must not exceed 1");
-  if (!(a.sample_rate_hz == 0.0 || (a.sample_rate_hz >= 10.0 && a.sample_rate_hz <= 1e6))) {
+  if (a.sample_rate_hz > 0.0 && a.sample_rate_hz < 10.0) {
     p.Add("laser.sample_rate_hz",
           "must be 0 (even beams) or within [10, 1e6], got " + Problems::Text(a.sample_rate_hz));
   } else if (a.sample_rate_hz > 0.0 && a.sample_rate_hz / l.rate_hz > 100000.0) {
@@ -259,25 +236,6 @@ std::vector<std::string> FindScenarioProblems(const Scenario& s) {
   } else if (a.sample_rate_hz > 0.0 && l.fov_deg < 360.0) {
     p.Add("laser.sample_rate_hz", "sampled beam angles need a 360-degree laser (fov_deg 360)");
   }
-  p.Between("laser.rotation_jitter", a.rotation_jitter, 0.0, 0.2);
-  p.Between("laser.angle_jitter_deg", a.angle_jitter_deg, 0.0, 5.0);
-
-  p.Between("legs.radius_m", s.legs.leg_radius_m, 1e-3, 0.5);
-  p.Between("legs.hip_width_m", s.legs.hip_width_m, 0.0, 2.0);
-  p.Between("legs.sway_m", s.legs.sway_m, 0.0, 0.2);
-
-  p.NonNegative("features.range_noise_m", s.features.range_noise_m);
-  p.NonNegative("features.bearing_noise_deg", s.features.bearing_noise_deg);
-  p.Between("features.detection_probability", s.features.detection_probability, 0.0, 1.0);
-
-  const OdometrySpec& o = s.odometry;
-  p.Between("odometry.rate_hz", o.rate_hz, 0.01, 1000.0);
-  p.Positive("odometry.wheel_radius_m", o.wheel_radius_m);
-  p.Positive("odometry.axle_length_m", o.axle_length_m);
-  p.NonNegative("odometry.encoder_noise_rad", o.encoder_noise_rad);
-  p.NonNegative("odometry.slip_std", o.slip_std);
-  p.Between("odometry.left_slip_bias", o.left_slip_bias, -0.5, 0.5);
-  p.Between("odometry.right_slip_bias", o.right_slip_bias, -0.5, 0.5);
 
   const RobotMotionSpec& r = s.robot;
   p.Coordinate("robot.start.x_m", r.start.x_m);
@@ -296,13 +254,6 @@ std::vector<std::string> FindScenarioProblems(const Scenario& s) {
   }
   if (!r.waypoints.empty()) {
     if (!r.profile.empty()) p.Add("robot", "give either profile or waypoints, not both");
-    if (!(r.speed_mps > 0.0 && r.speed_mps <= kMaxRobotSpeedMps)) {
-      p.Add("robot.speed_mps", "must be within (0, " + Problems::Text(kMaxRobotSpeedMps) +
-                                   "] m/s, got " + Problems::Text(r.speed_mps));
-    }
-    p.Positive("robot.max_angular_degps", r.max_angular_radps);
-    p.Positive("robot.turn_gain_per_s", r.turn_gain_per_s);
-    p.Positive("robot.waypoint_tolerance_m", r.waypoint_tolerance_m);
     for (size_t i = 0; i < r.waypoints.size(); ++i) {
       p.Coordinate(Indexed("robot.waypoints", i),
                    std::max(std::abs(r.waypoints[i].x_m), std::abs(r.waypoints[i].y_m)));

@@ -201,11 +201,11 @@ enum class MoverBody { kDisc, kLegs };
 // "discs"/"disc", "legs"; false for anything else.
 bool ParseMoverBody(const std::string& text, MoverBody* body);
 
-// A legged person: two legs of leg_radius_m whose centres stand hip_width_m apart across the
+// A legged person: two legs of radius_m whose centres stand hip_width_m apart across the
 // heading (issue 11: radius about 0.05-0.07 m, hip width about 0.2 m); gait in person_gait.h.
 // A leg's id is 10 * person id + 1 (left) or + 2 (right).
 struct LegSpec {
-  double leg_radius_m = 0.06;  // (0, 0.5]
+  double radius_m = 0.06;      // [0.001, 0.5]
   double hip_width_m = 0.2;    // [0, 2]
   double sway_m = 0.01;        // standing sway amplitude, [0, 0.2]
 };

@@ -6,10 +6,13 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <optional>
 #include <sstream>
 
 #include "common/number_text.h"
+#include "runtime/config_options.h"
+#include "tools/world/scenario_options.h"
 
 namespace slammtt {
 
@@ -69,25 +72,20 @@ class ScenarioReader {
     Scenario s;
     s.name = root_.GetString("name", "");
     root_.GetString("description", "");  // for people only
-    s.duration_s = Double(root_, "duration_s", s.duration_s);
-    s.start_utime = Int(root_, "start_utime", s.start_utime);
-    if (root_.Has("output")) {
-      const std::string output = root_.GetString("output", "");
-      if (!ParseSensorOutput(output, &s.output)) {
-        root_.FailKey("output", "expected features, scans or both, got \"" + output + "\"");
-      }
+    // The settings through their schemas (scenario_options.h); the robot's geometry below.
+    VisitScenarioSections(&s, [this](const std::string& section) -> OptionVisitor* {
+      return Section(section);
+    });
+    for (const char* section : {"laser", "features", "odometry", "legs"}) {
+      root_.Child(section).CheckUnused();
     }
-    ReadLaser(root_.Child("laser"), &s.laser);
-    ReadFeatures(root_.Child("features"), &s.features);
-    ReadOdometry(root_.Child("odometry"), &s.odometry);
-    ReadRobot(root_.Child("robot"), &s.robot);
+    ReadRobotPath(root_.Child("robot"), &s.robot);
     if (root_.Has("people")) {
       const std::string people = root_.GetString("people", "");
       if (!ParseMoverBody(people, &s.people)) {
         root_.FailKey("people", "expected discs or legs, got \"" + people + "\"");
       }
     }
-    ReadLegs(root_.Child("legs"), &s.legs);
     const std::vector<Config> statics = root_.Items("statics");
     int64_t next_id = 1;
     for (size_t i = 0; i < statics.size(); ++i) {
@@ -105,6 +103,21 @@ class ScenarioReader {
   }
 
  private:
+  // The reader of a section's settings ("" the top level). Every key of the section is
+  // remembered for the conditions FindScenarioProblems reports after reading.
+  OptionVisitor* Section(const std::string& section) {
+    const Config node = section.empty() ? root_ : root_.Child(section);
+    for (const std::string& key : node.Keys()) {
+      const bool format = section.empty() ? key != "duration_s" && key != "start_utime"
+                                          : section == "robot" && (key == "start" ||
+                                                                   key == "profile" ||
+                                                                   key == "waypoints");
+      if (!format) locations_.Add(Join(node, key), node, key);
+    }
+    readers_.push_back(std::make_unique<ConfigOptionReader>(node));
+    return readers_.back().get();
+  }
+
   double Double(const Config& node, const std::string& key, double fallback) {
     locations_.Add(Join(node, key), node, key);
     return node.GetDouble(key, fallback);
@@ -137,40 +150,6 @@ class ScenarioReader {
     return node.Path().empty() ? key : node.Path() + "." + key;
   }
 
-  void ReadLaser(const Config& c, LaserSpec* l) {
-    c.CheckKeysAmong({"fov_deg", "resolution_deg", "min_range_m", "max_range_m", "rate_hz",
-                      "range_noise_m", "mount_a_m", "mount_b_m", "mount_yaw_deg",
-                      "mixed_pixel_probability",
-                      "beam_divergence_deg", "mixed_pixel_min_gap_m", "grazing_dropout_deg",
-                      "range_noise_per_m", "sample_rate_hz", "rotation_jitter",
-                      "angle_jitter_deg"});
-    LaserArtefactSpec& a = l->artefacts;
-    a.mixed_pixel_probability = Double(c, "mixed_pixel_probability", a.mixed_pixel_probability);
-    a.beam_divergence_deg = Double(c, "beam_divergence_deg", a.beam_divergence_deg);
-    a.mixed_pixel_min_gap_m = Double(c, "mixed_pixel_min_gap_m", a.mixed_pixel_min_gap_m);
-    a.grazing_dropout_deg = Double(c, "grazing_dropout_deg", a.grazing_dropout_deg);
-    a.range_noise_per_m = Double(c, "range_noise_per_m", a.range_noise_per_m);
-    a.sample_rate_hz = Double(c, "sample_rate_hz", a.sample_rate_hz);
-    a.rotation_jitter = Double(c, "rotation_jitter", a.rotation_jitter);
-    a.angle_jitter_deg = Double(c, "angle_jitter_deg", a.angle_jitter_deg);
-    l->fov_deg = Double(c, "fov_deg", l->fov_deg);
-    l->resolution_deg = Double(c, "resolution_deg", l->resolution_deg);
-    l->min_range_m = Double(c, "min_range_m", l->min_range_m);
-    l->max_range_m = Double(c, "max_range_m", l->max_range_m);
-    l->rate_hz = Double(c, "rate_hz", l->rate_hz);
-    l->range_noise_m = Double(c, "range_noise_m", l->range_noise_m);
-    l->mount_a_m = Double(c, "mount_a_m", l->mount_a_m);
-    l->mount_b_m = Double(c, "mount_b_m", l->mount_b_m);
-    l->mount_yaw_deg = Double(c, "mount_yaw_deg", l->mount_yaw_deg);
-  }
-
-  void ReadLegs(const Config& c, LegSpec* legs) {
-    c.CheckKeysAmong({"radius_m", "hip_width_m", "sway_m"});
-    legs->leg_radius_m = Double(c, "radius_m", legs->leg_radius_m);
-    legs->hip_width_m = Double(c, "hip_width_m", legs->hip_width_m);
-    legs->sway_m = Double(c, "sway_m", legs->sway_m);
-  }
-
   // `body: disc | legs` of a mover or of the crowd.
   std::optional<MoverBody> Body(const Config& c) {
     if (!c.Has("body")) return std::nullopt;
@@ -182,28 +161,8 @@ class ScenarioReader {
     return body;
   }
 
-  void ReadFeatures(const Config& c, FeatureSpec* f) {
-    c.CheckKeysAmong({"range_noise_m", "bearing_noise_deg", "detection_probability"});
-    f->range_noise_m = Double(c, "range_noise_m", f->range_noise_m);
-    f->bearing_noise_deg = Double(c, "bearing_noise_deg", f->bearing_noise_deg);
-    f->detection_probability = Double(c, "detection_probability", f->detection_probability);
-  }
-
-  void ReadOdometry(const Config& c, OdometrySpec* o) {
-    c.CheckKeysAmong({"rate_hz", "wheel_radius_m", "axle_length_m", "encoder_noise_rad",
-                      "slip_std", "left_slip_bias", "right_slip_bias"});
-    o->rate_hz = Double(c, "rate_hz", o->rate_hz);
-    o->wheel_radius_m = Double(c, "wheel_radius_m", o->wheel_radius_m);
-    o->axle_length_m = Double(c, "axle_length_m", o->axle_length_m);
-    o->encoder_noise_rad = Double(c, "encoder_noise_rad", o->encoder_noise_rad);
-    o->slip_std = Double(c, "slip_std", o->slip_std);
-    o->left_slip_bias = Double(c, "left_slip_bias", o->left_slip_bias);
-    o->right_slip_bias = Double(c, "right_slip_bias", o->right_slip_bias);
-  }
-
-  void ReadRobot(const Config& c, RobotMotionSpec* r) {
-    c.CheckKeysAmong({"start", "profile", "waypoints", "speed_mps", "max_angular_degps",
-                      "turn_gain_per_s", "waypoint_tolerance_m", "loop"});
+  // The robot's path: start, profile, waypoints (its settings came through the schema).
+  void ReadRobotPath(const Config& c, RobotMotionSpec* r) {
     const Config start = c.Child("start");
     start.CheckKeysAmong({"x_m", "y_m", "heading_deg"});
     r->start.x_m = Double(start, "x_m", 0.0);
@@ -225,15 +184,10 @@ class ScenarioReader {
       const std::vector<double> xy = Numbers(point, 2, false, "[x_m, y_m]");
       r->waypoints.push_back(PlanarPoint{xy[0], xy[1]});
     }
-    r->speed_mps = Double(c, "speed_mps", r->speed_mps);
-    r->max_angular_radps =
-        Double(c, "max_angular_degps", r->max_angular_radps / kDegToRad) * kDegToRad;
-    r->turn_gain_per_s = Double(c, "turn_gain_per_s", r->turn_gain_per_s);
-    r->waypoint_tolerance_m = Double(c, "waypoint_tolerance_m", r->waypoint_tolerance_m);
-    r->loop = c.GetBool("loop", r->loop);
     if (r->profile.empty() && r->waypoints.empty() && c.Has("profile")) {
       c.FailKey("profile", "must not be empty");
     }
+    c.CheckUnused();
   }
 
   StaticObjectSpec ReadStatic(const Config& c, int64_t default_id) {
@@ -478,6 +432,7 @@ class ScenarioReader {
   Config root_;
   std::string base_dir_;
   Locations locations_;
+  std::vector<std::unique_ptr<ConfigOptionReader>> readers_;
 };
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include "runtime/log.h"
 #include "runtime/process.h"
 #include "tools/world/scenario_loader.h"
+#include "tools/world/scenario_options.h"
 #include "tools/world/scenario_report.h"
 #include "tools/world/world_runner.h"
 
@@ -54,7 +55,13 @@ int Run(int argc, char** argv) {
   cl.AddFlag("follow-commands",
              "live mode: drive the robot from VELOCITY_COMMAND (it stops 0.5 s after the last "
              "command) instead of the scenario's motion");
+  cl.AddFlag("options-table",
+             "print the tables of a scenario file's settings (Markdown, docs/world.md) and exit");
   if (!cl.Parse(argc, argv)) return 0;
+  if (cl.Flag("options-table")) {
+    std::cout << slammtt::ScenarioOptionsMarkdown();
+    return 0;
+  }
   const slammtt::ProcessSettings settings = slammtt::LoadProcessSettings(cl);
 
   const auto scenario_arg = cl.Value("scenario");

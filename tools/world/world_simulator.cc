@@ -212,7 +212,7 @@ TruthSnapshot WorldSimulator::TruthAt(int64_t time_us, std::vector<Circle>* circ
     }
     gait->Update(t_s, state);
     const std::array<LegState, 2>& legs = gait->legs();
-    const double leg_radius = scenario_.legs.leg_radius_m;
+    const double leg_radius = scenario_.legs.radius_m;
     object.kind = ObjectKind::kPerson;
     object.radius_m =
         0.5 * std::hypot(legs[0].x_m - legs[1].x_m, legs[0].y_m - legs[1].y_m) + leg_radius;
