@@ -20,7 +20,14 @@ int Main(int argc, char** argv) {
                  "ones that die, and stops them all on Ctrl-C or SIGTERM.");
   AddStandardOptions(&cl);
   cl.AddFlag("dry-run", "print the command lines and exit");
+  cl.AddFlag("options-table",
+             "print the tables of the robot: section's settings (Markdown, docs/robot.md) and "
+             "exit");
   if (!cl.Parse(argc, argv)) return 0;
+  if (cl.Flag("options-table")) {
+    std::cout << LaunchPlanOptionsTables();
+    return 0;
+  }
   if (!cl.Value("config")) throw UsageError("--config FILE is required");
   const ProcessSettings settings = LoadProcessSettings(cl);
   const Config robot = settings.config.Child("robot");

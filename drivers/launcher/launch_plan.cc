@@ -5,6 +5,8 @@
 #include <set>
 #include <stdexcept>
 
+#include "runtime/config_options.h"
+
 namespace slammtt {
 namespace {
 
@@ -23,47 +25,91 @@ bool ValidName(const std::string& name) {
   return true;
 }
 
-// A day at most: the supervisor turns these into millisecond poll timeouts (int).
-double PositiveSeconds(const Config& section, const std::string& key, double fallback) {
-  const double value = section.GetDouble(key, fallback);
-  if (!(value > 0.0) || value > 86400.0) {
-    section.FailKey(key, "must be a number of seconds in (0, 86400]");
-  }
-  return value;
+}  // namespace
+
+void VisitLaunchPlanSettings(OptionVisitor* v, LaunchPlan* plan) {
+  using R = OptionRange;
+  // A day at most: the supervisor turns these into millisecond poll timeouts (int).
+  const R seconds = R::AboveUpTo(0, 86400);
+  int network = static_cast<int>(plan->network);
+  v->Choice("network", &network, {"loopback", "lan"},
+            "`loopback`: the bus must keep to this computer (`lcm.url` memq or udpm with ttl=0, "
+            "the group routed on lo), else the launcher refuses to start; `lan`: base stations "
+            "on a LAN reach it (\"Who can drive the robot\")");
+  plan->network = static_cast<BusNetwork>(network);
+  v->String("log_directory", &plan->log_directory,
+            "not empty; created if missing; refused if other users may write to it without the "
+            "sticky bit; `{log_file}` is a new file in it (below)");
+  v->Double("stop_grace_s", &plan->stop_grace_s, seconds,
+            "after SIGTERM, SIGKILL for what still runs");
+  v->Int("max_restarts", &plan->max_restarts, R::Between(0, 1000),
+         "restarts in a row before a process is given up");
+  v->Double("restart_initial_s", &plan->restart_initial_s, seconds,
+            "restart backoff: the first delay, doubling ...");
+  v->Double("restart_max_s", &plan->restart_max_s, seconds, "... up to this");
+  v->Double("restart_reset_after_s", &plan->restart_reset_after_s, seconds,
+            "a run this long forgets the failures before it");
+  int on_give_up = static_cast<int>(plan->on_give_up);
+  v->Choice("on_give_up", &on_give_up, {"stop_all", "keep_running"},
+            "`stop_all`: stop the stack and exit 1 (systemd then restarts it); `keep_running`: "
+            "the others go on, exit 1 at the end");
+  plan->on_give_up = static_cast<GiveUpAction>(on_give_up);
 }
 
-}  // namespace
+void VisitProcessSettings(OptionVisitor* v, ProcessSpec* process) {
+  v->Bool("pass_config", &process->pass_config, "put `--config FILE` before the arguments");
+  v->Bool("stop_last", &process->stop_last,
+          "stopped after every other process (the logger, so it records the others' last "
+          "status)");
+  int restart = static_cast<int>(process->restart);
+  v->Choice("restart", &restart, {"on_failure", "always", "never"},
+            "`on_failure` (non-zero exit or signal), `always`, `never`");
+  process->restart = static_cast<RestartMode>(restart);
+}
+
+std::string CheckLaunchPlan(const LaunchPlan& plan) {
+  LaunchPlan copy = plan;
+  OptionRangeCheck check;
+  VisitLaunchPlanSettings(&check, &copy);
+  if (!check.problem().empty()) return check.problem();
+  if (plan.log_directory.empty()) return "log_directory must not be empty";
+  if (plan.restart_max_s < plan.restart_initial_s) {
+    return "restart_max_s must not be less than restart_initial_s";
+  }
+  std::set<std::string> names;
+  for (size_t i = 0; i < copy.processes.size(); ++i) {
+    ProcessSpec& spec = copy.processes[i];
+    const std::string where = "processes[" + std::to_string(i) + "].";
+    OptionRangeCheck process_check;
+    VisitProcessSettings(&process_check, &spec);
+    if (!process_check.problem().empty()) return where + process_check.problem();
+    if (!ValidName(spec.name)) {
+      return where + "name '" + spec.name + "' is not 1-32 of [A-Za-z0-9_-]";
+    }
+    if (!names.insert(spec.name).second) return where + "name '" + spec.name + "' is used twice";
+    if (spec.program.empty()) return where + "program must not be empty";
+  }
+  return "";
+}
+
+std::string LaunchPlanOptionsTables() {
+  LaunchPlan plan;
+  OptionsMarkdownTable settings;
+  VisitLaunchPlanSettings(&settings, &plan);
+  ProcessSpec process;
+  OptionsMarkdownTable process_settings;
+  VisitProcessSettings(&process_settings, &process);
+  return "`robot:`\n\n" + settings.Table() + "\nEach entry of `processes`:\n\n" +
+         process_settings.Table();
+}
 
 LaunchPlan ReadLaunchPlan(const Config& robot) {
   LaunchPlan plan;
-  const std::string network = robot.GetString("network", "loopback");
-  if (network == "loopback") {
-    plan.network = BusNetwork::kLoopback;
-  } else if (network == "lan") {
-    plan.network = BusNetwork::kLan;
-  } else {
-    robot.FailKey("network", "expected loopback or lan, got '" + network + "'");
-  }
-  plan.log_directory = robot.GetString("log_directory", plan.log_directory);
+  ConfigOptionReader reader(robot);
+  VisitLaunchPlanSettings(&reader, &plan);
   if (plan.log_directory.empty()) robot.FailKey("log_directory", "must not be empty");
-  plan.stop_grace_s = PositiveSeconds(robot, "stop_grace_s", plan.stop_grace_s);
-  const int64_t max_restarts = robot.GetInt("max_restarts", plan.max_restarts);
-  if (max_restarts < 0 || max_restarts > 1000) robot.FailKey("max_restarts", "must be within 0..1000");
-  plan.max_restarts = static_cast<int>(max_restarts);
-  plan.restart_initial_s = PositiveSeconds(robot, "restart_initial_s", plan.restart_initial_s);
-  plan.restart_max_s = PositiveSeconds(robot, "restart_max_s", plan.restart_max_s);
   if (plan.restart_max_s < plan.restart_initial_s) {
     robot.FailKey("restart_max_s", "must not be less than restart_initial_s");
-  }
-  plan.restart_reset_after_s =
-      PositiveSeconds(robot, "restart_reset_after_s", plan.restart_reset_after_s);
-  const std::string give_up = robot.GetString("on_give_up", "stop_all");
-  if (give_up == "stop_all") {
-    plan.on_give_up = GiveUpAction::kStopAll;
-  } else if (give_up == "keep_running") {
-    plan.on_give_up = GiveUpAction::kKeepRunning;
-  } else {
-    robot.FailKey("on_give_up", "expected stop_all or keep_running, got '" + give_up + "'");
   }
 
   if (!robot.Has("processes")) robot.Fail("missing key 'processes' (the programs to start)");
@@ -90,21 +136,13 @@ LaunchPlan ReadLaunchPlan(const Config& robot) {
         arg.Fail(e.what());
       }
     }
-    spec.pass_config = item.GetBool("pass_config", spec.pass_config);
-    spec.stop_last = item.GetBool("stop_last", spec.stop_last);
-    const std::string restart = item.GetString("restart", "on_failure");
-    if (restart == "on_failure") {
-      spec.restart = RestartMode::kOnFailure;
-    } else if (restart == "always") {
-      spec.restart = RestartMode::kAlways;
-    } else if (restart == "never") {
-      spec.restart = RestartMode::kNever;
-    } else {
-      item.FailKey("restart", "expected on_failure, always or never, got '" + restart + "'");
-    }
+    ConfigOptionReader process_reader(item);
+    VisitProcessSettings(&process_reader, &spec);
     plan.processes.push_back(std::move(spec));
   }
   robot.CheckUnused();
+  const std::string problem = CheckLaunchPlan(plan);
+  if (!problem.empty()) robot.Fail(problem);  // (every condition was reported at its line)
   return plan;
 }
 

@@ -28,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "common/options_schema.h"
 #include "runtime/config.h"
 
 namespace slammtt {
@@ -69,6 +70,23 @@ struct LaunchPlan {
   double restart_reset_after_s = 60.0;
   GiveUpAction on_give_up = GiveUpAction::kStopAll;
 };
+
+// The options schemas of the `robot:` section's settings (every key but `processes`) and of an
+// entry of `processes` (pass_config, stop_last, restart; name, program and args are its format).
+// Keys are the field names. The reader, CheckLaunchPlan and the tables of docs/robot.md
+// (slammtt-launch --options-table) come from them.
+void VisitLaunchPlanSettings(OptionVisitor* visitor, LaunchPlan* plan);
+void VisitProcessSettings(OptionVisitor* visitor, ProcessSpec* process);
+
+// Empty when the supervisor can carry the plan out; otherwise one line naming the first bad
+// setting by its key ("stop_grace_s = 0: must be in (0, 86400]", "processes[1].restart ..."):
+// the schemas' ranges, a non-empty log_directory, restart_max_s >= restart_initial_s, and for
+// every process a name of 1-32 of [A-Za-z0-9_-] used once and a program.
+std::string CheckLaunchPlan(const LaunchPlan& plan);
+
+// The Markdown tables of the settings of `robot:` and of an entry of `processes`, each under a
+// line naming it (docs/robot.md, "slammtt-launch").
+std::string LaunchPlanOptionsTables();
 
 // Reads and checks the `robot:` section (ConfigError naming file, line and key). Runs
 // CheckUnused() on it.

@@ -6,6 +6,7 @@
 #include "drivers/launcher/line_prefixer.h"
 #include "drivers/launcher/restart_policy.h"
 #include "runtime/config.h"
+#include "tests/support/options_table.h"
 
 namespace slammtt {
 namespace {
@@ -105,6 +106,48 @@ TEST(LaunchPlanTest, MistakesAreErrorsNamingTheKey) {
   EXPECT_NE(ErrorOf("robot:\n  processes: []\n").find("processes"), std::string::npos);
   // Every message names the file and the line.
   EXPECT_EQ(ErrorOf("robot:\n  processes:\n    - {name: a, program: x, colour: red}\n").rfind("robot.yaml:", 0), 0u);
+}
+
+// The schemas name every key once, the reader reads every one (settings set to their defaults
+// give the defaults), docs/robot.md carries the generated tables, and a plan built in code is
+// checked by the same ranges.
+TEST(LaunchPlanTest, EverySettingIsReadAndDocumented) {
+  const std::string tables = LaunchPlanOptionsTables();
+  const std::string process_heading = "Each entry of `processes`:";
+  const size_t split = tables.find(process_heading);
+  ASSERT_NE(split, std::string::npos) << tables;
+  const auto rows = slammtt::testing::ParseOptionsTable(tables.substr(0, split));
+  const auto process_rows = slammtt::testing::ParseOptionsTable(tables.substr(split));
+  ASSERT_EQ(rows.size(), 8u) << tables;
+  ASSERT_EQ(process_rows.size(), 3u) << tables;
+  EXPECT_TRUE(slammtt::testing::KeysAreUnique(rows));
+  std::string yaml = slammtt::testing::SectionOfDefaults("robot", rows) +
+                     "  processes:\n    - name: a\n      program: x\n";
+  for (const auto& row : process_rows) yaml += "      " + row.key + ": " + row.default_text + "\n";
+  const LaunchPlan plan = Read(yaml);
+  const LaunchPlan d;
+  EXPECT_EQ(plan.network, d.network);
+  EXPECT_EQ(plan.log_directory, d.log_directory);
+  EXPECT_EQ(plan.restart_reset_after_s, d.restart_reset_after_s);
+  EXPECT_EQ(plan.on_give_up, d.on_give_up);
+  ASSERT_EQ(plan.processes.size(), 1u);
+  EXPECT_EQ(plan.processes[0].pass_config, ProcessSpec().pass_config);
+  EXPECT_EQ(plan.processes[0].restart, ProcessSpec().restart);
+  const std::string docs = slammtt::testing::ReadCheckoutFile("docs/robot.md");
+  ASSERT_FALSE(docs.empty()) << "docs/robot.md is part of the checkout";
+  EXPECT_NE(docs.find(tables), std::string::npos)
+      << "docs/robot.md: replace the robot: tables by `slammtt-launch --options-table`";
+
+  LaunchPlan bad = plan;
+  EXPECT_EQ(CheckLaunchPlan(bad), "");
+  bad.stop_grace_s = 0.0;
+  EXPECT_EQ(CheckLaunchPlan(bad), "stop_grace_s = 0: must be in (0, 86400]");
+  bad = plan;
+  bad.processes.push_back(bad.processes[0]);
+  EXPECT_EQ(CheckLaunchPlan(bad), "processes[1].name 'a' is used twice");
+  bad = plan;
+  bad.processes[0].restart = static_cast<RestartMode>(7);
+  EXPECT_EQ(CheckLaunchPlan(bad), "processes[0].restart is not one of its choices");
 }
 
 TEST(LaunchPlanTest, ArgumentsAreExpanded) {
