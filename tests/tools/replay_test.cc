@@ -12,8 +12,9 @@
 #include <vector>
 
 #include "slammtt_msgs/stage_timing_t.hpp"
-#include "tools/replay/replay_config.h"
+#include "tests/support/options_table.h"
 #include "tests/tools/log_test_util.h"
+#include "tools/replay/replay_config.h"
 
 namespace slammtt {
 namespace {
@@ -465,6 +466,27 @@ TEST(ReplayConfigTest, ReadsTheReplaySection) {
   EXPECT_EQ(s.file_options.progress_every_events, 5);
   EXPECT_DOUBLE_EQ(s.file_options.progress_every_log_s, 2.5);
   EXPECT_TRUE(s.file_options.truncated_tail_is_error);
+}
+
+// The schema names every setting once, the reader reads every one (set to their defaults they
+// give the defaults), and docs/tools.md carries the generated table.
+TEST(ReplayConfigTest, EverySettingIsReadAndDocumented) {
+  const std::string table = ReplayOptionsTable();
+  const std::vector<slammtt::testing::OptionsTableRow> rows =
+      slammtt::testing::ParseOptionsTable(table);
+  ASSERT_EQ(rows.size(), 3u) << table;
+  const ReplaySettings s = ReadReplaySettings(
+      Config::FromString(slammtt::testing::SectionOfDefaults("replay", rows), "every.yaml")
+          .Child("replay"),
+      {"estimator"});
+  const ReplayFileOptions d;
+  EXPECT_EQ(s.file_options.progress_every_events, d.progress_every_events);
+  EXPECT_EQ(s.file_options.progress_every_log_s, d.progress_every_log_s);
+  EXPECT_EQ(s.file_options.truncated_tail_is_error, d.truncated_tail_is_error);
+  const std::string docs = slammtt::testing::ReadCheckoutFile("docs/tools.md");
+  ASSERT_FALSE(docs.empty()) << "docs/tools.md is part of the checkout";
+  EXPECT_NE(docs.find(table), std::string::npos)
+      << "docs/tools.md: replace the replay: table by `slammtt-replay --options-table`";
 }
 
 TEST(ReplayConfigTest, BadValuesNameTheKey) {

@@ -1,8 +1,30 @@
 #include "tools/replay/replay_config.h"
 
-#include <cmath>
+#include "runtime/config_options.h"
 
 namespace slammtt {
+
+void VisitReplayFileOptions(OptionVisitor* v, ReplayFileOptions* o) {
+  using R = OptionRange;
+  v->Int("progress_every_events", &o->progress_every_events, R::AtLeast(1),
+         "a progress line every this many events...");
+  // Below a microsecond or beyond 30 years a progress step means nothing.
+  v->Double("progress_every_log_s", &o->progress_every_log_s, R::Between(1e-6, 1e9),
+            "...or this many seconds of log time, whichever comes first; a log whose timestamps "
+            "jump or run backwards still gets one line per step reached");
+  // The key names the choice; the field says whether it is `error`.
+  int truncated_tail = o->truncated_tail_is_error ? 1 : 0;
+  v->Choice("truncated_tail", &truncated_tail, {"warn", "error"},
+            "a truncated final event: a warning, or an error (as `--strict`)");
+  o->truncated_tail_is_error = truncated_tail == 1;
+}
+
+std::string ReplayOptionsTable() {
+  ReplayFileOptions defaults;
+  OptionsMarkdownTable table;
+  VisitReplayFileOptions(&table, &defaults);
+  return table.Table();
+}
 
 ReplaySettings ReadReplaySettings(const Config& section,
                                   const std::vector<std::string>& default_stages) {
@@ -12,23 +34,8 @@ ReplaySettings ReadReplaySettings(const Config& section,
     settings.stages.clear();
     for (const Config& item : section.Items("stages")) settings.stages.push_back(item.AsString());
   }
-  ReplayFileOptions& options = settings.file_options;
-  options.progress_every_events =
-      section.GetInt("progress_every_events", options.progress_every_events);
-  if (options.progress_every_events < 1) {
-    section.FailKey("progress_every_events", "must be at least 1");
-  }
-  options.progress_every_log_s =
-      section.GetDouble("progress_every_log_s", options.progress_every_log_s);
-  // Below a microsecond or beyond 30 years a progress step means nothing.
-  if (!(options.progress_every_log_s >= 1e-6 && options.progress_every_log_s <= 1e9)) {
-    section.FailKey("progress_every_log_s", "must be between 1e-6 and 1e9 seconds");
-  }
-  const std::string tail = section.GetString("truncated_tail", "warn");
-  if (tail != "warn" && tail != "error") {
-    section.FailKey("truncated_tail", "expected warn or error, got \"" + tail + "\"");
-  }
-  options.truncated_tail_is_error = tail == "error";
+  ConfigOptionReader reader(section);
+  VisitReplayFileOptions(&reader, &settings.file_options);
   section.CheckUnused();
   return settings;
 }

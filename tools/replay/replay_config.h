@@ -1,15 +1,13 @@
 // The `replay:` section of the stack configuration, read for slammtt-replay (docs/tools.md):
-//   stages                 [segmenter, estimator]  stages that may run (pipeline order; and
-//                                                  smoother with a `smoother:` section)
-//   progress_every_events  20000                   a progress line every this many events...
-//   progress_every_log_s   30                      ...or this many seconds of log time
-//   truncated_tail         warn                    warn | error (as --strict)
+// `stages` (the list of stages that may run, [segmenter, estimator] by default: pipeline order;
+// and smoother with a `smoother:` section) and the settings of VisitReplayFileOptions.
 // Unknown keys and bad values are ConfigErrors naming file, line and key.
 #pragma once
 
 #include <string>
 #include <vector>
 
+#include "common/options_schema.h"
 #include "runtime/config.h"
 #include "tools/replay/log_replay.h"
 
@@ -19,6 +17,12 @@ struct ReplaySettings {
   std::vector<std::string> stages;  // names; checked against the stack's by CreateStackStages()
   ReplayFileOptions file_options;   // progress and truncation settings (no paths, no channel)
 };
+
+// The options schema of the replay's settings: progress_every_events, progress_every_log_s and
+// truncated_tail (warn or error: ReplayFileOptions::truncated_tail_is_error, as --strict). The
+// reader and the table of docs/tools.md (slammtt-replay --options-table) come from it.
+void VisitReplayFileOptions(OptionVisitor* visitor, ReplayFileOptions* options);
+std::string ReplayOptionsTable();
 
 // `default_stages`: the stages when the section names none (StackStageNames()).
 ReplaySettings ReadReplaySettings(const Config& section,

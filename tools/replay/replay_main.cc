@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <iostream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -24,7 +25,8 @@ int Run(int argc, char** argv) {
                  "inputs and every output, byte-identical on every run. Stage timing goes to a "
                  "separate log (OUT.lcm.timing.lcm by default).");
   AddStandardOptions(&cl);
-  cl.AddPositional("IN.lcm", "input log (lcm-logger or slammtt-world)");
+  cl.AddPositional("IN.lcm", "input log (lcm-logger or slammtt-world)",
+                   /*required=*/false);  // not with --options-table
   cl.AddOption("output", "OUT.lcm", "output log (required)", 'o');
   cl.AddOption("timing-log", "FILE", "STAGE_TIMING log (default: OUT.lcm.timing.lcm)");
   cl.AddFlag("no-timing", "write no timing log");
@@ -34,7 +36,15 @@ int Run(int argc, char** argv) {
   cl.AddFlag("smoother",
             "run the smoother as well (slammtt-smoother; as a `smoother:` section does)");
   cl.AddFlag("strict", "treat a truncated final event as an error (default: a warning)");
+  cl.AddFlag("options-table",
+             "print the table of the replay: section's settings (Markdown, docs/tools.md) and "
+             "exit");
   if (!cl.Parse(argc, argv)) return 0;
+  if (cl.Flag("options-table")) {
+    std::cout << ReplayOptionsTable();
+    return 0;
+  }
+  if (!cl.Positional("IN.lcm")) throw UsageError("missing argument IN.lcm (see --help)");
   const std::string input = *cl.Positional("IN.lcm");
   const auto output = cl.Value("output");
   if (!output) throw UsageError("-o OUT.lcm is required");
