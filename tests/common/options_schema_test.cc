@@ -88,5 +88,40 @@ TEST(OptionsSchemaTest, TheRangeCheckNamesTheFirstBadKeyInItsUnit) {
   EXPECT_EQ(choice.problem(), "mode is not one of its choices");
 }
 
+// The first problem in two parts, for a caller that names the key its own way.
+TEST(OptionsSchemaTest, TheRangeCheckGivesTheKeyAndTheDetailApart) {
+  Outer o;
+  o.inner.rate_radps = -1.0;
+  o.range_m = 0.0;
+  OptionRangeCheck check;
+  VisitOuter(&check, &o);
+  EXPECT_EQ(check.problem(), "range_m = 0: must be > 0");
+  EXPECT_EQ(check.problem_key(), "range_m");
+  EXPECT_EQ(check.problem_detail(), "must be > 0, got 0");
+}
+
+struct Named {
+  std::string port = "/dev/ttyUSB0";
+  std::string key_file;
+};
+
+TEST(OptionsSchemaTest, TextOptionsAreDocumentedAndNeverOutOfRange) {
+  Named n;
+  const auto visit = [](OptionVisitor* v, Named* named) {
+    v->String("port", &named->port, "the device");
+    v->String("key_file", &named->key_file, "a file");
+  };
+  OptionsMarkdownTable table;
+  visit(&table, &n);
+  EXPECT_EQ(table.Table(),
+            "| key | default | valid | what |\n"
+            "|---|---|---|---|\n"
+            "| `port` | /dev/ttyUSB0 | text | the device |\n"
+            "| `key_file` | \"\" | text | a file |\n");
+  OptionRangeCheck check;
+  visit(&check, &n);
+  EXPECT_EQ(check.problem(), "");
+}
+
 }  // namespace
 }  // namespace slammtt
