@@ -6,7 +6,8 @@
 #include "drivers/common/driver_clock.h"
 #include "drivers/rplidar/rplidar_driver.h"
 #include "drivers/rplidar/rplidar_driver_config.h"
-#include "runtime/lcm_io.h"
+#include "runtime/event_loop.h"
+#include "runtime/lcm_bus.h"
 #include "runtime/process.h"
 #include "runtime/shutdown.h"
 
@@ -44,17 +45,24 @@ int main(int argc, char** argv) {
       throw std::runtime_error(std::string("rplidar.port / --port: ") + e.what());
     }
 
-    std::unique_ptr<lcm::LCM> lcm = OpenLcm(settings.lcm_url);
-    LcmSink sink(lcm.get());
+    LcmBus bus(settings.lcm_url);
+    SteadyMonotonicClock loop_clock;
+    EventLoop loop(&bus, &loop_clock);
     SystemDriverClock clock;
     rplidar::RplidarDriver driver(
         options,
         [&options] {
           return OpenByteStream(options.port, options.baud, options.connect_timeout_ms);
         },
-        &clock, &sink, settings.channels.Get("laser_scan"), settings.channels.Get("lidar_status"),
+        &clock, &bus, settings.channels.Get("laser_scan"), settings.channels.Get("lidar_status"),
         settings.channels.Get("laser_geometry"));
-    driver.Run([] { return ShutdownRequested(); });
+    // The session reads the device in bounded slices and asks whether to stop between them (at
+    // least every 50 ms): there the process's loop handles what is ready without waiting (the
+    // bus, hooks and timers a process adds), then the shutdown request is checked.
+    driver.Run([&loop] {
+      loop.HandleTimeout(0);
+      return ShutdownRequested();
+    });
     return 0;
   });
 }

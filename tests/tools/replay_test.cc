@@ -32,6 +32,7 @@ class FakeSegmenter : public Stage {
  public:
   std::string Name() const override { return "fake_segmenter"; }
   std::vector<std::string> InputChannels() const override { return {"SCAN"}; }
+  std::vector<std::string> OutputChannels() const override { return {"FEAT"}; }
   void Handle(const std::string&, const void* data, int size, MessageSink& out) override {
     StageTimer timer(Name(), 0);
     const auto* bytes = static_cast<const char*>(data);
@@ -53,6 +54,7 @@ class FakeEstimator : public Stage {
  public:
   std::string Name() const override { return "fake_estimator"; }
   std::vector<std::string> InputChannels() const override { return {"ODOM", "FEAT"}; }
+  std::vector<std::string> OutputChannels() const override { return {"EST"}; }
   void Handle(const std::string& channel, const void* data, int size, MessageSink& out) override {
     StageTimer timer(Name(), 0);
     const auto* bytes = static_cast<const char*>(data);
@@ -67,10 +69,10 @@ class FakeEstimator : public Stage {
   std::string history_;
 };
 
-std::vector<ReplayStage> FakeStack() {
-  std::vector<ReplayStage> stages;
-  stages.push_back(ReplayStage{std::make_unique<FakeSegmenter>(), {"FEAT"}});
-  stages.push_back(ReplayStage{std::make_unique<FakeEstimator>(), {"EST"}});
+std::vector<std::unique_ptr<Stage>> FakeStack() {
+  std::vector<std::unique_ptr<Stage>> stages;
+  stages.push_back(std::make_unique<FakeSegmenter>());
+  stages.push_back(std::make_unique<FakeEstimator>());
   return stages;
 }
 
@@ -149,6 +151,7 @@ class DoubleSegmenter : public Stage {
  public:
   std::string Name() const override { return "double"; }
   std::vector<std::string> InputChannels() const override { return {"SCAN"}; }
+  std::vector<std::string> OutputChannels() const override { return {"FEAT"}; }
   void Handle(const std::string&, const void*, int, MessageSink& out) override {
     out.Publish("FEAT", "x1", 2);
     out.Publish("FEAT", "x2", 2);
@@ -160,9 +163,9 @@ TEST(ReplayTest, ConsumersRunOnceTheProducerHasReturned) {
   // is done with the scan, so all of the segmenter's outputs come first.
   TempDir dir;
   WriteLog(dir.File("in.lcm"), {Event(7, "SCAN", "s")});
-  std::vector<ReplayStage> stages;
-  stages.push_back(ReplayStage{std::make_unique<DoubleSegmenter>(), {"FEAT"}});
-  stages.push_back(ReplayStage{std::make_unique<FakeEstimator>(), {"EST"}});
+  std::vector<std::unique_ptr<Stage>> stages;
+  stages.push_back(std::make_unique<DoubleSegmenter>());
+  stages.push_back(std::make_unique<FakeEstimator>());
   ASSERT_TRUE(ReplayLogFile(dir.File("in.lcm"), dir.File("out.lcm"), std::move(stages),
                             ReplayFileOptions())
                   .error.empty());
