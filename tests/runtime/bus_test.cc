@@ -16,6 +16,7 @@
 #include "runtime/log_reader.h"
 #include "runtime/memory_bus.h"
 #include "runtime/shutdown.h"
+#include "runtime/stage.h"
 #include "slammtt_msgs/odometry_t.hpp"
 #include "slammtt_msgs/velocity_command_t.hpp"
 
@@ -81,8 +82,8 @@ TEST(MemoryBusTest, WhatAHandlerPublishesWaitsForTheNextHandle) {
 TEST(MemoryBusTest, UndecodableMessageIsCountedAndSkipped) {
   MemoryBus bus;
   std::vector<int64_t> utimes;
-  bus.Subscribe<velocity_command_t>("CMD",
-                                    [&](const velocity_command_t& c) { utimes.push_back(c.utime); });
+  bus.Subscribe<velocity_command_t>(
+      "CMD", [&](const velocity_command_t& c) { utimes.push_back(c.utime); });
   bus.PublishMessage("CMD", Command(1, 0.1));
   const char garbage[3] = {1, 2, 3};
   bus.Publish("CMD", garbage, 3);
@@ -104,8 +105,8 @@ TEST(MemoryBusTest, HandlerExceptionIsRethrownAfterTheMessageAndLaterMessagesWai
     first.push_back(c.utime);
     if (c.utime == 2) throw std::runtime_error("link lost");
   });
-  bus.Subscribe<velocity_command_t>("CMD",
-                                    [&](const velocity_command_t& c) { second.push_back(c.utime); });
+  bus.Subscribe<velocity_command_t>(
+      "CMD", [&](const velocity_command_t& c) { second.push_back(c.utime); });
   for (int64_t t = 1; t <= 3; ++t) bus.PublishMessage("CMD", Command(t, 0.1));
   try {
     bus.Handle();
@@ -256,6 +257,41 @@ TEST(EventLoopTest, RunReturnsOnShutdownRequest) {
   loop.Run();
   EXPECT_EQ(ticks, 3);
   ResetShutdown();
+}
+
+// Echoes "IN" to "OUT"; a payload "boom" is a bug that throws.
+class EchoStage : public Stage {
+ public:
+  std::string Name() const override { return "echo"; }
+  std::vector<std::string> InputChannels() const override { return {"IN"}; }
+  std::vector<std::string> OutputChannels() const override { return {"OUT"}; }
+  void Handle(const std::string&, const void* data, int size, MessageSink& out) override {
+    if (std::string(static_cast<const char*>(data), static_cast<size_t>(size)) == "boom") {
+      throw std::runtime_error("bug");
+    }
+    out.Publish("OUT", data, size);
+  }
+};
+
+TEST(LiveStageRunnerTest, StageOutputsGoOnTheBusAndAStageExceptionIsCounted) {
+  MemoryBus bus;
+  FakeClock clock;
+  EventLoop loop(&bus, &clock);
+  EchoStage stage;
+  LiveStageRunner runner(&bus);
+  runner.Add(&stage);
+  std::vector<std::string> out;
+  bus.SubscribeBytes("OUT", [&](const std::string&, const void* data, int size) {
+    out.emplace_back(static_cast<const char*>(data), static_cast<size_t>(size));
+  });
+  bus.Publish("IN", "a", 1);
+  bus.Publish("IN", "boom", 4);
+  bus.Publish("IN", "b", 1);
+  EXPECT_EQ(loop.HandleTimeout(0), 3);  // no exception leaves the loop
+  EXPECT_EQ(loop.HandleTimeout(0), 2);  // the echoes
+  EXPECT_EQ(out, (std::vector<std::string>{"a", "b"}));
+  EXPECT_EQ(runner.handler_errors(), 1);
+  EXPECT_EQ(bus.handler_exceptions(), 0);
 }
 
 TEST(LogBusTest, ReplaysALogThroughSubscriptionsAndWritesStampedOutputs) {

@@ -6,8 +6,8 @@
 #include <stdexcept>
 
 #include "runtime/bus.h"
-#include "runtime/lcm_io.h"
 #include "runtime/log.h"
+#include "runtime/log_bus.h"
 #include "runtime/shutdown.h"
 #include "slammtt_msgs/velocity_command_t.hpp"
 
@@ -33,18 +33,18 @@ WorldRunSummary WriteWorldLog(WorldSimulator* world, const WorldChannels& channe
   const SteadyClock::time_point start = SteadyClock::now();
   WorldRunSummary summary;
   const Scenario& scenario = world->scenario();
-  LogWriter log(path);
+  LogBus log("", path);  // the bus with a log file as its output
   while (!world->Done()) {
     if (ShutdownRequested()) {
       summary.interrupted = true;
       summary.wall_s = SecondsSince(start);
-      return summary;  // the writer's destructor removes the partial log
+      return summary;  // the bus's destructor removes the partial log
     }
     const WorldEvent event = world->Next();
     for (const EncodedMessage& message :
          EncodeWorldEvent(event, scenario, channels, scenario.start_utime)) {
-      log.Write(message.utime, message.channel, message.data.data(),
-                static_cast<int>(message.data.size()));
+      log.SetTimestamp(message.utime);
+      log.Publish(message.channel, message.data.data(), static_cast<int>(message.data.size()));
       Count(message, &summary);
     }
     summary.simulated_s = static_cast<double>(event.time_us) * 1e-6;

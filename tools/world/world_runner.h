@@ -25,8 +25,8 @@ struct WorldRunSummary {
   bool interrupted = false;  // shutdown was requested before the end
 };
 
-// Writes every event into the log at `path` (through LogWriter: the file appears only when
-// complete). On an error or a shutdown request nothing is left at `path` nor at "path.partial":
+// Publishes every event into the log at `path` (a LogBus with that output: the file appears
+// only when complete). On an error or a shutdown request nothing is left at `path` nor at "path.partial":
 // errors throw; a shutdown returns with interrupted = true.
 WorldRunSummary WriteWorldLog(WorldSimulator* world, const WorldChannels& channels,
                               const std::string& path);
