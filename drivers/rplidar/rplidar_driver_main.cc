@@ -4,6 +4,7 @@
 
 #include "drivers/common/byte_stream.h"
 #include "drivers/common/driver_clock.h"
+#include "drivers/common/loop_waits.h"
 #include "drivers/rplidar/rplidar_driver.h"
 #include "drivers/rplidar/rplidar_driver_config.h"
 #include "runtime/event_loop.h"
@@ -48,21 +49,20 @@ int main(int argc, char** argv) {
     LcmBus bus(settings.lcm_url);
     SteadyMonotonicClock loop_clock;
     EventLoop loop(&bus, &loop_clock);
-    SystemDriverClock clock;
+    // The session is written as blocking calls with bounded waits: each of its waits (for the
+    // link, or a sleep) is a turn of the loop (drivers/common/loop_waits.h), so the process's
+    // one wait is the loop's.
+    SystemDriverClock system_clock;
+    LoopWaitingDriverClock clock(&system_clock, &loop);
     rplidar::RplidarDriver driver(
         options,
-        [&options] {
-          return OpenByteStream(options.port, options.baud, options.connect_timeout_ms);
+        [&options, &loop] {
+          return std::make_unique<LoopWaitingByteStream>(
+              OpenByteStream(options.port, options.baud, options.connect_timeout_ms), &loop);
         },
         &clock, &bus, settings.channels.Get("laser_scan"), settings.channels.Get("lidar_status"),
         settings.channels.Get("laser_geometry"));
-    // The session reads the device in bounded slices and asks whether to stop between them (at
-    // least every 50 ms): there the process's loop handles what is ready without waiting (the
-    // bus, hooks and timers a process adds), then the shutdown request is checked.
-    driver.Run([&loop] {
-      loop.HandleTimeout(0);
-      return ShutdownRequested();
-    });
+    driver.Run([] { return ShutdownRequested(); });
     return 0;
   });
 }
