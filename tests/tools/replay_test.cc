@@ -395,6 +395,33 @@ TEST(ReplayTest, AThrowingStageIsCountedAndTheReplayGoesOn) {
   EXPECT_EQ(ReadLog(dir.File("out.lcm")).size(), 5u);
 }
 
+// Publishes its declared FEAT and an undeclared EXTRA.
+class UndeclaringSegmenter : public Stage {
+ public:
+  std::string Name() const override { return "undeclaring"; }
+  std::vector<std::string> InputChannels() const override { return {"SCAN"}; }
+  std::vector<std::string> OutputChannels() const override { return {"FEAT"}; }
+  void Handle(const std::string&, const void*, int, MessageSink& out) override {
+    out.Publish("FEAT", "f", 1);
+    out.Publish("EXTRA", "e", 1);
+  }
+};
+
+TEST(ReplayTest, AnUndeclaredOutputChannelIsAStageErrorAndIsDropped) {
+  TempDir dir;
+  WriteLog(dir.File("in.lcm"), {Event(1, "SCAN", "s"), Event(2, "EXTRA", "recorded")});
+  std::vector<std::unique_ptr<Stage>> stages;
+  stages.push_back(std::make_unique<UndeclaringSegmenter>());
+  const ReplayFileResult r =
+      ReplayLogFile(dir.File("in.lcm"), dir.File("out.lcm"), std::move(stages), Options(dir));
+  ASSERT_TRUE(r.error.empty());
+  EXPECT_EQ(r.stages[0].errors, 1);
+  EXPECT_EQ(r.stages[0].messages_published, 1);
+  std::vector<std::string> lines;
+  for (const LogEvent& e : ReadLog(dir.File("out.lcm"))) lines.push_back(e.channel + " " + Text(e));
+  EXPECT_EQ(lines, (std::vector<std::string>{"SCAN s", "FEAT f", "EXTRA recorded"}));
+}
+
 TEST(ReplayTest, RefusesToOverwriteItsInput) {
   TempDir dir;
   WriteLog(dir.File("in.lcm"), LiveLikeLog());

@@ -59,6 +59,12 @@ class LogReplay::CascadeSink : public MessageSink {
       if (timing_) timing_(timestamp_us_, channel, data, size);
       return;
     }
+    if (replay_->outputs_[stage_index_].count(channel) == 0) {
+      // The replay replaces exactly the declared channels of its input: an undeclared one would
+      // appear twice (recorded and recomputed). A bug of the stage: counted, reported, dropped.
+      throw std::logic_error("published on " + channel +
+                             ", which its OutputChannels() does not declare");
+    }
     ++stats.messages_published;
     output_(timestamp_us_, channel, data, size);
     // Downstream stages get it once this stage has returned (DeliverPending), as a separate
@@ -90,6 +96,8 @@ LogReplay::LogReplay(std::vector<std::unique_ptr<Stage>> stages, std::string tim
     : stages_(std::move(stages)), timing_channel_(std::move(timing_channel)) {
   for (const std::unique_ptr<Stage>& s : stages_) {
     if (!s) throw std::invalid_argument("replay: null stage");
+    const std::vector<std::string> outputs = s->OutputChannels();
+    outputs_.emplace_back(outputs.begin(), outputs.end());
     StageReplayStats stats;
     stats.name = s->Name();
     stats_.push_back(stats);

@@ -20,7 +20,8 @@
 //   that the main output is byte-identical run after run. Input STAGE_TIMING events are dropped
 //   whenever a stage runs (they describe another run).
 // - A stage that throws (a bug: stages report bad messages themselves) is counted and reported
-//   with the event number, and the replay goes on, as LiveStageRunner does live.
+//   with the event number, and the replay goes on, as LiveStageRunner does live. So is a stage
+//   that publishes on a channel its OutputChannels() does not declare (the message is dropped).
 #pragma once
 
 #include <cstdint>
@@ -74,6 +75,7 @@ class LogReplay {
 
   std::vector<std::unique_ptr<Stage>> stages_;
   std::vector<StageReplayStats> stats_;
+  std::vector<std::set<std::string>> outputs_;  // each stage's OutputChannels()
   std::string timing_channel_;
   std::set<std::string> produced_;
   bool planned_ = false;
