@@ -69,7 +69,8 @@ int Bus::Handle() {
 int Bus::HandleTimeout(int timeout_ms) {
   if (timeout_ms < 0) throw std::invalid_argument("Bus::HandleTimeout: negative timeout");
   if (!HasWaiting()) {
-    pollfd fds[2] = {{ShutdownFd(), POLLIN, 0}, {WaitDescriptor(), POLLIN, 0}};
+    pollfd fds[2] = {{ShutdownFd(), POLLIN, 0},
+                     {HasSubscriptions() ? WaitDescriptor() : -1, POLLIN, 0}};
     const nfds_t count = fds[1].fd >= 0 ? 2 : 1;
     if (poll(fds, count, timeout_ms) < 0 && errno != EINTR) {
       throw std::runtime_error(std::string("poll failed: ") + std::strerror(errno));

@@ -7,7 +7,7 @@
 //
 // Handlers run inside Handle()/HandleTimeout(), on the caller's thread, in arrival order; for
 // one message, in the order they subscribed. A handler that throws does not unwind through the
-// backend (LCM's C dispatch): it is kept, the message's other subscriptions still get the
+// backend (LCM's C dispatch): its exception is kept, the message's other subscriptions get the
 // message, and Handle()/HandleTimeout() rethrows it before delivering any later message (those
 // wait for the next Handle()). A process that must go on after a handler fails catches in the
 // handler (LiveStageRunner does).
@@ -73,8 +73,10 @@ class Bus : public MessageSink {
   int HandleTimeout(int timeout_ms);
 
   // A descriptor that poll() reports readable when messages wait (LCM's), or -1 when the
-  // backend has none: then HasWaiting() says it.
+  // backend has none: then HasWaiting() says it. Waited on only once something is subscribed
+  // (LCM starts its receive thread when asked for it: a process that only publishes has none).
   virtual int WaitDescriptor() const { return -1; }
+  bool HasSubscriptions() const { return !receiving_.empty(); }
   // True when messages wait that no descriptor announces (the in-memory queue, a log source
   // with events left): a loop then does not block.
   virtual bool HasWaiting() const { return false; }

@@ -79,7 +79,7 @@ int EventLoop::HandleTimeoutUs(int64_t timeout_us) {
   std::vector<pollfd> fds;
   fds.reserve(2 + fd_hooks_.size());
   fds.push_back({ShutdownFd(), POLLIN, 0});
-  fds.push_back({bus_->WaitDescriptor(), POLLIN, 0});
+  fds.push_back({bus_->HasSubscriptions() ? bus_->WaitDescriptor() : -1, POLLIN, 0});
   std::vector<int> hook_ids;
   for (const FdHook& hook : fd_hooks_) {
     fds.push_back({hook.current_fd(), POLLIN, 0});

@@ -42,6 +42,7 @@ void LcmBus::OnMessage(const lcm::ReceiveBuffer* buffer, const std::string& chan
 int LcmBus::DeliverWaiting() {
   // lcm::LCM::handle() blocks until a message is there: ask poll() first, and take everything
   // that waits (one message per handle()).
+  if (!HasSubscriptions()) return 0;  // and LCM's receive thread is never started
   int delivered = 0;
   pollfd fd = {lcm_->getFileno(), POLLIN, 0};
   while (true) {
