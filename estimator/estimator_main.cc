@@ -7,7 +7,8 @@
 
 #include "estimator/estimator_stage.h"
 #include "runtime/command_line.h"
-#include "runtime/lcm_io.h"
+#include "runtime/event_loop.h"
+#include "runtime/lcm_bus.h"
 #include "runtime/log.h"
 #include "runtime/process.h"
 #include "runtime/stage.h"
@@ -32,14 +33,16 @@ int main(int argc, char** argv) {
     }
     const slammtt::ProcessSettings settings = slammtt::LoadProcessSettings(command_line);
     slammtt::EstimatorStage stage(settings);
-    const std::unique_ptr<lcm::LCM> lcm = slammtt::OpenLcm(settings.lcm_url);
-    slammtt::LiveStageRunner runner(lcm.get());
+    slammtt::LcmBus bus(settings.lcm_url);
+    slammtt::SteadyMonotonicClock clock;  // no timer reads it: stages run on message time
+    slammtt::EventLoop loop(&bus, &clock);
+    slammtt::LiveStageRunner runner(&bus);
     runner.Add(&stage);
     slammtt::LogInfo() << "estimating from " << settings.channels.Get("odometry") << " and "
                        << settings.channels.Get("features") << " on " << settings.lcm_url
                        << " (mode "
                        << slammtt::AssociationModeName(stage.estimator().options().mode) << ")";
-    runner.Run();
+    loop.Run();
     const slammtt::EstimatorCounters& n = stage.estimator().counters();
     slammtt::LogInfo() << "stopped: " << n.scans_processed << " scans, " << n.odometry_processed
                        << " odometry messages, " << n.features_rejected << " features rejected, "

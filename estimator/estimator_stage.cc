@@ -320,6 +320,10 @@ std::vector<std::string> EstimatorStage::InputChannels() const {
   return {odometry_channel_, features_channel_, laser_geometry_channel_};
 }
 
+std::vector<std::string> EstimatorStage::OutputChannels() const {
+  return {pose_channel_, map_channel_, tracks_channel_, smoother_input_channel_, status_channel_};
+}
+
 void EstimatorStage::Handle(const std::string& channel, const void* data, int size,
                             MessageSink& out) {
   if (channel == odometry_channel_) {

@@ -106,6 +106,7 @@ class EstimatorStage : public Stage {
 
   std::string Name() const override { return "estimator"; }
   std::vector<std::string> InputChannels() const override;
+  std::vector<std::string> OutputChannels() const override;
   void Handle(const std::string& channel, const void* data, int size, MessageSink& out) override;
 
   const Estimator& estimator() const { return estimator_; }

@@ -4,7 +4,8 @@
 
 #include "perception/segmenter_stage.h"
 #include "runtime/command_line.h"
-#include "runtime/lcm_io.h"
+#include "runtime/event_loop.h"
+#include "runtime/lcm_bus.h"
 #include "runtime/log.h"
 #include "runtime/process.h"
 #include "runtime/stage.h"
@@ -27,14 +28,16 @@ int main(int argc, char** argv) {
     }
     const slammtt::ProcessSettings settings = slammtt::LoadProcessSettings(command_line);
     slammtt::SegmenterStage stage(settings);
-    const std::unique_ptr<lcm::LCM> lcm = slammtt::OpenLcm(settings.lcm_url);
-    slammtt::LiveStageRunner runner(lcm.get());
+    slammtt::LcmBus bus(settings.lcm_url);
+    slammtt::SteadyMonotonicClock clock;  // no timer reads it: stages run on message time
+    slammtt::EventLoop loop(&bus, &clock);
+    slammtt::LiveStageRunner runner(&bus);
     runner.Add(&stage);
     slammtt::LogInfo() << "segmenting " << settings.channels.Get("laser_scan") << " into "
                        << settings.channels.Get("features") << " on " << settings.lcm_url
                        << " (centre rule "
                        << slammtt::CentreRuleName(stage.segmenter().options().centre_rule) << ")";
-    runner.Run();
+    loop.Run();
     const slammtt::SegmenterStageCounters& n = stage.counters();
     slammtt::LogInfo() << "stopped: " << n.scans_handled << " scans, " << n.features_published
                        << " features, " << n.scans_rejected << " messages rejected, "

@@ -66,6 +66,7 @@ class SegmenterStage : public Stage {
 
   std::string Name() const override { return "segmenter"; }
   std::vector<std::string> InputChannels() const override { return {laser_scan_channel_}; }
+  std::vector<std::string> OutputChannels() const override { return {features_channel_}; }
   void Handle(const std::string& channel, const void* data, int size, MessageSink& out) override;
 
   const SegmenterStageCounters& counters() const { return counters_; }

@@ -62,15 +62,6 @@ std::unique_ptr<lcm::LCM> OpenLcm(const std::string& url) {
   return lcm;
 }
 
-void LcmSink::Publish(const std::string& channel, const void* data, int size) {
-  if (lcm_->publish(channel, data, static_cast<unsigned int>(size)) == 0) return;
-  ++failed_publishes_;
-  if (IsReportable(failed_publishes_)) {
-    LogWarning() << "LCM publish on " << channel << " failed (" << failed_publishes_
-                 << " failed publishes so far); the message is lost";
-  }
-}
-
 LogWriter::LogWriter(const std::string& path)
     : path_(path), file_(std::make_unique<OutputFile>(path)) {}
 
@@ -112,23 +103,6 @@ void LogWriter::Commit() {
   if (committed_) return;
   file_->Commit();
   committed_ = true;
-}
-
-LogReader::LogReader(const std::string& path) {
-  file_ = std::make_unique<lcm::LogFile>(path, "r");
-  if (!file_->good()) throw std::runtime_error(path + ": cannot open log file");
-}
-
-std::optional<LogEvent> LogReader::Next() {
-  const lcm::LogEvent* event = file_->readNextEvent();
-  if (event == nullptr) return std::nullopt;
-  LogEvent out;
-  out.eventnum = event->eventnum;
-  out.timestamp_us = event->timestamp;
-  out.channel = event->channel;
-  const auto* bytes = static_cast<const uint8_t*>(event->data);
-  out.data.assign(bytes, bytes + event->datalen);
-  return out;
 }
 
 }  // namespace slammtt

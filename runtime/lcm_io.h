@@ -1,6 +1,6 @@
 // LCM plumbing shared by every process and tool: the bus URL, encoding, a sink that stages
-// publish into (LCM live, a log file in replay), and log files written so that an error never
-// leaves a partial log behind.
+// publish into (the bus live, bus.h; a log file in replay), and log files written so that an
+// error never leaves a partial log behind (log_reader.h reads them).
 #pragma once
 
 #include <lcm/lcm-cpp.hpp>
@@ -80,21 +80,6 @@ class MessageSink {
   }
 };
 
-// Publishes on a live bus.
-// Publishes on a live bus. A publish that fails (a transient UDP send error, a full socket
-// buffer) loses that one message: it is counted and reported on the 1st, 10th, 100th, ...
-// failure, and the process goes on (a driver must not die and stop its device over it).
-class LcmSink : public MessageSink {
- public:
-  explicit LcmSink(lcm::LCM* lcm) : lcm_(lcm) {}
-  void Publish(const std::string& channel, const void* data, int size) override;
-  int64_t failed_publishes() const { return failed_publishes_; }
-
- private:
-  lcm::LCM* lcm_;
-  int64_t failed_publishes_ = 0;
-};
-
 // Writes an LCM event log (lcm-logger's format, playable by lcm-logplayer) as an OutputFile
 // (runtime/output_file.h): the log appears under `path` only when Commit() succeeds; until
 // then it is an unnamed file in the same directory (or an exclusively created
@@ -139,26 +124,6 @@ class LogWriter : public MessageSink {
   int64_t timestamp_us_ = 0;
   int64_t events_written_ = 0;
   bool committed_ = false;
-};
-
-// One event of a log.
-struct LogEvent {
-  int64_t eventnum = 0;
-  int64_t timestamp_us = 0;
-  std::string channel;
-  std::vector<uint8_t> data;
-};
-
-// Reads an LCM event log in file order.
-class LogReader {
- public:
-  // Throws std::runtime_error naming the path when it cannot be opened.
-  explicit LogReader(const std::string& path);
-  // The next event, or nullopt at the end of the log (a truncated last event also ends it).
-  std::optional<LogEvent> Next();
-
- private:
-  std::unique_ptr<lcm::LogFile> file_;
 };
 
 }  // namespace slammtt

@@ -1,10 +1,8 @@
 #include "runtime/stage.h"
 
-#include <cerrno>
 #include <exception>
 
 #include "runtime/log.h"
-#include "runtime/shutdown.h"
 #include "slammtt_msgs/stage_timing_t.hpp"
 
 namespace slammtt {
@@ -46,7 +44,7 @@ slammtt_msgs::stage_timing_t StageTimer::Finish() const {
   return msg;
 }
 
-LiveStageRunner::LiveStageRunner(lcm::LCM* lcm) : lcm_(lcm), sink_(lcm) {}
+LiveStageRunner::LiveStageRunner(Bus* bus) : bus_(bus) {}
 
 void LiveStageRunner::Add(Stage* stage) {
   stages_.push_back(stage);
@@ -55,32 +53,22 @@ void LiveStageRunner::Add(Stage* stage) {
     for (const std::string& c : subscribed_) already = already || (c == channel);
     if (already) continue;  // one subscription per channel; the handler serves every stage
     subscribed_.push_back(channel);
-    lcm_->subscribeFunction(
-        channel,
-        +[](const lcm::ReceiveBuffer* rbuf, const std::string& ch, LiveStageRunner* self) {
-          for (Stage* s : self->stages_) {
-            bool wants = false;
-            for (const std::string& c : s->InputChannels()) wants = wants || (c == ch);
-            if (!wants) continue;
-            try {
-              s->Handle(ch, rbuf->data, static_cast<int>(rbuf->data_size), self->sink_);
-            } catch (const std::exception& e) {
-              ++self->handler_errors_;
-              LogError() << s->Name() << ": message on " << ch << " failed: " << e.what();
-            }
-          }
-        },
-        this);
+    bus_->SubscribeBytes(channel, [this](const std::string& ch, const void* data, int size) {
+      HandleMessage(ch, data, size);
+    });
   }
 }
 
-void LiveStageRunner::Run(int poll_ms) {
-  while (!ShutdownRequested()) {
-    errno = 0;
-    const int status = lcm_->handleTimeout(poll_ms);
-    // A signal interrupts the wait (EINTR): not an error, whether or not it asks for shutdown.
-    if (status < 0 && errno != EINTR && !ShutdownRequested()) {
-      throw std::runtime_error("LCM receive failed");
+void LiveStageRunner::HandleMessage(const std::string& channel, const void* data, int size) {
+  for (Stage* s : stages_) {
+    bool wants = false;
+    for (const std::string& c : s->InputChannels()) wants = wants || (c == channel);
+    if (!wants) continue;
+    try {
+      s->Handle(channel, data, size, *bus_);
+    } catch (const std::exception& e) {
+      ++handler_errors_;
+      LogError() << s->Name() << ": message on " << channel << " failed: " << e.what();
     }
   }
 }

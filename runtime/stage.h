@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "runtime/bus.h"
 #include "runtime/lcm_io.h"
 
 namespace slammtt_msgs {
@@ -26,6 +27,9 @@ class Stage {
   virtual std::string Name() const = 0;
   // Channels this stage consumes.
   virtual std::vector<std::string> InputChannels() const = 0;
+  // Channels this stage publishes, except STAGE_TIMING (which every stage may publish and
+  // replay keeps apart): replay replaces these channels of its input with the recomputed ones.
+  virtual std::vector<std::string> OutputChannels() const = 0;
   // Handles one message. A malformed or unusable message is counted and reported by the stage
   // (a status message or a log line), never thrown out of here: one bad message must not stop
   // a live process or a replay.
@@ -60,20 +64,20 @@ class StageTimer {
   std::vector<std::pair<std::string, int64_t>> counters_;
 };
 
-// Runs stages on a live bus until shutdown is requested: subscribes every input channel, hands
-// each message to the stage and publishes its outputs on the same bus. Exceptions escaping a
-// stage (bugs) are logged with the channel and counted, and the loop goes on.
+// Runs stages on a bus (LCM live; any Bus in tests): subscribes every input channel, hands each
+// message to the stages that consume it and publishes their outputs on the same bus. An
+// exception escaping a stage (a bug) is logged with the channel and counted, and the process
+// goes on. The process's EventLoop (event_loop.h) delivers the messages.
 class LiveStageRunner {
  public:
-  explicit LiveStageRunner(lcm::LCM* lcm);
+  explicit LiveStageRunner(Bus* bus);
   void Add(Stage* stage);
-  // Returns when ShutdownRequested() (polls every `poll_ms`). Throws if LCM fails.
-  void Run(int poll_ms = 100);
   int64_t handler_errors() const { return handler_errors_; }
 
  private:
-  lcm::LCM* lcm_;
-  LcmSink sink_;
+  void HandleMessage(const std::string& channel, const void* data, int size);
+
+  Bus* bus_;
   std::vector<Stage*> stages_;
   std::vector<std::string> subscribed_;
   int64_t handler_errors_ = 0;

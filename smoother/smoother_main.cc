@@ -4,7 +4,8 @@
 #include <iostream>
 
 #include "runtime/command_line.h"
-#include "runtime/lcm_io.h"
+#include "runtime/event_loop.h"
+#include "runtime/lcm_bus.h"
 #include "runtime/log.h"
 #include "runtime/process.h"
 #include "runtime/stage.h"
@@ -28,12 +29,14 @@ int main(int argc, char** argv) {
     }
     const slammtt::ProcessSettings settings = slammtt::LoadProcessSettings(command_line);
     slammtt::SmootherStage stage(settings);
-    const std::unique_ptr<lcm::LCM> lcm = slammtt::OpenLcm(settings.lcm_url);
-    slammtt::LiveStageRunner runner(lcm.get());
+    slammtt::LcmBus bus(settings.lcm_url);
+    slammtt::SteadyMonotonicClock clock;  // no timer reads it: stages run on message time
+    slammtt::EventLoop loop(&bus, &clock);
+    slammtt::LiveStageRunner runner(&bus);
     runner.Add(&stage);
     slammtt::LogInfo() << "smoothing from " << settings.channels.Get("smoother_input") << " on "
                        << settings.lcm_url;
-    runner.Run();
+    loop.Run();
     const slammtt::KeyframeSmootherCounters& n = stage.smoother().counters();
     slammtt::LogInfo() << "stopped: " << n.scans << " scans, " << n.keyframes << " keyframes, "
                        << n.observations_used << " observations used, " << n.landmarks_removed

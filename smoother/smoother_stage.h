@@ -53,6 +53,7 @@ class SmootherStage : public Stage {
 
   std::string Name() const override { return "smoother"; }
   std::vector<std::string> InputChannels() const override { return {input_channel_}; }
+  std::vector<std::string> OutputChannels() const override { return {pose_channel_, map_channel_}; }
   void Handle(const std::string& channel, const void* data, int size, MessageSink& out) override;
 
   const KeyframeSmoother& smoother() const { return smoother_; }

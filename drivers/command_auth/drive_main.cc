@@ -1,7 +1,5 @@
 // slammtt-drive: a minimal teleop for a base station or a test. Publishes signed
 // VELOCITY_COMMAND (command_signature.h) at a fixed rate for a while, then a stop.
-#include <lcm/lcm-cpp.hpp>
-
 #include <cmath>
 #include <memory>
 #include <string>
@@ -10,7 +8,7 @@
 #include "drivers/command_auth/velocity_sender.h"
 #include "drivers/common/driver_clock.h"
 #include "runtime/command_line.h"
-#include "runtime/lcm_io.h"
+#include "runtime/lcm_bus.h"
 #include "runtime/log.h"
 #include "runtime/process.h"
 #include "runtime/shutdown.h"
@@ -41,9 +39,9 @@ int Run(int argc, char** argv) {
   const int64_t period_us = CommandPeriodUs(cl);
 
   const CommandKey key = LoadCommandKeyFile(*key_path);
-  std::unique_ptr<lcm::LCM> lcm = OpenLcm(settings.lcm_url);
+  LcmBus bus(settings.lcm_url);
   SystemDriverClock clock;
-  SignedVelocitySender sender(key, settings.channels.Get("velocity_command"), lcm.get(), &clock);
+  SignedVelocitySender sender(key, settings.channels.Get("velocity_command"), &bus, &clock);
   const int64_t start_us = clock.NowMonotonicUs();
   const int64_t end_us = start_us + static_cast<int64_t>(std::llround(duration_s * 1e6));
   for (int64_t next_us = start_us; next_us < end_us && !ShutdownRequested(); next_us += period_us) {

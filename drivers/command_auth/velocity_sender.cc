@@ -16,8 +16,8 @@ int64_t CommandPeriodUs(const CommandLine& cl) {
 }
 
 SignedVelocitySender::SignedVelocitySender(const CommandKey& key, const std::string& channel,
-                                           lcm::LCM* lcm, DriverClock* clock)
-    : channel_(channel), signer_(key, channel, NewSenderId()), lcm_(lcm), clock_(clock) {}
+                                           Bus* bus, DriverClock* clock)
+    : channel_(channel), signer_(key, channel, NewSenderId()), bus_(bus), clock_(clock) {}
 
 void SignedVelocitySender::Send(double linear_mps, double angular_radps) {
   slammtt_msgs::velocity_command_t command{};
@@ -25,7 +25,9 @@ void SignedVelocitySender::Send(double linear_mps, double angular_radps) {
   command.linear_mps = linear_mps;
   command.angular_radps = angular_radps;
   signer_.Sign(&command);
-  if (lcm_->publish(channel_, &command) != 0) throw std::runtime_error("LCM publish failed");
+  const int64_t failed_before = bus_->failed_publishes();
+  bus_->PublishMessage(channel_, command);
+  if (bus_->failed_publishes() != failed_before) throw std::runtime_error("LCM publish failed");
 }
 
 }  // namespace slammtt

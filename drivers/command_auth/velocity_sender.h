@@ -3,14 +3,13 @@
 // slammtt-teleop, so that both send exactly what the base driver checks.
 #pragma once
 
-#include <lcm/lcm-cpp.hpp>
-
 #include <cstdint>
 #include <string>
 
 #include "drivers/command_auth/command_key.h"
 #include "drivers/command_auth/command_signature.h"
 #include "drivers/common/driver_clock.h"
+#include "runtime/bus.h"
 #include "runtime/command_line.h"
 
 namespace slammtt {
@@ -26,10 +25,10 @@ int64_t CommandPeriodUs(const CommandLine& cl);
 
 class SignedVelocitySender {
  public:
-  // `lcm` and `clock` outlive the sender; the sender id is drawn from the system (NewSenderId).
-  SignedVelocitySender(const CommandKey& key, const std::string& channel, lcm::LCM* lcm,
+  // `bus` and `clock` outlive the sender; the sender id is drawn from the system (NewSenderId).
+  SignedVelocitySender(const CommandKey& key, const std::string& channel, Bus* bus,
                        DriverClock* clock);
-  // One signed command stamped now. std::runtime_error when LCM cannot publish.
+  // One signed command stamped now. std::runtime_error when the bus cannot publish it.
   void Send(double linear_mps, double angular_radps);
   int64_t sent() const { return signer_.last_counter(); }
   const std::string& channel() const { return channel_; }
@@ -37,7 +36,7 @@ class SignedVelocitySender {
  private:
   std::string channel_;
   VelocityCommandSigner signer_;
-  lcm::LCM* lcm_;
+  Bus* bus_;
   DriverClock* clock_;
 };
 

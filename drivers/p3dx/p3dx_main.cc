@@ -1,9 +1,5 @@
 // slammtt-p3dx: the Pioneer P3-DX base driver (see p3dx_driver.h and docs/p3dx.md).
-#include <poll.h>
-
 #include <algorithm>
-#include <cerrno>
-#include <cstring>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -15,7 +11,8 @@
 #include "drivers/command_auth/command_key.h"
 #include "drivers/p3dx/p3dx_driver.h"
 #include "drivers/p3dx/p3dx_driver_config.h"
-#include "runtime/lcm_io.h"
+#include "runtime/event_loop.h"
+#include "runtime/lcm_bus.h"
 #include "runtime/log.h"
 #include "runtime/process.h"
 #include "runtime/shutdown.h"
@@ -54,8 +51,9 @@ int Main(int argc, char** argv) {
   std::optional<CommandKey> key;
   if (!options.command_key_file.empty()) key = LoadCommandKeyFile(options.command_key_file);
 
-  std::unique_ptr<lcm::LCM> lcm = OpenLcm(settings.lcm_url);
-  LcmSink sink(lcm.get());
+  LcmBus bus(settings.lcm_url);
+  SteadyMonotonicClock loop_clock;
+  EventLoop loop(&bus, &loop_clock);
   SystemDriverClock clock;
   P3dxDriverChannels channels;
   channels.odometry = settings.channels.Get("odometry");
@@ -63,34 +61,19 @@ int Main(int argc, char** argv) {
   channels.velocity_command = settings.channels.Get("velocity_command");
   P3dxDriver driver(
       options, [](const std::string& endpoint, int baud) { return OpenByteStream(endpoint, baud); },
-      &clock, &sink, channels);
+      &clock, &bus, channels);
   if (key) driver.SetCommandKey(*key);
 
-  // An exception must not unwind through LCM's C dispatch: the handler keeps the first one and
-  // the loop rethrows it once handle() has returned (the driver's destructor stops the robot).
-  struct Context {
-    P3dxDriver* driver;
-    int64_t undecodable = 0;
-    std::string error;
-  } context{&driver, 0, {}};
-  lcm->subscribeFunction(
-      settings.channels.Get("velocity_command"),
-      +[](const lcm::ReceiveBuffer* buffer, const std::string& channel, Context* c) {
-        slammtt_msgs::velocity_command_t command;
-        if (!Decode(buffer->data, static_cast<int>(buffer->data_size), &command)) {
-          if (IsReportable(++c->undecodable)) {
-            LogWarning() << channel << ": undecodable message skipped (" << c->undecodable
-                         << " so far)";
-          }
-          return;
-        }
-        try {
-          c->driver->ReceiveVelocityCommand(command);
-        } catch (const std::exception& e) {
-          if (c->error.empty()) c->error = e.what();
-        }
-      },
-      &context);
+  // A command is sent the moment it arrives. An exception of the driver is rethrown by the loop
+  // once LCM's dispatch has returned (bus.h), and ends the process (the driver's destructor
+  // stops the robot); an undecodable message is counted and skipped by the bus.
+  bus.Subscribe<slammtt_msgs::velocity_command_t>(
+      channels.velocity_command,
+      [&driver](const slammtt_msgs::velocity_command_t& command) {
+        driver.ReceiveVelocityCommand(command);
+      });
+  // A SIP is handled the moment its bytes arrive (the link's descriptor changes as it reopens).
+  loop.AddFdHook([&driver] { return driver.LinkPollDescriptor(); }, [&driver] { driver.Poll(0); });
   LogInfo() << "driving " << options.port << " (max " << options.max_linear_mps << " m/s, "
             << options.max_angular_radps << " rad/s, command timeout "
             << options.command_timeout_s << " s)";
@@ -107,31 +90,15 @@ int Main(int argc, char** argv) {
                     "and the robot does not move (docs/robot.md, \"Who can drive the robot\")";
   }
 
-  // One wait for everything: the bus (VELOCITY_COMMAND is sent the moment it arrives), the link
-  // (a SIP is handled the moment its bytes arrive), the shutdown request, and the driver's next
-  // timer. Then Poll(0) does what is due and reads only what is there.
+  // One wait for everything (the bus, the link, the shutdown request, the driver's next timer);
+  // then Poll(0) does what is due and reads only what is there.
   while (!ShutdownRequested()) {
     driver.Poll(0);
-    pollfd fds[3] = {{lcm->getFileno(), POLLIN, 0}, {ShutdownFd(), POLLIN, 0}, {-1, POLLIN, 0}};
-    nfds_t count = 2;
     int wait_ms = std::min(driver.MillisecondsUntilDue(), kMaxWaitMs);
-    if (const int link_fd = driver.LinkPollDescriptor(); link_fd >= 0) {
-      fds[2].fd = link_fd;
-      count = 3;
-    } else if (driver.link_open()) {
+    if (driver.LinkPollDescriptor() < 0 && driver.link_open()) {
       wait_ms = std::min(wait_ms, kLinkWithoutDescriptorWaitMs);
     }
-    const int ready = poll(fds, count, wait_ms);
-    if (ready < 0 && errno != EINTR) {
-      throw std::runtime_error(std::string("poll failed: ") + std::strerror(errno));
-    }
-    if (ready > 0 && (fds[0].revents & POLLIN) != 0) {
-      // Everything that is waiting, without blocking.
-      do {
-        if (lcm->handle() != 0) throw std::runtime_error("LCM failed while receiving");
-        if (!context.error.empty()) throw std::runtime_error(context.error);
-      } while (poll(fds, 1, 0) > 0 && (fds[0].revents & POLLIN) != 0);
-    }
+    loop.HandleTimeout(std::max(wait_ms, 0));
   }
   driver.Shutdown();
   return 0;

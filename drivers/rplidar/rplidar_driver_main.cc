@@ -5,9 +5,11 @@
 
 #include "drivers/common/byte_stream.h"
 #include "drivers/common/driver_clock.h"
+#include "drivers/common/loop_waits.h"
 #include "drivers/rplidar/rplidar_driver.h"
 #include "drivers/rplidar/rplidar_driver_config.h"
-#include "runtime/lcm_io.h"
+#include "runtime/event_loop.h"
+#include "runtime/lcm_bus.h"
 #include "runtime/process.h"
 #include "runtime/shutdown.h"
 
@@ -34,15 +36,21 @@ int main(int argc, char** argv) {
       throw std::runtime_error(std::string("rplidar.port / --port: ") + e.what());
     }
 
-    std::unique_ptr<lcm::LCM> lcm = OpenLcm(settings.lcm_url);
-    LcmSink sink(lcm.get());
-    SystemDriverClock clock;
+    LcmBus bus(settings.lcm_url);
+    SteadyMonotonicClock loop_clock;
+    EventLoop loop(&bus, &loop_clock);
+    // The session is written as blocking calls with bounded waits: each of its waits (for the
+    // link, or a sleep) is a turn of the loop (drivers/common/loop_waits.h), so the process's
+    // one wait is the loop's.
+    SystemDriverClock system_clock;
+    LoopWaitingDriverClock clock(&system_clock, &loop);
     rplidar::RplidarDriver driver(
         options,
-        [&options] {
-          return OpenByteStream(options.port, options.baud, options.connect_timeout_ms);
+        [&options, &loop] {
+          return std::make_unique<LoopWaitingByteStream>(
+              OpenByteStream(options.port, options.baud, options.connect_timeout_ms), &loop);
         },
-        &clock, &sink, settings.channels.Get("laser_scan"), settings.channels.Get("lidar_status"),
+        &clock, &bus, settings.channels.Get("laser_scan"), settings.channels.Get("lidar_status"),
         settings.channels.Get("laser_geometry"));
     driver.Run([] { return ShutdownRequested(); });
     return 0;

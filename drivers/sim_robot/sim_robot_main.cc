@@ -9,7 +9,8 @@
 
 #include "drivers/sim_robot/simulated_robot.h"
 #include "runtime/command_line.h"
-#include "runtime/lcm_io.h"
+#include "runtime/event_loop.h"
+#include "runtime/lcm_bus.h"
 #include "runtime/log.h"
 #include "runtime/process.h"
 #include "runtime/shutdown.h"
@@ -78,8 +79,10 @@ int Run(int argc, char** argv) {
   const std::string path =
       ResolveScenarioPath(*scenario_arg, ScenarioSearchRoots(SLAMMTT_SOURCE_ROOT));
   const Scenario scenario = LoadScenario(path);
-  std::unique_ptr<lcm::LCM> lcm = OpenLcm(settings.lcm_url);
-  SimulatedRobot robot(scenario, static_cast<uint64_t>(seed), options, lcm.get());
+  LcmBus bus(settings.lcm_url);
+  SteadyMonotonicClock clock;
+  EventLoop loop(&bus, &clock);
+  SimulatedRobot robot(scenario, static_cast<uint64_t>(seed), options, &loop);
   std::cout << robot.base_endpoint() << "\n" << robot.laser_endpoint() << std::endl;
   LogInfo() << "scenario " << scenario.name << " seed " << seed << ": base on "
             << robot.base_endpoint() << ", laser on " << robot.laser_endpoint()

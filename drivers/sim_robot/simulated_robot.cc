@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "drivers/sim_robot/world_laser_scene.h"
+#include "runtime/bus.h"
 #include "runtime/lcm_io.h"
 #include "runtime/log.h"
 #include "slammtt_msgs/laser_scan_t.hpp"
@@ -25,8 +26,8 @@ int64_t WallClockUtime() {
 }  // namespace
 
 SimulatedRobot::SimulatedRobot(const Scenario& scenario, uint64_t seed,
-                               const SimulatedRobotOptions& options, lcm::LCM* lcm)
-    : options_(options), lcm_(lcm), world_(scenario, seed) {
+                               const SimulatedRobotOptions& options, EventLoop* loop)
+    : options_(options), loop_(loop), world_(scenario, seed) {
   world_start_us_ = P3dxEmulator::NowUs();
   world_start_utime_ = WallClockUtime();
   options_.laser.scene = std::make_shared<WorldLaserScene>(&world_, &world_mutex_, world_start_us_);
@@ -56,9 +57,9 @@ void SimulatedRobot::Step() {
   world_.Advance(now_us - world_start_us_, encoders);
 }
 
-void SimulatedRobot::OnLaserScan(const lcm::ReceiveBuffer* buffer) {
+void SimulatedRobot::OnLaserScan(const void* data, int size) {
   slammtt_msgs::laser_scan_t scan;
-  if (!Decode(buffer->data, static_cast<int>(buffer->data_size), &scan)) {
+  if (!Decode(data, size, &scan)) {
     if (IsReportable(++stats_.bad_scans)) {
       LogWarning() << "ignored an undecodable LASER_SCAN (" << stats_.bad_scans << " so far)";
     }
@@ -79,11 +80,10 @@ void SimulatedRobot::OnLaserScan(const lcm::ReceiveBuffer* buffer) {
     return;
   }
   const slammtt_msgs::ground_truth_t message = ToGroundTruthMessage(*truth, world_start_utime_);
-  const std::vector<uint8_t> bytes = Encode(message);
-  if (lcm_->publish(options_.ground_truth_channel, bytes.data(),
-                    static_cast<unsigned int>(bytes.size())) == 0) {
-    ++stats_.truth_published;
-  }
+  Bus& bus = loop_->bus();
+  const int64_t failed_before = bus.failed_publishes();
+  bus.PublishMessage(options_.ground_truth_channel, message);
+  if (bus.failed_publishes() == failed_before) ++stats_.truth_published;
 }
 
 void SimulatedRobot::Run(const std::function<bool()>& stop_requested) {
@@ -107,34 +107,21 @@ void SimulatedRobot::Run(const std::function<bool()>& stop_requested) {
     }
   });
   laser_->Start();
-  lcm::Subscription* subscription = lcm_->subscribeFunction(
+  Bus& bus = loop_->bus();
+  const int subscription = bus.SubscribeBytes(
       options_.laser_scan_channel,
-      +[](const lcm::ReceiveBuffer* buffer, const std::string&, SimulatedRobot* robot) {
-        robot->OnLaserScan(buffer);
-      },
-      this);
+      [this](const std::string&, const void* data, int size) { OnLaserScan(data, size); });
   try {
-    // handleTimeout fails once when a signal interrupts it (the SIGINT that stops us); a bus
-    // that fails for a whole second is broken.
-    const int max_failures = std::max(1, 1000 / options_.step_ms);
-    int failures = 0;
+    // A signal ends the wait early (the SIGINT that stops us); a bus that fails throws.
     while (!stop_requested()) {
       Step();
-      if (lcm_->handleTimeout(options_.step_ms) >= 0) {
-        failures = 0;
-        continue;
-      }
-      if (stop_requested()) break;
-      if (++failures >= max_failures) {
-        throw std::runtime_error("LCM stopped receiving (handleTimeout failed for 1 s)");
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(options_.step_ms));
+      loop_->HandleTimeout(options_.step_ms);
     }
   } catch (...) {
-    lcm_->unsubscribe(subscription);  // no handler left pointing at this robot
+    bus.Unsubscribe(subscription);  // no handler left pointing at this robot
     throw;
   }
-  lcm_->unsubscribe(subscription);
+  bus.Unsubscribe(subscription);
 }
 
 }  // namespace slammtt

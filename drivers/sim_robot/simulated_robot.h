@@ -21,10 +21,9 @@
 #include <mutex>
 #include <string>
 
-#include <lcm/lcm-cpp.hpp>
-
 #include "drivers/p3dx/p3dx_emulator.h"
 #include "drivers/rplidar/rplidar_emulator_server.h"
+#include "runtime/event_loop.h"
 #include "tools/world/emulated_robot_world.h"
 
 namespace slammtt {
@@ -49,9 +48,9 @@ struct SimulatedRobotStats {
 class SimulatedRobot {
  public:
   // Opens both devices' links (throws LinkError when it cannot) and the world
-  // (std::invalid_argument for a scenario it refuses). `lcm` outlives the robot.
+  // (std::invalid_argument for a scenario it refuses). `loop` (and its bus) outlives the robot.
   SimulatedRobot(const Scenario& scenario, uint64_t seed, const SimulatedRobotOptions& options,
-                 lcm::LCM* lcm);
+                 EventLoop* loop);
   ~SimulatedRobot();
   SimulatedRobot(const SimulatedRobot&) = delete;
   SimulatedRobot& operator=(const SimulatedRobot&) = delete;
@@ -68,10 +67,10 @@ class SimulatedRobot {
 
  private:
   void Step();
-  void OnLaserScan(const lcm::ReceiveBuffer* buffer);
+  void OnLaserScan(const void* data, int size);
 
   SimulatedRobotOptions options_;
-  lcm::LCM* lcm_;
+  EventLoop* loop_;
   mutable std::mutex world_mutex_;
   EmulatedRobotWorld world_;
   int64_t world_start_us_ = 0;     // monotonic clock at world time 0

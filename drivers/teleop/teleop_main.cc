@@ -22,7 +22,7 @@
 #include "drivers/teleop/teleop_keys.h"
 #include "drivers/teleop/velocity_profile.h"
 #include "runtime/command_line.h"
-#include "runtime/lcm_io.h"
+#include "runtime/lcm_bus.h"
 #include "runtime/log.h"
 #include "runtime/process.h"
 #include "runtime/shutdown.h"
@@ -185,9 +185,9 @@ int Run(int argc, char** argv) {
   }
 
   const CommandKey key = LoadCommandKeyFile(*key_path);
-  std::unique_ptr<lcm::LCM> lcm = OpenLcm(settings.lcm_url);
+  LcmBus bus(settings.lcm_url);
   SystemDriverClock clock;
-  SignedVelocitySender sender(key, settings.channels.Get("velocity_command"), lcm.get(), &clock);
+  SignedVelocitySender sender(key, settings.channels.Get("velocity_command"), &bus, &clock);
   StopOnExit stop(&sender);
   if (!profile.empty()) {
     LogInfo() << "profile of " << profile.size() << " steps, " << ProfileDurationS(profile)

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "runtime/lcm_io.h"
+#include "runtime/log_reader.h"
 #include "slammtt_msgs/estimator_status_t.hpp"
 
 namespace slammtt::testing {

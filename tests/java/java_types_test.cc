@@ -12,6 +12,7 @@
 #include <string>
 
 #include "runtime/lcm_io.h"
+#include "runtime/log_reader.h"
 #include "slammtt_msgs/ground_truth_t.hpp"
 #include "slammtt_msgs/laser_scan_t.hpp"
 #include "slammtt_msgs/odometry_t.hpp"

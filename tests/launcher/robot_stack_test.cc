@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "runtime/lcm_io.h"
+#include "runtime/log_reader.h"
 #include "slammtt_msgs/base_status_t.hpp"
 #include "slammtt_msgs/laser_scan_t.hpp"
 #include "slammtt_msgs/odometry_t.hpp"

@@ -21,6 +21,7 @@
 #include <nlohmann/json.hpp>
 
 #include "runtime/lcm_io.h"
+#include "runtime/log_reader.h"
 #include "slammtt_msgs/odometry_t.hpp"
 #include "tests/support/child_process.h"
 

@@ -306,6 +306,29 @@ TEST_P(P3dxProcessTest, DamagedPacketsNeverBecomeOdometry) {
   }
 }
 
+// Bytes on VELOCITY_COMMAND that are no velocity_command_t are skipped and counted by the bus
+// (runtime/bus.h), not a crash: the driver goes on and the next signed command drives the base.
+TEST_P(P3dxProcessTest, UndecodableCommandsAreCountedAndSkipped) {
+  StartEmulator();
+  StartDriver();
+  ASSERT_TRUE(WaitConnected());
+  const char garbage[5] = {1, 2, 3, 4, 5};
+  lcm_->publish("VELOCITY_COMMAND", garbage, sizeof garbage);
+  slammtt_msgs::odometry_t wrong_type{};
+  lcm_->publish("VELOCITY_COMMAND", &wrong_type);
+  ASSERT_TRUE(PumpUntil(5.0, Commanding(0.2, 0.0, [&] { return RobotMoving(); })));
+  ASSERT_TRUE(driver_->running());
+  driver_->Signal(SIGTERM);
+  PumpUntil(0.2, [] { return false; });
+  const auto status = driver_->Wait(5000);
+  ASSERT_TRUE(status.has_value());
+  EXPECT_EQ(*status, 0);
+  const std::string log = ReadWholeFile(directory_ + "/driver.log");
+  EXPECT_NE(log.find("VELOCITY_COMMAND: undecodable message skipped (1 so far)"),
+            std::string::npos)
+      << log;
+}
+
 INSTANTIATE_TEST_SUITE_P(Transports, P3dxProcessTest,
                          ::testing::Values(Transport::kTcp, Transport::kPty),
                          [](const ::testing::TestParamInfo<Transport>& param_info) {

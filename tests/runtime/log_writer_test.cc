@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "runtime/lcm_io.h"
+#include "runtime/log_reader.h"
 #include "slammtt_msgs/velocity_command_t.hpp"
 
 namespace slammtt {

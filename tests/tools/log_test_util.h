@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "runtime/lcm_io.h"
+#include "runtime/log_reader.h"
 #include "tests/support/child_process.h"
 
 namespace slammtt::testing {

@@ -16,6 +16,7 @@ class CopyStage : public Stage {
  public:
   std::string Name() const override { return "copy"; }
   std::vector<std::string> InputChannels() const override { return {"IN"}; }
+  std::vector<std::string> OutputChannels() const override { return {"OUT"}; }
   void Handle(const std::string&, const void* data, int size, MessageSink& out) override {
     out.Publish("OUT", data, size);
   }
@@ -44,8 +45,8 @@ TEST(ReplayFuzzTest, RandomlyDamagedLogs) {
     for (int f = 0; f < flips; ++f) bytes[rng() % bytes.size()] = static_cast<char>(rng());
     if (rng() % 3 == 0) bytes.resize(rng() % bytes.size());
     testing::WriteFileBytes(dir.File("bad.lcm"), bytes);
-    std::vector<ReplayStage> stages;
-    stages.push_back(ReplayStage{std::make_unique<CopyStage>(), {"OUT"}});
+    std::vector<std::unique_ptr<Stage>> stages;
+    stages.push_back(std::make_unique<CopyStage>());
     ReplayFileOptions options;
     options.timing_path = dir.File("out.timing.lcm");
     std::remove(dir.File("out.lcm").c_str());

@@ -33,6 +33,7 @@ class FakeSegmenter : public Stage {
  public:
   std::string Name() const override { return "fake_segmenter"; }
   std::vector<std::string> InputChannels() const override { return {"SCAN"}; }
+  std::vector<std::string> OutputChannels() const override { return {"FEAT"}; }
   void Handle(const std::string&, const void* data, int size, MessageSink& out) override {
     StageTimer timer(Name(), 0);
     const auto* bytes = static_cast<const char*>(data);
@@ -54,6 +55,7 @@ class FakeEstimator : public Stage {
  public:
   std::string Name() const override { return "fake_estimator"; }
   std::vector<std::string> InputChannels() const override { return {"ODOM", "FEAT"}; }
+  std::vector<std::string> OutputChannels() const override { return {"EST"}; }
   void Handle(const std::string& channel, const void* data, int size, MessageSink& out) override {
     StageTimer timer(Name(), 0);
     const auto* bytes = static_cast<const char*>(data);
@@ -68,10 +70,10 @@ class FakeEstimator : public Stage {
   std::string history_;
 };
 
-std::vector<ReplayStage> FakeStack() {
-  std::vector<ReplayStage> stages;
-  stages.push_back(ReplayStage{std::make_unique<FakeSegmenter>(), {"FEAT"}});
-  stages.push_back(ReplayStage{std::make_unique<FakeEstimator>(), {"EST"}});
+std::vector<std::unique_ptr<Stage>> FakeStack() {
+  std::vector<std::unique_ptr<Stage>> stages;
+  stages.push_back(std::make_unique<FakeSegmenter>());
+  stages.push_back(std::make_unique<FakeEstimator>());
   return stages;
 }
 
@@ -150,6 +152,7 @@ class DoubleSegmenter : public Stage {
  public:
   std::string Name() const override { return "double"; }
   std::vector<std::string> InputChannels() const override { return {"SCAN"}; }
+  std::vector<std::string> OutputChannels() const override { return {"FEAT"}; }
   void Handle(const std::string&, const void*, int, MessageSink& out) override {
     out.Publish("FEAT", "x1", 2);
     out.Publish("FEAT", "x2", 2);
@@ -161,9 +164,9 @@ TEST(ReplayTest, ConsumersRunOnceTheProducerHasReturned) {
   // is done with the scan, so all of the segmenter's outputs come first.
   TempDir dir;
   WriteLog(dir.File("in.lcm"), {Event(7, "SCAN", "s")});
-  std::vector<ReplayStage> stages;
-  stages.push_back(ReplayStage{std::make_unique<DoubleSegmenter>(), {"FEAT"}});
-  stages.push_back(ReplayStage{std::make_unique<FakeEstimator>(), {"EST"}});
+  std::vector<std::unique_ptr<Stage>> stages;
+  stages.push_back(std::make_unique<DoubleSegmenter>());
+  stages.push_back(std::make_unique<FakeEstimator>());
   ASSERT_TRUE(ReplayLogFile(dir.File("in.lcm"), dir.File("out.lcm"), std::move(stages),
                             ReplayFileOptions())
                   .error.empty());
@@ -391,6 +394,33 @@ TEST(ReplayTest, AThrowingStageIsCountedAndTheReplayGoesOn) {
   EXPECT_EQ(r.stages[1].messages_handled, 3);
   EXPECT_EQ(r.stages[1].messages_published, 2);
   EXPECT_EQ(ReadLog(dir.File("out.lcm")).size(), 5u);
+}
+
+// Publishes its declared FEAT and an undeclared EXTRA.
+class UndeclaringSegmenter : public Stage {
+ public:
+  std::string Name() const override { return "undeclaring"; }
+  std::vector<std::string> InputChannels() const override { return {"SCAN"}; }
+  std::vector<std::string> OutputChannels() const override { return {"FEAT"}; }
+  void Handle(const std::string&, const void*, int, MessageSink& out) override {
+    out.Publish("FEAT", "f", 1);
+    out.Publish("EXTRA", "e", 1);
+  }
+};
+
+TEST(ReplayTest, AnUndeclaredOutputChannelIsAStageErrorAndIsDropped) {
+  TempDir dir;
+  WriteLog(dir.File("in.lcm"), {Event(1, "SCAN", "s"), Event(2, "EXTRA", "recorded")});
+  std::vector<std::unique_ptr<Stage>> stages;
+  stages.push_back(std::make_unique<UndeclaringSegmenter>());
+  const ReplayFileResult r =
+      ReplayLogFile(dir.File("in.lcm"), dir.File("out.lcm"), std::move(stages), Options(dir));
+  ASSERT_TRUE(r.error.empty());
+  EXPECT_EQ(r.stages[0].errors, 1);
+  EXPECT_EQ(r.stages[0].messages_published, 1);
+  std::vector<std::string> lines;
+  for (const LogEvent& e : ReadLog(dir.File("out.lcm"))) lines.push_back(e.channel + " " + Text(e));
+  EXPECT_EQ(lines, (std::vector<std::string>{"SCAN s", "FEAT f", "EXTRA recorded"}));
 }
 
 TEST(ReplayTest, RefusesToOverwriteItsInput) {

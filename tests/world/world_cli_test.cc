@@ -13,6 +13,7 @@
 #include <map>
 
 #include "runtime/lcm_io.h"
+#include "runtime/log_reader.h"
 #include "slammtt_msgs/features_t.hpp"
 #include "slammtt_msgs/ground_truth_t.hpp"
 #include "slammtt_msgs/laser_geometry_t.hpp"

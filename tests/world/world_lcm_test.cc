@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "runtime/lcm_io.h"
+#include "runtime/log_reader.h"
 #include "slammtt_msgs/features_t.hpp"
 #include "slammtt_msgs/ground_truth_t.hpp"
 #include "slammtt_msgs/laser_scan_t.hpp"

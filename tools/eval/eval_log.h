@@ -22,7 +22,7 @@
 #include "runtime/config.h"
 #include "tools/eval/eval_input.h"
 #include "tools/eval/evaluation.h"
-#include "tools/replay/log_events.h"
+#include "runtime/log_reader.h"
 
 namespace slammtt {
 

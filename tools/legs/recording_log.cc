@@ -8,7 +8,7 @@
 #include "runtime/lcm_io.h"
 #include "slammtt_msgs/laser_scan_t.hpp"
 #include "slammtt_msgs/leg_labels_t.hpp"
-#include "tools/replay/log_events.h"
+#include "runtime/log_reader.h"
 
 namespace slammtt {
 

@@ -10,7 +10,7 @@
 #include <utility>
 
 #include "runtime/log.h"
-#include "tools/replay/log_events.h"
+#include "runtime/log_reader.h"
 
 namespace slammtt {
 namespace {
@@ -59,6 +59,12 @@ class LogReplay::CascadeSink : public MessageSink {
       if (timing_) timing_(timestamp_us_, channel, data, size);
       return;
     }
+    if (replay_->outputs_[stage_index_].count(channel) == 0) {
+      // The replay replaces exactly the declared channels of its input: an undeclared one would
+      // appear twice (recorded and recomputed). A bug of the stage: counted, reported, dropped.
+      throw std::logic_error("published on " + channel +
+                             ", which its OutputChannels() does not declare");
+    }
     ++stats.messages_published;
     output_(timestamp_us_, channel, data, size);
     // Downstream stages get it once this stage has returned (DeliverPending), as a separate
@@ -86,12 +92,14 @@ class LogReplay::CascadeSink : public MessageSink {
   std::vector<std::pair<std::string, std::vector<uint8_t>>> pending_;
 };
 
-LogReplay::LogReplay(std::vector<ReplayStage> stages, std::string timing_channel)
+LogReplay::LogReplay(std::vector<std::unique_ptr<Stage>> stages, std::string timing_channel)
     : stages_(std::move(stages)), timing_channel_(std::move(timing_channel)) {
-  for (const ReplayStage& s : stages_) {
-    if (!s.stage) throw std::invalid_argument("replay: null stage");
+  for (const std::unique_ptr<Stage>& s : stages_) {
+    if (!s) throw std::invalid_argument("replay: null stage");
+    const std::vector<std::string> outputs = s->OutputChannels();
+    outputs_.emplace_back(outputs.begin(), outputs.end());
     StageReplayStats stats;
-    stats.name = s.stage->Name();
+    stats.name = s->Name();
     stats_.push_back(stats);
   }
 }
@@ -105,11 +113,11 @@ void LogReplay::Plan(const std::set<std::string>& input_channels) {
     changed = false;
     for (size_t k = 0; k < stages_.size(); ++k) {
       if (stats_[k].runs) continue;
-      for (const std::string& channel : stages_[k].stage->InputChannels()) {
+      for (const std::string& channel : stages_[k]->InputChannels()) {
         if (available.count(channel) == 0) continue;
         stats_[k].runs = true;
         changed = true;
-        for (const std::string& out : stages_[k].output_channels) available.insert(out);
+        for (const std::string& out : stages_[k]->OutputChannels()) available.insert(out);
         break;
       }
     }
@@ -117,7 +125,8 @@ void LogReplay::Plan(const std::set<std::string>& input_channels) {
   produced_.clear();
   for (size_t k = 0; k < stages_.size(); ++k) {
     if (!stats_[k].runs) continue;
-    produced_.insert(stages_[k].output_channels.begin(), stages_[k].output_channels.end());
+    const std::vector<std::string> outputs = stages_[k]->OutputChannels();
+    produced_.insert(outputs.begin(), outputs.end());
     produced_.insert(timing_channel_);
   }
   planned_ = true;
@@ -142,7 +151,7 @@ void LogReplay::Deliver(const std::string& channel, const void* data, int size,
                         const EventWriter& timing, int depth) {
   for (size_t k = 0; k < stages_.size(); ++k) {
     if (!stats_[k].runs) continue;
-    Stage& stage = *stages_[k].stage;
+    Stage& stage = *stages_[k];
     bool wants = false;
     for (const std::string& c : stage.InputChannels()) wants = wants || c == channel;
     if (!wants) continue;
@@ -166,7 +175,7 @@ void LogReplay::Deliver(const std::string& channel, const void* data, int size,
 }
 
 ReplayFileResult ReplayLogFile(const std::string& input_path, const std::string& output_path,
-                               std::vector<ReplayStage> stages,
+                               std::vector<std::unique_ptr<Stage>> stages,
                                const ReplayFileOptions& options) {
   ReplayFileResult result;
   if (SameFile(input_path, output_path) ||
@@ -200,7 +209,7 @@ ReplayFileResult ReplayLogFile(const std::string& input_path, const std::string&
   }
 
   // Events are read through LCM's own API (what lcm-logplayer plays), with the damage report of
-  // log_events.h.
+  // log_reader.h.
   ReplayProgress progress;
   progress.events_total = result.input.complete_events;
   progress.log_span_us =

@@ -20,7 +20,8 @@
 //   that the main output is byte-identical run after run. Input STAGE_TIMING events are dropped
 //   whenever a stage runs (they describe another run).
 // - A stage that throws (a bug: stages report bad messages themselves) is counted and reported
-//   with the event number, and the replay goes on, as LiveStageRunner does live.
+//   with the event number, and the replay goes on, as LiveStageRunner does live. So is a stage
+//   that publishes on a channel its OutputChannels() does not declare (the message is dropped).
 #pragma once
 
 #include <cstdint>
@@ -31,16 +32,11 @@
 #include <vector>
 
 #include "runtime/lcm_io.h"
+#include "runtime/log_reader.h"
+#include "runtime/log_scan.h"
 #include "runtime/stage.h"
-#include "tools/replay/log_scan.h"
 
 namespace slammtt {
-
-// A stage and the channels it publishes into the main output (besides STAGE_TIMING).
-struct ReplayStage {
-  std::unique_ptr<Stage> stage;
-  std::vector<std::string> output_channels;
-};
 
 struct StageReplayStats {
   std::string name;
@@ -57,7 +53,8 @@ using EventWriter = std::function<void(int64_t, const std::string&, const void*,
 class LogReplay {
  public:
   // `timing_channel`: the channel name of STAGE_TIMING.
-  LogReplay(std::vector<ReplayStage> stages, std::string timing_channel);
+  // The stages' OutputChannels() are the channels of the input that they replace.
+  LogReplay(std::vector<std::unique_ptr<Stage>> stages, std::string timing_channel);
 
   // Decides which stages run, given the channels present in the input.
   void Plan(const std::set<std::string>& input_channels);
@@ -76,8 +73,9 @@ class LogReplay {
                int64_t eventnum, const EventWriter& output, const EventWriter& timing,
                int depth);
 
-  std::vector<ReplayStage> stages_;
+  std::vector<std::unique_ptr<Stage>> stages_;
   std::vector<StageReplayStats> stats_;
+  std::vector<std::set<std::string>> outputs_;  // each stage's OutputChannels()
   std::string timing_channel_;
   std::set<std::string> produced_;
   bool planned_ = false;
@@ -123,7 +121,7 @@ struct ReplayFileResult {
 // std::runtime_error (and leaves no output either) when a file cannot be opened or created or is
 // not a regular file, on a write error, and when the output would overwrite the input.
 ReplayFileResult ReplayLogFile(const std::string& input_path, const std::string& output_path,
-                               std::vector<ReplayStage> stages,
+                               std::vector<std::unique_ptr<Stage>> stages,
                                const ReplayFileOptions& options);
 
 }  // namespace slammtt

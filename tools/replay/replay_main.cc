@@ -81,7 +81,7 @@ int Run(int argc, char** argv) {
 
   // SIGINT/SIGTERM (ProcessMain's handlers): stop at the next event, leave no output.
   options.should_stop = [] { return ShutdownRequested(); };
-  std::vector<ReplayStage> stages = CreateStackStages(settings, enabled);
+  std::vector<std::unique_ptr<Stage>> stages = CreateStackStages(settings, enabled);
   if (settings.config_path.empty()) {
     // An input that cannot be scanned is reported by ReplayLogFile, in its one line.
     std::string line;

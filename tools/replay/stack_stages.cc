@@ -14,8 +14,8 @@ const std::vector<std::string>& StackStageNames() {
   return names;
 }
 
-std::vector<ReplayStage> CreateStackStages(const ProcessSettings& settings,
-                                           const std::vector<std::string>& enabled) {
+std::vector<std::unique_ptr<Stage>> CreateStackStages(const ProcessSettings& settings,
+                                                      const std::vector<std::string>& enabled) {
   for (const std::string& name : enabled) {
     if (std::find(StackStageNames().begin(), StackStageNames().end(), name) ==
         StackStageNames().end()) {
@@ -26,23 +26,12 @@ std::vector<ReplayStage> CreateStackStages(const ProcessSettings& settings,
   auto wanted = [&](const std::string& name) {
     return std::find(enabled.begin(), enabled.end(), name) != enabled.end();
   };
-  const Channels& channels = settings.channels;
-  std::vector<ReplayStage> stages;
-  // What each stage publishes besides STAGE_TIMING (see its header): these channels of the input
+  // Each stage declares what it publishes (Stage::OutputChannels): those channels of the input
   // are replaced by the recomputed ones.
-  if (wanted("segmenter")) {
-    stages.push_back(ReplayStage{CreateSegmenterStage(settings), {channels.Get("features")}});
-  }
-  if (wanted("estimator")) {
-    stages.push_back(ReplayStage{CreateEstimatorStage(settings),
-                                 {channels.Get("pose"), channels.Get("map"),
-                                  channels.Get("tracks"), channels.Get("smoother_input"),
-                                  channels.Get("estimator_status")}});
-  }
-  if (wanted("smoother")) {
-    stages.push_back(ReplayStage{CreateSmootherStage(settings),
-                                 {channels.Get("smoothed_pose"), channels.Get("smoothed_map")}});
-  }
+  std::vector<std::unique_ptr<Stage>> stages;
+  if (wanted("segmenter")) stages.push_back(CreateSegmenterStage(settings));
+  if (wanted("estimator")) stages.push_back(CreateEstimatorStage(settings));
+  if (wanted("smoother")) stages.push_back(CreateSmootherStage(settings));
   return stages;
 }
 

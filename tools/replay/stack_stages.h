@@ -1,15 +1,17 @@
 // The processing stages of the stack as replay runs them: created by the same factories as the
 // live processes (perception/segmenter_stage.h, estimator/estimator_stage.h,
 // smoother/smoother_stage.h) from the same stack
-// configuration, with the channels each one publishes.
+// configuration; each declares the channels it publishes (Stage::OutputChannels).
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "runtime/log_scan.h"
 #include "runtime/process.h"
+#include "runtime/stage.h"
 #include "tools/replay/log_replay.h"
-#include "tools/replay/log_scan.h"
 
 namespace slammtt {
 
@@ -23,8 +25,8 @@ std::vector<std::string> DefaultStackStages(const Config& config);
 // Creates the stages named in `enabled` (a subset of StackStageNames(), any order; they run in
 // pipeline order). Each factory reads its own configuration section and rejects unknown keys.
 // Throws ConfigError for an unknown stage name.
-std::vector<ReplayStage> CreateStackStages(const ProcessSettings& settings,
-                                           const std::vector<std::string>& enabled);
+std::vector<std::unique_ptr<Stage>> CreateStackStages(const ProcessSettings& settings,
+                                                      const std::vector<std::string>& enabled);
 
 // The line slammtt-replay prints when it runs without --config: that every stage runs with its
 // defaults, and where the estimator's laser geometry comes from: the log's LASER_GEOMETRY

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "tools/replay/log_events.h"
+#include "runtime/log_reader.h"
 #include "tools/timing/timing_table.h"
 
 namespace slammtt {

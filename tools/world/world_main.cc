@@ -9,7 +9,8 @@
 #include <vector>
 
 #include "runtime/command_line.h"
-#include "runtime/lcm_io.h"
+#include "runtime/event_loop.h"
+#include "runtime/lcm_bus.h"
 #include "runtime/log.h"
 #include "runtime/process.h"
 #include "tools/world/scenario_loader.h"
@@ -121,12 +122,14 @@ int Run(int argc, char** argv) {
       return 1;
     }
   } else {
-    const std::unique_ptr<lcm::LCM> lcm = slammtt::OpenLcm(settings.lcm_url);
+    slammtt::LcmBus bus(settings.lcm_url);
+    slammtt::SteadyMonotonicClock clock;
+    slammtt::EventLoop loop(&bus, &clock);
     slammtt::LiveOptions options;
     options.rate_factor = rate_factor;
     options.follow_commands = cl.Flag("follow-commands");
     options.velocity_command_channel = settings.channels.Get("velocity_command");
-    summary = slammtt::PublishWorldLive(&world, lcm.get(), channels, options);
+    summary = slammtt::PublishWorldLive(&world, &loop, channels, options);
     where = "on " + settings.lcm_url + (summary.interrupted ? " (interrupted)" : "");
   }
   slammtt::LogInfo() << Summary(scenario.name, static_cast<uint64_t>(seed), where, summary);

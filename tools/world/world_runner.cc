@@ -1,14 +1,13 @@
 #include "tools/world/world_runner.h"
 
 #include <algorithm>
-#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
-#include <thread>
 
-#include "runtime/lcm_io.h"
+#include "runtime/bus.h"
 #include "runtime/log.h"
+#include "runtime/log_bus.h"
 #include "runtime/shutdown.h"
 #include "slammtt_msgs/velocity_command_t.hpp"
 
@@ -34,18 +33,18 @@ WorldRunSummary WriteWorldLog(WorldSimulator* world, const WorldChannels& channe
   const SteadyClock::time_point start = SteadyClock::now();
   WorldRunSummary summary;
   const Scenario& scenario = world->scenario();
-  LogWriter log(path);
+  LogBus log("", path);  // the bus with a log file as its output
   while (!world->Done()) {
     if (ShutdownRequested()) {
       summary.interrupted = true;
       summary.wall_s = SecondsSince(start);
-      return summary;  // the writer's destructor removes the partial log
+      return summary;  // the bus's destructor removes the partial log
     }
     const WorldEvent event = world->Next();
     for (const EncodedMessage& message :
          EncodeWorldEvent(event, scenario, channels, scenario.start_utime)) {
-      log.Write(message.utime, message.channel, message.data.data(),
-                static_cast<int>(message.data.size()));
+      log.SetTimestamp(message.utime);
+      log.Publish(message.channel, message.data.data(), static_cast<int>(message.data.size()));
       Count(message, &summary);
     }
     summary.simulated_s = static_cast<double>(event.time_us) * 1e-6;
@@ -57,70 +56,62 @@ WorldRunSummary WriteWorldLog(WorldSimulator* world, const WorldChannels& channe
 
 namespace {
 
+// The longest single wait: the loop wakes at least this often (the shutdown request and the bus
+// wake it at once anyway).
+constexpr int64_t kMaxWaitUs = 50000;
+
 struct CommandListener {
   bool have_command = false;
   VelocityCommand command;
-  SteadyClock::time_point received;
+  int64_t received_us = 0;  // the loop's clock
   int64_t bad_messages = 0;
 };
 
-void OnVelocityCommand(const lcm::ReceiveBuffer* rbuf, const std::string& /*channel*/,
-                       CommandListener* listener) {
-  slammtt_msgs::velocity_command_t msg;
-  if (!Decode(rbuf->data, static_cast<int>(rbuf->data_size), &msg) ||
-      !std::isfinite(msg.linear_mps) || !std::isfinite(msg.angular_radps)) {
-    ++listener->bad_messages;
-    if (IsReportable(listener->bad_messages)) {
-      LogWarning() << "ignored a malformed VELOCITY_COMMAND (" << listener->bad_messages
-                   << " so far)";
-    }
-    return;
-  }
-  listener->have_command = true;
-  listener->command = VelocityCommand{msg.linear_mps, msg.angular_radps};
-  listener->received = SteadyClock::now();
-}
-
 }  // namespace
 
-WorldRunSummary PublishWorldLive(WorldSimulator* world, lcm::LCM* lcm,
+WorldRunSummary PublishWorldLive(WorldSimulator* world, EventLoop* loop,
                                  const WorldChannels& channels, const LiveOptions& options) {
   if (!(options.rate_factor > 0.0) || !std::isfinite(options.rate_factor)) {
     throw std::invalid_argument("rate factor must be a positive number");
   }
+  Bus& bus = loop->bus();
+  MonotonicClock& clock = loop->clock();
   CommandListener listener;
-  lcm::Subscription* subscription = nullptr;
+  int subscription = 0;
   if (options.follow_commands) {
-    subscription = lcm->subscribeFunction(options.velocity_command_channel, &OnVelocityCommand,
-                                          &listener);
+    // An undecodable message is counted and reported by the bus; a decoded one that is not
+    // finite here.
+    subscription = bus.Subscribe<slammtt_msgs::velocity_command_t>(
+        options.velocity_command_channel,
+        [&listener, &clock](const slammtt_msgs::velocity_command_t& msg) {
+          if (!std::isfinite(msg.linear_mps) || !std::isfinite(msg.angular_radps)) {
+            if (IsReportable(++listener.bad_messages)) {
+              LogWarning() << "ignored a malformed VELOCITY_COMMAND (" << listener.bad_messages
+                           << " so far)";
+            }
+            return;
+          }
+          listener.have_command = true;
+          listener.command = VelocityCommand{msg.linear_mps, msg.angular_radps};
+          listener.received_us = clock.NowUs();
+        });
     world->SetCommandOverride(VelocityCommand{});  // stand still until commanded
   }
   const Scenario& scenario = world->scenario();
   const int64_t utime_offset = std::chrono::duration_cast<std::chrono::microseconds>(
                                    std::chrono::system_clock::now().time_since_epoch())
                                    .count();
-  const SteadyClock::time_point start = SteadyClock::now();
+  const int64_t start_us = clock.NowUs();
+  const int64_t failed_publishes_before = bus.failed_publishes();
   WorldRunSummary summary;
   while (!world->Done()) {
-    const auto due = start + std::chrono::microseconds(std::llround(
-                                 static_cast<double>(world->NextEventTimeUs()) /
-                                 options.rate_factor));
+    const int64_t due_us =
+        start_us + std::llround(static_cast<double>(world->NextEventTimeUs()) /
+                                options.rate_factor);
     while (!ShutdownRequested()) {
-      const auto now = SteadyClock::now();
-      if (now >= due) break;
-      const auto wait = std::min<SteadyClock::duration>(due - now, std::chrono::milliseconds(50));
-      if (options.follow_commands) {
-        const int wait_ms = static_cast<int>(std::max<int64_t>(
-            0, std::chrono::duration_cast<std::chrono::milliseconds>(wait).count()));
-        // A signal interrupts the wait (select fails with EINTR): that is the shutdown request
-        // the loop checks next, not a failure of the bus.
-        errno = 0;
-        if (lcm->handleTimeout(wait_ms) < 0 && errno != EINTR && !ShutdownRequested()) {
-          throw std::runtime_error("LCM receive failed");
-        }
-      } else {
-        std::this_thread::sleep_for(wait);
-      }
+      const int64_t left_us = due_us - clock.NowUs();
+      if (left_us <= 0) break;
+      loop->HandleTimeoutUs(std::min(left_us, kMaxWaitUs));
     }
     if (ShutdownRequested()) {
       summary.interrupted = true;
@@ -129,23 +120,23 @@ WorldRunSummary PublishWorldLive(WorldSimulator* world, lcm::LCM* lcm,
     if (options.follow_commands) {
       const bool fresh =
           listener.have_command &&
-          std::chrono::duration<double>(SteadyClock::now() - listener.received).count() <=
+          static_cast<double>(clock.NowUs() - listener.received_us) * 1e-6 <=
               options.command_timeout_s;
       world->SetCommandOverride(fresh ? listener.command : VelocityCommand{});
     }
     const WorldEvent event = world->Next();
     for (const EncodedMessage& message :
          EncodeWorldEvent(event, scenario, channels, utime_offset)) {
-      if (lcm->publish(message.channel, message.data.data(),
-                       static_cast<unsigned int>(message.data.size())) != 0) {
+      bus.Publish(message.channel, message.data.data(), static_cast<int>(message.data.size()));
+      if (bus.failed_publishes() != failed_publishes_before) {
         throw std::runtime_error("LCM publish failed on " + message.channel);
       }
       Count(message, &summary);
     }
     summary.simulated_s = static_cast<double>(event.time_us) * 1e-6;
   }
-  if (subscription != nullptr) lcm->unsubscribe(subscription);
-  summary.wall_s = SecondsSince(start);
+  if (subscription != 0) bus.Unsubscribe(subscription);
+  summary.wall_s = static_cast<double>(clock.NowUs() - start_us) * 1e-6;
   return summary;
 }
 

@@ -11,8 +11,7 @@
 #include <map>
 #include <string>
 
-#include <lcm/lcm-cpp.hpp>
-
+#include "runtime/event_loop.h"
 #include "tools/world/world_messages.h"
 #include "tools/world/world_simulator.h"
 
@@ -26,8 +25,8 @@ struct WorldRunSummary {
   bool interrupted = false;  // shutdown was requested before the end
 };
 
-// Writes every event into the log at `path` (through LogWriter: the file appears only when
-// complete). On an error or a shutdown request nothing is left at `path` nor at "path.partial":
+// Publishes every event into the log at `path` (a LogBus with that output: the file appears
+// only when complete). On an error or a shutdown request nothing is left at `path` nor at "path.partial":
 // errors throw; a shutdown returns with interrupted = true.
 WorldRunSummary WriteWorldLog(WorldSimulator* world, const WorldChannels& channels,
                               const std::string& path);
@@ -39,9 +38,11 @@ struct LiveOptions {
   double command_timeout_s = 0.5; // (wall) without a command the robot stops, like the base
 };
 
-// Publishes every event on `lcm` at its simulated time divided by rate_factor after the start.
-// Returns at the end or when shutdown is requested.
-WorldRunSummary PublishWorldLive(WorldSimulator* world, lcm::LCM* lcm,
+// Publishes every event on the loop's bus at its simulated time divided by rate_factor after
+// the start, by the loop's clock (the steady clock live), handling the bus (VELOCITY_COMMAND)
+// while it waits. Returns at the end or when shutdown is requested; throws when a publish is
+// lost (the bus's failed_publishes() grows).
+WorldRunSummary PublishWorldLive(WorldSimulator* world, EventLoop* loop,
                                  const WorldChannels& channels, const LiveOptions& options);
 
 }  // namespace slammtt

@@ -1,4 +1,4 @@
-#include "tools/replay/log_scan.h"
+#include "runtime/log_scan.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>
