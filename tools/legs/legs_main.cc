@@ -275,9 +275,9 @@ int Evaluate(const CommandLine& cl, const ProcessSettings& settings) {
   Config section = settings.config.Child("segmenter");
   const SegmenterOptions options = ReadSegmenterOptions(section);
   section.CheckUnused();
-  std::cout << "| recording | stride | scans | leg recall | leg precision (arc) | people per scan "
-               "| people per minute | one-leg people | scans with 0 / 1 / 2 / 3 / 4 / 5+ people |\n"
-               "|---|---|---|---|---|---|---|---|---|\n";
+  std::cout << "| recording | stride | scans | leg recall | leg precision (arc) | labelled legs "
+               "in a person | people per scan | people per minute | one-leg people | scans with 0 "
+               "/ 1 / 2 / 3 / 4 / 5+ people |\n|---|---|---|---|---|---|---|---|---|---|\n";
   const auto row = [&](const std::string& name, const std::string& path) {
     const Recording r = Load(name, path);
     const auto arc = arcs.find(name);
@@ -286,8 +286,8 @@ int Evaluate(const CommandLine& cl, const ProcessSettings& settings) {
           EvaluateRecording(r, options, stride, arc == arcs.end() ? LabelArc{} : arc->second);
       std::cout << "| " << name << " | " << stride << " | " << s.scans << " | "
                 << Fixed(s.recall(), 4) << " | " << Fixed(s.precision(), 4) << " | "
-                << Fixed(s.people_per_scan(), 3) << " | " << Fixed(s.people_per_minute(), 1)
-                << " | " << s.people_one_leg << " |";
+                << Fixed(s.person_leg_recall(), 4) << " | " << Fixed(s.people_per_scan(), 3)
+                << " | " << Fixed(s.people_per_minute(), 1) << " | " << s.people_one_leg << " |";
       for (size_t k = 0; k < s.people_per_scan_histogram.size(); ++k) {
         std::cout << (k ? " / " : " ") << s.people_per_scan_histogram[k];
       }
@@ -360,7 +360,9 @@ void PrintCauses(const PersonCauses& c) {
             << "line median " << Fixed(Median(c.one_leg_radial_m), 3) << " m, across "
             << Fixed(Median(c.one_leg_lateral_m), 3) << " m; other leg hidden "
             << c.one_leg_other_hidden << "), pairs " << c.pair_errors_m.size()
-            << " (median " << Fixed(Median(c.pair_errors_m), 3) << " m; legs of one person "
+            << " (median " << Fixed(Median(c.pair_errors_m), 3) << " m; from the legs' midpoint "
+            << Fixed(Median(c.pair_errors_to_legs_m), 3) << " m, which is "
+            << Fixed(Median(c.pair_body_to_legs_m), 3) << " m from the body; legs of one person "
             << c.pairs_of_one_person << ", mixed " << c.pairs_mixed << ")\n"
             << "    missed people by the best fate of their legs' clusters: leg candidate "
             << c.missed_by_fate[0] << ", below leg_threshold " << c.missed_by_fate[1]

@@ -147,6 +147,7 @@ void AddCauses(const Segmenter& segmenter, const SensorFrame& frame,
   const std::vector<Feature>& features = segmenter.features();
   const std::vector<PersonFeature>& found = segmenter.people();
   const auto leg_of = [&](int32_t index) { return OriginOf(features[size_t(index)], frame); };
+  const SensorFrameOf to_sensor(frame.truth.robot.sensor_pose);
   std::vector<uint8_t> matched(people.size(), 0);
   for (size_t i = 0; i < found.size(); ++i) {
     const PersonFeature& p = found[i];
@@ -169,6 +170,18 @@ void AddCauses(const Segmenter& segmenter, const SensorFrame& frame,
     const ObjectTruth& person = frame.truth.objects[person_objects[j]];
     if (p.num_legs == 2) {
       causes->pair_errors_m.push_back(error.norm());
+      Eigen::Vector2d legs_sum = Eigen::Vector2d::Zero();
+      int legs = 0;
+      for (const ObjectTruth& leg : frame.truth.objects) {
+        if (leg.kind == ObjectKind::kLeg && leg.parent_id == person.id) {
+          legs_sum += to_sensor(leg.x_m, leg.y_m);
+          ++legs;
+        }
+      }
+      if (legs == 2) {
+        causes->pair_errors_to_legs_m.push_back((0.5 * legs_sum - at).norm());
+        causes->pair_body_to_legs_m.push_back((0.5 * legs_sum - people[j].centre_m).norm());
+      }
       const LegOrigin a = leg_of(p.leg_index[0]);
       const LegOrigin b = leg_of(p.leg_index[1]);
       const bool one = a.source == LegSource::kPersonLeg && b.source == LegSource::kPersonLeg &&
@@ -189,7 +202,6 @@ void AddCauses(const Segmenter& segmenter, const SensorFrame& frame,
     causes->one_leg_other_hidden += fewest < 3;
   }
   // Missed people: the best fate of the clusters near their legs.
-  const SensorFrameOf to_sensor(frame.truth.robot.sensor_pose);
   const double threshold = segmenter.options().leg_threshold;
   for (size_t j = 0; j < people.size(); ++j) {
     if (matched[j] || people[j].max_leg_beams < score.min_leg_beams ||

@@ -38,6 +38,10 @@ struct PersonCauses {
   // come from two different people (or a person and something else).
   std::vector<double> one_leg_errors_m;
   std::vector<double> pair_errors_m;
+  // Matched pairs: distance from the feature to the midpoint of the person's two legs, and from
+  // that midpoint to the person's centre (the world's gait: a walking body leads its legs).
+  std::vector<double> pair_errors_to_legs_m;
+  std::vector<double> pair_body_to_legs_m;
   int64_t pairs_of_one_person = 0;
   int64_t pairs_mixed = 0;
   // One-leg people: the truth centre minus the feature, along the sight line (positive: the
