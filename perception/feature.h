@@ -28,6 +28,11 @@ struct Feature {
   int32_t last_beam_index = -1;
   // Index of this cluster in Segmenter::leg_clusters() (its leg features and centroid).
   int32_t leg_cluster = -1;
+  // Edges of the cluster (0, 1 or 2) whose neighbouring beam had a usable return (farther: the
+  // object ends there; nearer: something hides it). Next to a beam without one (no echo, a
+  // dropout at grazing incidence, a dark or glass surface) the object may go on unseen.
+  // Not in feature_t.
+  int bounded_edges = 0;
 };
 
 }  // namespace slammtt

@@ -69,6 +69,7 @@ void PersonDetector::Detect(const std::vector<LegCandidate>& candidates,
     for (size_t j = i + 1; j < candidates.size(); ++j) {
       if (!Finite(candidates[j])) continue;
       if (candidates[i].provisional && candidates[j].provisional) continue;
+      if (candidates[i].surface_piece && candidates[j].surface_piece) continue;
       const double separation = (positions_[i] - positions_[j]).norm();
       if (separation < options.min_leg_separation_m ||
           separation > options.max_leg_separation_m) {
@@ -105,7 +106,7 @@ void PersonDetector::Detect(const std::vector<LegCandidate>& candidates,
   const double single_var = options.single_leg_offset_sigma_m * options.single_leg_offset_sigma_m;
   for (size_t i = 0; i < candidates.size(); ++i) {
     const LegCandidate& c = candidates[i];
-    if ((*used)[i] || c.provisional || !Finite(c) ||
+    if ((*used)[i] || c.provisional || !Finite(c) || c.surface_piece ||
         c.leg_likeness < options.single_leg_threshold) {
       continue;
     }

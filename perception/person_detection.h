@@ -10,6 +10,13 @@
 // covariance. Provisional candidates (two-beam clusters, see Segmenter) only join a pair with a
 // candidate that is not provisional, and never make a person alone.
 //
+// A candidate that may be a piece of a surface (LegCandidate::surface_piece: flat, and no usable
+// return on either side, see Segmenter) never makes a person alone, and two such candidates
+// are no pair: a flat cluster whose extent is unknown cannot be told from a visible piece of a
+// larger surface whose rest gave no return (a wall at grazing incidence, a door frame beside an
+// opening, a dark surface); a leg is round. In the world's office scenes (docs/perception.md,
+// "World scenarios") such clusters were 40 % of the false one-leg people and no real person.
+//
 // Covariance, in Cartesian coordinates and then in range/bearing of the centre (first-order):
 //   two legs: (P1 + P2) / 4 + pair_centre_sigma_m^2 I (the body's centre is not exactly the
 //             midpoint of the legs);
@@ -41,12 +48,13 @@ struct LegCandidate {
   Eigen::Matrix2d covariance = Eigen::Matrix2d::Identity();  // of (range_m, bearing_rad)
   double leg_likeness = 0.0;
   bool provisional = false;
+  bool surface_piece = false;  // flat, and no usable return on either side
   int32_t feature_index = -1;  // copied into PersonFeature::leg_index
 };
 
 struct PersonDetectionOptions {
   double min_leg_separation_m = 0.1;
-  double max_leg_separation_m = 0.6;
+  double max_leg_separation_m = 0.7;
   double single_leg_threshold = 0.65;
   double pair_centre_sigma_m = 0.05;
   double single_leg_offset_sigma_m = 0.15;

@@ -25,6 +25,9 @@ constexpr int32_t kMarker = -1;
 // and its RMS is sqrt((n - 3) / (n - 2)) of the line's, 0.82 or more for five points or more).
 constexpr double kRoundRmsRatioRuns = 1.1;
 constexpr double kRoundRmsRatioOneRun = 0.7;
+// A leg candidate with a convexity (leg_features.h) below this is flat: a half circle, what a
+// leg shows, gives about 0.7, a flat surface 0 (plus noise).
+constexpr double kFlatConvexity = 0.1;
 // Lines of neighbouring clusters are tried for one line only when their normals are this close.
 constexpr double kMergeAngleRad = 5.0 * M_PI / 180.0;
 
@@ -117,6 +120,11 @@ const std::vector<Feature>& Segmenter::FindPeople() {
     c.covariance = f.covariance;
     c.leg_likeness = f.leg_likeness;
     c.provisional = provisional;
+    // Flat (a leg, round, shows about 0.7: leg_features.h), with both edges unbounded.
+    if (f.bounded_edges == 0 && f.leg_cluster >= 0) {
+      const LegClusterRecord& r = leg_clusters_[static_cast<size_t>(f.leg_cluster)];
+      c.surface_piece = static_cast<double>(r.features[kConvexity]) < kFlatConvexity;
+    }
     c.feature_index = index;
     candidates_.push_back(c);
   };
@@ -791,8 +799,8 @@ void Segmenter::MakeFeature(const Cluster& c) {
   feature.covariance(1, 0) = 0.0;
   feature.first_beam_index = beams_[ring_start].index;
   feature.last_beam_index = beams_[last_ring_index].index;
-  feature.leg_likeness =
-      ScoreLegLikeness(cluster, ring_start, last_ring_index, spacing, reference_bearing);
+  feature.leg_likeness = ScoreLegLikeness(cluster, ring_start, last_ring_index, spacing,
+                                          reference_bearing, &feature.bounded_edges);
   feature.leg_cluster = static_cast<int32_t>(leg_clusters_.size()) - 1;
   const bool leg_like = feature.leg_likeness >= options_.leg_threshold;
   if (provisional && !leg_like) {
@@ -820,7 +828,7 @@ void Segmenter::MakeFeature(const Cluster& c) {
 
 double Segmenter::ScoreLegLikeness(const ClusterView& cluster, size_t ring_start,
                                    size_t last_ring_index, double spacing_rad,
-                                   double reference_bearing_rad) {
+                                   double reference_bearing_rad, int* bounded_edges) {
   const size_t m = beams_.size();
   const size_t count = cluster.count;
   // The beams just outside the cluster: none when a beam without a usable return lies between
@@ -840,6 +848,8 @@ double Segmenter::ScoreLegLikeness(const ClusterView& cluster, size_t ring_start
       around.range_after_m = beams_[after].range_m;
     }
   }
+  // An edge is bounded where the beam just outside had a usable return.
+  *bounded_edges = std::isfinite(around.range_before_m) + std::isfinite(around.range_after_m);
   LegClusterRecord record;
   record.features = ComputeLegFeatures(cluster, around);
   const Eigen::Vector2d centroid = Centroid(cluster.x_m, cluster.y_m, count);

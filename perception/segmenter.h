@@ -57,7 +57,11 @@
 //     leg_threshold, and two-point clusters as provisional legs where a leg of
 //     leg_nominal_diameter_m would show fewer than min_points beams, are paired into person
 //     features; a provisional leg that joins a person becomes a point feature (inserted in
-//     bearing order), the others are dropped. leg_index points into the final features.
+//     bearing order), the others are dropped. leg_index points into the final features. A
+//     candidate that is flat (convexity below 0.1, leg_features.h; a leg shows about 0.7) and
+//     has no usable return on either side (Feature::bounded_edges == 0) may be a visible piece
+//     of a larger surface: it is a LegCandidate::surface_piece, which makes no person alone and
+//     no pair with another.
 //
 // Measurement covariance of (range, bearing), with R the estimated object radius, D the centre
 // range, delta the cluster's mean beam spacing and f = shape_sigma_fraction:
@@ -200,7 +204,7 @@ class Segmenter {
   bool IsStructurePiece(const ClusterView& cluster, double width_m, bool leg_like);
   void MakeFeature(const Cluster& cluster);
   double ScoreLegLikeness(const ClusterView& cluster, size_t ring_start, size_t last_ring_index,
-                          double spacing_rad, double reference_bearing_rad);
+                          double spacing_rad, double reference_bearing_rad, int* bounded_edges);
 
   SegmenterOptions options_;
   BreakpointCriterion criterion_;

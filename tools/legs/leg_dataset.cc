@@ -110,6 +110,11 @@ double LegDetectionScore::recall() const {
                     : std::numeric_limits<double>::quiet_NaN();
 }
 
+double LegDetectionScore::person_leg_recall() const {
+  return labels > 0 ? static_cast<double>(labels_in_people) / static_cast<double>(labels)
+                    : std::numeric_limits<double>::quiet_NaN();
+}
+
 double LegDetectionScore::precision() const {
   return candidates_in_arc > 0
              ? static_cast<double>(candidates_matched) / static_cast<double>(candidates_in_arc)
@@ -166,6 +171,20 @@ void ScoreScan(const RecordedScan& scan, const Segmenter& segmenter, double leg_
   }
   score->labels += static_cast<int64_t>(scan.labels_m.size());
   score->labels_found += matched;
+  // The labels that a person feature stands on: what reaches the tracker as a person.
+  for (const Eigen::Vector2d& label : scan.labels_m) {
+    bool in_person = false;
+    for (const PersonFeature& p : segmenter.people()) {
+      for (int k = 0; k < p.num_legs && !in_person; ++k) {
+        const Feature& f = segmenter.features()[static_cast<size_t>(p.leg_index[k])];
+        if (f.leg_cluster < 0) continue;
+        const LegClusterRecord& r = segmenter.leg_clusters()[static_cast<size_t>(f.leg_cluster)];
+        const Eigen::Vector2d centroid(r.centroid_x_m, r.centroid_y_m);
+        in_person = (centroid - label).norm() <= kLabelMatchM;
+      }
+    }
+    score->labels_in_people += in_person;
+  }
   // A candidate is a leg when a label lies within kLabelMatchM (ClassifyCluster's rule), matched
   // one-to-one or not: two legs that leg_tracker's clustering joined into one labelled cluster
   // are two legs.

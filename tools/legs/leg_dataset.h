@@ -94,6 +94,7 @@ struct LegDetectionScore {
   int64_t scans = 0;
   int64_t labels = 0;             // labels of the labelled scans
   int64_t labels_found = 0;       // matched one-to-one by a leg candidate within kLabelMatchM
+  int64_t labels_in_people = 0;   // within kLabelMatchM of a leg of a person feature
   int64_t candidates_in_arc = 0;  // leg candidates whose centroid is inside the arc
   int64_t candidates_matched = 0; // ...within kLabelMatchM of a label (legs, ClassifyCluster)
   int64_t people = 0;
@@ -102,6 +103,7 @@ struct LegDetectionScore {
   int64_t first_utime = 0;
   int64_t last_utime = 0;
   double recall() const;
+  double person_leg_recall() const;  // labels_in_people / labels
   double precision() const;
   double people_per_scan() const;
   double people_per_minute() const;

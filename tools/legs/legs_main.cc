@@ -6,7 +6,7 @@
 //   slammtt-legs evaluate --labelled NAME=LOG ... [--arc ...] [--unlabelled NAME=LOG ...]
 //                         [--config FILE] [--strides 1,2,3]
 //   slammtt-legs world --simulated NAME=SCENARIO.yaml ... [--seeds 1-20] [--simulated-every K]
-//                      [--max-range 4,...] [--config FILE]
+//                      [--max-range 4,...] [--config FILE] [--causes]
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -275,9 +275,9 @@ int Evaluate(const CommandLine& cl, const ProcessSettings& settings) {
   Config section = settings.config.Child("segmenter");
   const SegmenterOptions options = ReadSegmenterOptions(section);
   section.CheckUnused();
-  std::cout << "| recording | stride | scans | leg recall | leg precision (arc) | people per scan "
-               "| people per minute | one-leg people | scans with 0 / 1 / 2 / 3 / 4 / 5+ people |\n"
-               "|---|---|---|---|---|---|---|---|---|\n";
+  std::cout << "| recording | stride | scans | leg recall | leg precision (arc) | labelled legs "
+               "in a person | people per scan | people per minute | one-leg people | scans with 0 "
+               "/ 1 / 2 / 3 / 4 / 5+ people |\n|---|---|---|---|---|---|---|---|---|---|\n";
   const auto row = [&](const std::string& name, const std::string& path) {
     const Recording r = Load(name, path);
     const auto arc = arcs.find(name);
@@ -286,8 +286,8 @@ int Evaluate(const CommandLine& cl, const ProcessSettings& settings) {
           EvaluateRecording(r, options, stride, arc == arcs.end() ? LabelArc{} : arc->second);
       std::cout << "| " << name << " | " << stride << " | " << s.scans << " | "
                 << Fixed(s.recall(), 4) << " | " << Fixed(s.precision(), 4) << " | "
-                << Fixed(s.people_per_scan(), 3) << " | " << Fixed(s.people_per_minute(), 1)
-                << " | " << s.people_one_leg << " |";
+                << Fixed(s.person_leg_recall(), 4) << " | " << Fixed(s.people_per_scan(), 3)
+                << " | " << Fixed(s.people_per_minute(), 1) << " | " << s.people_one_leg << " |";
       for (size_t k = 0; k < s.people_per_scan_histogram.size(); ++k) {
         std::cout << (k ? " / " : " ") << s.people_per_scan_histogram[k];
       }
@@ -324,6 +324,51 @@ std::vector<uint64_t> Seeds(const std::string& text) {
     seeds.push_back(static_cast<uint64_t>(v));
   }
   return seeds;
+}
+
+double Median(std::vector<double> v) {
+  if (v.empty()) return std::nan("");
+  std::sort(v.begin(), v.end());
+  return 0.5 * (v[(v.size() - 1) / 2] + v[v.size() / 2]);
+}
+
+// The diagnosis of one row (world_figures.h, PersonCauses), as indented text lines.
+void PrintCauses(const PersonCauses& c) {
+  int64_t one_leg = 0;
+  int64_t pairs = 0;
+  std::ostringstream singles;
+  std::ostringstream pair_text;
+  for (int a = 0; a < kLegSources; ++a) {
+    one_leg += c.false_one_leg[a];
+    if (c.false_one_leg[a] > 0) {
+      singles << " " << LegSourceName(static_cast<LegSource>(a)) << " " << c.false_one_leg[a]
+              << ";";
+    }
+    for (int b = a; b < kLegSources; ++b) {
+      pairs += c.false_pairs[a][b];
+      if (c.false_pairs[a][b] > 0) {
+        pair_text << " " << LegSourceName(static_cast<LegSource>(a)) << " + "
+                  << LegSourceName(static_cast<LegSource>(b)) << " " << c.false_pairs[a][b]
+                  << ";";
+      }
+    }
+  }
+  std::cout << "    false one-leg people " << one_leg << ":" << singles.str() << "\n"
+            << "    false pairs " << pairs << ":" << pair_text.str() << "\n"
+            << "    matched one-leg " << c.one_leg_errors_m.size() << " (centre error median "
+            << Fixed(Median(c.one_leg_errors_m), 3) << " m; truth minus feature along the sight "
+            << "line median " << Fixed(Median(c.one_leg_radial_m), 3) << " m, across "
+            << Fixed(Median(c.one_leg_lateral_m), 3) << " m; other leg hidden "
+            << c.one_leg_other_hidden << "), pairs " << c.pair_errors_m.size()
+            << " (median " << Fixed(Median(c.pair_errors_m), 3) << " m; from the legs' midpoint "
+            << Fixed(Median(c.pair_errors_to_legs_m), 3) << " m, which is "
+            << Fixed(Median(c.pair_body_to_legs_m), 3) << " m from the body; legs of one person "
+            << c.pairs_of_one_person << ", mixed " << c.pairs_mixed << ")\n"
+            << "    missed people by the best fate of their legs' clusters: leg candidate "
+            << c.missed_by_fate[0] << ", below leg_threshold " << c.missed_by_fate[1]
+            << ", on a line " << c.missed_by_fate[2] << ", structure piece "
+            << c.missed_by_fate[3] << ", two beams not a leg " << c.missed_by_fate[4]
+            << ", no cluster " << c.missed_by_fate[5] << "\n";
 }
 
 // The issue-11 figures on world scenarios (world_figures.h), one row per scenario and range.
@@ -372,6 +417,7 @@ int World(const CommandLine& cl, const ProcessSettings& settings) {
                 << Fixed(100.0 * f.WallPointShare(), 1) << " % of " << f.point_features << " | "
                 << Fixed(percentile(f.line_angle_errors_rad, 0.5) * 180.0 / M_PI, 2) << " deg / "
                 << Fixed(percentile(f.line_distance_errors_m, 0.5), 3) << " m |\n";
+      if (cl.Flag("causes")) PrintCauses(w.causes);
     }
   }
   return 0;
@@ -398,6 +444,8 @@ int Run(int argc, char** argv) {
   cl.AddOption("simulated-seeds", "LIST", "train: seeds of the simulated scenarios (101,102)");
   cl.AddOption("seeds", "A-B|LIST", "world: seeds of the scenarios (default 1-20)");
   cl.AddOption("max-range", "LIST", "world: score within these ranges [m] (default: all)");
+  cl.AddFlag("causes", "world: where false and missed people come from, and the centre error "
+                       "of one-leg and two-leg people (world_figures.h, PersonCauses)");
   cl.AddOption("simulated-every", "K", "train: every K-th simulated scan (10); world: (1)");
   cl.AddOption("exclude-features", "NAME,...",
                "train: features no split may read (names as in perception/leg_features.cc)");

@@ -61,7 +61,8 @@ double FeatureScore::WallPointShare() const {
 
 void ScorePeople(const std::vector<Eigen::Vector2d>& person_features,
                  const std::vector<TruthPerson>& people, const FeatureScoreOptions& options,
-                 FeatureScore* score) {
+                 FeatureScore* score, std::vector<int>* outcome) {
+  if (outcome != nullptr) outcome->assign(person_features.size(), kPersonNotScored);
   std::vector<size_t> features;
   for (size_t i = 0; i < person_features.size(); ++i) {
     const Eigen::Vector2d& f = person_features[i];
@@ -91,15 +92,19 @@ void ScorePeople(const std::vector<Eigen::Vector2d>& person_features,
     truth_used[tj] = true;
     ++score->people_matched;
     score->centre_errors_m.push_back(d);
+    if (outcome != nullptr) (*outcome)[features[fi]] = static_cast<int>(truth[tj]);
   }
   for (size_t fi = 0; fi < features.size(); ++fi) {
     if (feature_used[fi]) continue;
+    int result = kPersonFalse;
     for (size_t j : others) {
       if ((person_features[features[fi]] - people[j].centre_m).norm() <= options.person_match_m) {
         ++score->person_features_ignored;
+        result = kPersonIgnored;
         break;
       }
     }
+    if (outcome != nullptr) (*outcome)[features[fi]] = result;
   }
   score->people_truth += static_cast<int64_t>(truth.size());
   score->person_features += static_cast<int64_t>(features.size());

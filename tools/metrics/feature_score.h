@@ -72,10 +72,19 @@ struct FeatureScore {
   double WallPointShare() const;   // NaN without point features
 };
 
-// Non-finite inputs are skipped (a NaN feature is neither matched nor counted).
+// What became of each person feature in ScorePeople.
+enum PersonFeatureOutcome : int {
+  kPersonNotScored = -3,  // not finite, or beyond max_range_m
+  kPersonFalse = -2,      // a false positive
+  kPersonIgnored = -1,    // near a person outside the truth set
+  // >= 0: matched to people[outcome]
+};
+
+// Non-finite inputs are skipped (a NaN feature is neither matched nor counted). With `outcome`,
+// it receives one PersonFeatureOutcome (or the matched person's index) per feature.
 void ScorePeople(const std::vector<Eigen::Vector2d>& person_features,
                  const std::vector<TruthPerson>& people, const FeatureScoreOptions& options,
-                 FeatureScore* score);
+                 FeatureScore* score, std::vector<int>* outcome = nullptr);
 void ScorePointsOnWalls(const std::vector<Eigen::Vector2d>& point_features,
                         const std::vector<TruthSegment>& segments,
                         const FeatureScoreOptions& options, FeatureScore* score);
