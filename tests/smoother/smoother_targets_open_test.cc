@@ -53,7 +53,9 @@ TEST(SmootherTargetsOpenTest, SmoothedNeverWorseThanTheFilterOnSeeds1To30AndSeed
     EXPECT_LE(report["smoothed_landmark_rmse_m"].get<double>(),
               report["landmark_rmse_m"].get<double>())
         << "seed " << seed;
-    if (seed == 7) EXPECT_LE(smoothed_ate, 0.1);
+    if (seed == 7) {
+      EXPECT_LE(smoothed_ate, 0.1);
+    }
   }
 }
 
