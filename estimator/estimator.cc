@@ -318,9 +318,13 @@ std::vector<StaticObservation> Estimator::ManageTracks(ScanInProgress* s) {
                                &s->predicted, state_, s->assignment);
   PruneObjects(s->utime, taken_over, options_, after_updates, s->assignment, &state_,
                s->counts);
-  // 10. New tracks outside gate dn of every object (line 13).
-  AddNewObjects(association, s->gating.nearest_nis, continues_id, options_, s->assignment,
-                &next_id_, &state_, s->counts);
+  // 10. New tracks outside gate dn of every object (line 13); their first sightings go to the
+  // smoother too.
+  const std::vector<StaticObservation> first_sightings =
+      AddNewObjects(association, s->gating.nearest_nis, continues_id, options_, s->assignment,
+                    &next_id_, &state_, s->counts);
+  static_observations.insert(static_observations.end(), first_sightings.begin(),
+                             first_sightings.end());
   return static_observations;
 }
 

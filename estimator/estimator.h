@@ -133,7 +133,8 @@ struct ScanResult {
   std::vector<LineEstimate> lines;
   StepCounts counts;
   // For the smoother (smoother_input.h): the robot's motion the prediction applied, and the
-  // measurements associated with confirmed static point landmarks (static_observations.h).
+  // measurements associated with point landmarks or objects that may become one (tentative),
+  // and the sightings that started such objects (static_observations.h, new_objects.h).
   RobotMotion motion;
   std::vector<StaticObservation> static_observations;
 };
@@ -224,8 +225,9 @@ class Estimator {
   // (people.h).
   void UpdateThirdLevel(ScanInProgress* s);
   // Lines 11-13: hits and misses, take-overs, classification, re-acquisition tags, pruning,
-  // new objects (steps 7-10 above). Returns the scan's measurements of confirmed static point
-  // landmarks, taken right after classification (static_observations.h).
+  // new objects (steps 7-10 above). Returns the scan's measurements of point landmarks (and
+  // tentative ones), taken right after classification (static_observations.h), then the
+  // sightings that started new objects (new_objects.h).
   std::vector<StaticObservation> ManageTracks(ScanInProgress* s);
   // The scan's problems reported, the state made finite (EnsureFiniteState).
   void FinishScan(ScanInProgress* s);

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <utility>
 
+#include "estimator/row_major.h"
 #include "estimator/smoother_input_message.h"
 #include "runtime/config_options.h"
 #include "runtime/log.h"
@@ -68,14 +69,6 @@ std::string OneLine(const std::string& text) {
   return line;
 }
 
-// A 2x2 covariance as the messages carry it: row-major, 4 doubles.
-void Write2x2(const Eigen::Matrix2d& m, double out[4]) {
-  out[0] = m(0, 0);
-  out[1] = m(0, 1);
-  out[2] = m(1, 0);
-  out[3] = m(1, 1);
-}
-
 // The counters of stage_timing_t for one processed scan.
 void CountScanWork(const ScanResult& result, StageTimer* timer) {
   const StepCounts& counts = result.counts;
@@ -99,9 +92,7 @@ slammtt_msgs::pose_t PoseMessage(int64_t utime, const ScanResult& result) {
   pose.x_m = result.pose(0);
   pose.y_m = result.pose(1);
   pose.heading_rad = result.pose(2);
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) pose.covariance[3 * r + c] = result.pose_covariance(r, c);
-  }
+  WriteRowMajor<3>(result.pose_covariance, pose.covariance);
   return pose;
 }
 
@@ -112,9 +103,7 @@ slammtt_msgs::track_t TrackMessage(const ObjectEstimate& e) {
   track.y_m = e.position(1);
   track.vx_mps = e.velocity(0);
   track.vy_mps = e.velocity(1);
-  for (int r = 0; r < 4; ++r) {
-    for (int c = 0; c < 4; ++c) track.covariance[4 * r + c] = e.covariance(r, c);
-  }
+  WriteRowMajor<4>(e.covariance, track.covariance);
   track.object_class = ClassCode(e.object_class);
   track.confirmed = e.confirmed;
   track.first_seen_utime = e.first_seen_utime;
@@ -142,7 +131,7 @@ slammtt_msgs::line_landmark_t LineLandmarkMessage(const LineEstimate& e) {
   line.id = e.id;
   line.rho_m = e.line(0);
   line.alpha_rad = e.line(1);
-  Write2x2(e.covariance, line.covariance);
+  WriteRowMajor<2>(e.covariance, line.covariance);
   line.from_x_m = e.from_m(0);
   line.from_y_m = e.from_m(1);
   line.to_x_m = e.to_m(0);
@@ -164,7 +153,7 @@ slammtt_msgs::map_t MapMessage(int64_t utime, const ScanResult& result) {
     landmark.id = e.id;
     landmark.x_m = e.position(0);
     landmark.y_m = e.position(1);
-    Write2x2(e.covariance.topLeftCorner<2, 2>(), landmark.covariance);
+    WriteRowMajor<2>(e.covariance.topLeftCorner<2, 2>(), landmark.covariance);
     map.landmarks.push_back(landmark);
   }
   for (const LineEstimate& e : result.lines) map.lines.push_back(LineLandmarkMessage(e));

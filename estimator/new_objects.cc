@@ -9,10 +9,13 @@
 
 namespace slammtt {
 
-void AddNewObjects(const ScanAssociation& scan, const std::vector<double>& nearest_nis,
-                   const std::vector<int64_t>& continues_id, const EstimatorOptions& options,
-                   const Assignment& assignment, int64_t* next_id, SlamState* state,
-                   StepCounts* counts) {
+std::vector<StaticObservation> AddNewObjects(const ScanAssociation& scan,
+                                             const std::vector<double>& nearest_nis,
+                                             const std::vector<int64_t>& continues_id,
+                                             const EstimatorOptions& options,
+                                             const Assignment& assignment, int64_t* next_id,
+                                             SlamState* state, StepCounts* counts) {
+  std::vector<StaticObservation> first_sightings;
   const bool static_world = options.mode == AssociationMode::kStaticNearestNeighbour;
   for (int i = 0; i < assignment.num_measurements(); ++i) {
     if (!assignment.MeasurementFree(i) ||
@@ -44,8 +47,13 @@ void AddNewObjects(const ScanAssociation& scan, const std::vector<double>& neare
       const double sigma = options.new_object_velocity_sigma_mps;
       state->AddVelocity(k, Eigen::Vector2d::Zero(), sigma * sigma * Eigen::Matrix2d::Identity());
     }
+    if (!z.person && MayBePointLandmark(record.object_class, record.kind)) {
+      first_sightings.push_back(
+          StaticObservation{record.id, z.range_bearing, z.covariance, !record.confirmed});
+    }
     ++counts->new_objects;
   }
+  return first_sightings;
 }
 
 }  // namespace slammtt

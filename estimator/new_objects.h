@@ -7,21 +7,31 @@
 // (reacquisition.h). In baseline (a), the static world, it is a STATIC landmark without
 // velocity states, confirmed at once (plain EKF-SLAM maps a landmark at its first sighting).
 // At most max_objects objects: the measurements beyond are refused and counted.
+//
+// The measurement that starts an object is its first sighting: the filter placed the object
+// there from the robot's pose of this scan, so the smoother needs it as well (smoother_input.h).
+// Without it, the landmarks first seen in one scan share no measurement with that scan's pose,
+// and the smoothed map can turn about it by the error of the next odometry increments.
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
 #include "estimator/association.h"
+#include "estimator/static_observations.h"
 
 namespace slammtt {
 
 // Adds the new objects with ids from *next_id on (counts->new_objects, objects_refused).
 // `nearest_nis`: per measurement (scan_gating.h); `continues_id`: per measurement, the lost
-// track's id it may continue (0: none).
-void AddNewObjects(const ScanAssociation& scan, const std::vector<double>& nearest_nis,
-                   const std::vector<int64_t>& continues_id, const EstimatorOptions& options,
-                   const Assignment& assignment, int64_t* next_id, SlamState* state,
-                   StepCounts* counts);
+// track's id it may continue (0: none). Returns the sightings that started objects that may be
+// point landmarks (MayBePointLandmark, not a person feature), in measurement order, tentative
+// unless the object starts as a confirmed static landmark (the static world).
+std::vector<StaticObservation> AddNewObjects(const ScanAssociation& scan,
+                                             const std::vector<double>& nearest_nis,
+                                             const std::vector<int64_t>& continues_id,
+                                             const EstimatorOptions& options,
+                                             const Assignment& assignment, int64_t* next_id,
+                                             SlamState* state, StepCounts* counts);
 
 }  // namespace slammtt

@@ -1,20 +1,15 @@
 #include "estimator/smoother_input.h"
 
-#include <cmath>
-
-#include "common/angle.h"
+#include "geometry/pose2.h"
 
 namespace slammtt {
 
 void MotionIncrement(const RobotMotion& motion, Eigen::Vector3d* increment,
                      Eigen::Matrix3d* covariance) {
-  const double c = std::cos(motion.from_pose(2));
-  const double s = std::sin(motion.from_pose(2));
-  Eigen::Matrix3d to_start_frame = Eigen::Matrix3d::Identity();
-  to_start_frame.topLeftCorner<2, 2>() << c, s, -s, c;  // R^T
-  const Eigen::Vector3d difference = motion.to_pose - motion.from_pose;
-  *increment = to_start_frame * difference;
-  (*increment)(2) = WrapAngle(difference(2));
+  // The end pose seen from the start pose; its Jacobian with respect to the end pose is
+  // diag(R^T, 1), which carries the noise the prediction added to the end pose into that frame.
+  Eigen::Matrix3d to_start_frame;
+  *increment = PoseBetween(motion.from_pose, motion.to_pose, nullptr, &to_start_frame);
   const Eigen::Matrix3d rotated = to_start_frame * motion.noise * to_start_frame.transpose();
   *covariance = 0.5 * (rotated + rotated.transpose());
 }

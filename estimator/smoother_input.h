@@ -34,9 +34,10 @@ struct SmootherScanInput {
   std::vector<int64_t> removed_landmark_ids;
 };
 
-// The motion's increment in the frame of its start pose: (R^T (t_to - t_from), wrap(dtheta)),
-// and the covariance of the prediction's noise in that frame, A Q A^T with A = diag(R^T, 1)
-// (R the start heading's rotation): the noise the filter added to the end pose given the start.
+// The motion's increment in the frame of its start pose, (R^T (t_to - t_from), wrap(dtheta)):
+// PoseBetween(from, to) of geometry/pose2.h, the smoother's own; and the covariance of the
+// prediction's noise in that frame, A Q A^T with A = diag(R^T, 1) (R the start heading's
+// rotation): the noise the filter added to the end pose given the start.
 void MotionIncrement(const RobotMotion& motion, Eigen::Vector3d* increment,
                      Eigen::Matrix3d* covariance);
 

@@ -1,26 +1,8 @@
 #include "estimator/smoother_input_message.h"
 
+#include "estimator/row_major.h"
+
 namespace slammtt {
-namespace {
-
-// Row-major, as every covariance of the messages.
-template <int kDim>
-void WriteRowMajor(const Eigen::Matrix<double, kDim, kDim>& m, double* out) {
-  for (int r = 0; r < kDim; ++r) {
-    for (int c = 0; c < kDim; ++c) out[kDim * r + c] = m(r, c);
-  }
-}
-
-template <int kDim>
-Eigen::Matrix<double, kDim, kDim> ReadRowMajor(const double* in) {
-  Eigen::Matrix<double, kDim, kDim> m;
-  for (int r = 0; r < kDim; ++r) {
-    for (int c = 0; c < kDim; ++c) m(r, c) = in[kDim * r + c];
-  }
-  return m;
-}
-
-}  // namespace
 
 slammtt_msgs::smoother_input_t SmootherInputMessage(const SmootherScanInput& input) {
   slammtt_msgs::smoother_input_t message;

@@ -1,7 +1,8 @@
 #!/bin/sh
 # The pictures of the README and docs/tools.md (docs/images/*.svg), made by the real pipeline:
 #   s1-crossing seed 7 (world point features) -> slammtt-replay with its estimator configuration
-#     -> slammtt-eval --plots: s1-crossing-{trajectory,map,tracks,identities,errors}.svg;
+#     and the smoother -> slammtt-eval --plots:
+#     s1-crossing-{trajectory,map,tracks,identities,errors}.svg;
 #   office seed 1 (scans) -> segmenter and estimator (replay) -> slammtt-eval --plots with the
 #     office configuration (the laser mount): office-scan.svg.
 # The same commands as the main job's steps 2 and 3 (scripts/run-main-job.sh), run in a scratch
@@ -39,7 +40,7 @@ cd "$scratch"
 
 "$bin/slammtt-world" --quiet --scenario s1-crossing --seed 7 --log s1-crossing-seed7.lcm
 "$bin/slammtt-replay" --quiet --no-timing s1-crossing-seed7.lcm -o s1-crossing-seed7-replay.lcm \
-  --config "$root/estimator/config/s1-crossing.yaml"
+  --config "$root/estimator/config/s1-crossing.yaml" --smoother
 # The log's name is written into the pictures' captions: the main job's name for it.
 mkdir -p out && mv s1-crossing-seed7-replay.lcm out/
 "$bin/slammtt-eval" --quiet out/s1-crossing-seed7-replay.lcm --json s1-report.json \

@@ -5,11 +5,14 @@
 # run on the robot (the world stands in for the base and the laser):
 #
 #   slammtt-world --LASER_SCAN--> slammtt-segmenter --FEATURES--> slammtt-estimator
-#                 --ODOMETRY------------------------------------->
+#                 --ODOMETRY-------------------------------------> |
+#                           slammtt-smoother <--SMOOTHER_INPUT------+
 #
-# while lcm-logger records the bus; then slammtt-eval scores the recording against the world's
-# GROUND_TRUTH and draws it, and slammtt-timing shows where the time went. The world runs
-# RATE_FACTOR times faster than real time (default 5). The stack configuration is the
+# (the smoother publishes SMOOTHED_POSE and SMOOTHED_MAP with the options of the configuration's
+# `smoother:` section, its defaults without one) while lcm-logger records the bus; then
+# slammtt-eval scores the recording against the world's GROUND_TRUTH (the smoothed trajectory
+# and map beside the filter's) and draws it, and slammtt-timing shows where the time went. The
+# world runs RATE_FACTOR times faster than real time (default 5). The stack configuration is the
 # scenario's own (estimator/config/SCENARIO.yaml: the simulated sensor's mount and field of view).
 #
 # Outputs in OUTDIR: SCENARIO-seedSEED.lcm (the recording), report.json, plots/*.svg, timing.txt.
@@ -44,11 +47,13 @@ pids="$pids $!"
 pids="$pids $!"
 "$bin/slammtt-estimator" --config "$config" &
 pids="$pids $!"
+"$bin/slammtt-smoother" --config "$config" &
+pids="$pids $!"
 sleep 1  # let every process subscribe before the world starts talking
 
 "$bin/slammtt-world" --scenario "$scenario" --seed "$seed" --output scans \
   --rate-factor "$rate"
-sleep 1  # let the last scan travel through segmenter and estimator into the log
+sleep 1  # let the last scan travel through segmenter, estimator and smoother into the log
 stop_all
 
 "$bin/slammtt-timing" "$log" | tee "$out/timing.txt"

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "common/angle.h"
-#include "smoother/pose2.h"
+#include "geometry/pose2.h"
 
 namespace slammtt {
 

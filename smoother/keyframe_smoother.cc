@@ -8,7 +8,7 @@
 
 #include "common/angle.h"
 #include "common/utime.h"
-#include "smoother/pose2.h"
+#include "geometry/pose2.h"
 
 namespace slammtt {
 namespace {

@@ -6,7 +6,7 @@
 #include <unordered_set>
 
 #include "common/number_text.h"
-#include "smoother/pose2.h"
+#include "geometry/pose2.h"
 
 namespace slammtt {
 

@@ -10,7 +10,7 @@
 
 #include "common/angle.h"
 #include "smoother/factors.h"
-#include "smoother/pose2.h"
+#include "geometry/pose2.h"
 
 namespace slammtt {
 

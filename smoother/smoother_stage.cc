@@ -1,5 +1,6 @@
 #include "smoother/smoother_stage.h"
 
+#include "estimator/row_major.h"
 #include "estimator/smoother_input_message.h"
 #include "runtime/config_options.h"
 #include "runtime/log.h"
@@ -68,9 +69,7 @@ void SmootherStage::Handle(const std::string& channel, const void* data, int siz
   pose.x_m = scan.pose(0);
   pose.y_m = scan.pose(1);
   pose.heading_rad = scan.pose(2);
-  for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) pose.covariance[3 * r + c] = scan.pose_covariance(r, c);
-  }
+  WriteRowMajor<3>(scan.pose_covariance, pose.covariance);
   out.PublishMessage(pose_channel_, pose);
   if (scan.keyframe && ++keyframes_since_map_ >= map_every_keyframes_) {
     keyframes_since_map_ = 0;
@@ -96,10 +95,7 @@ void SmootherStage::PublishMap(int64_t utime, MessageSink& out) {
     landmark.id = l.id;
     landmark.x_m = l.position(0);
     landmark.y_m = l.position(1);
-    landmark.covariance[0] = l.covariance(0, 0);
-    landmark.covariance[1] = l.covariance(0, 1);
-    landmark.covariance[2] = l.covariance(1, 0);
-    landmark.covariance[3] = l.covariance(1, 1);
+    WriteRowMajor<2>(l.covariance, landmark.covariance);
     map.landmarks.push_back(landmark);
   }
   map.num_landmarks = static_cast<int32_t>(map.landmarks.size());

@@ -288,11 +288,16 @@ TEST(EstimatorStageTest, PublishesEveryOutputWithTheFeaturesUtime) {
   EXPECT_FALSE(tracks.tracks[0].confirmed);
   EXPECT_EQ(tracks.tracks[0].first_seen_utime, 100000);
   // The first scan: no motion from a previous one; both features start objects (no
-  // association yet), so there is no observation for the smoother.
+  // association yet), and their starting sightings go to the smoother, tentative, under the
+  // new tracks' ids.
   const auto smoother_input = out.Get<slammtt_msgs::smoother_input_t>(3);
   EXPECT_EQ(smoother_input.utime, 100000);
   EXPECT_FALSE(smoother_input.continues);
-  EXPECT_EQ(smoother_input.num_observations, 0);
+  ASSERT_EQ(smoother_input.num_observations, 2);
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_EQ(smoother_input.observations[k].landmark_id, tracks.tracks[k].id);
+    EXPECT_TRUE(smoother_input.observations[k].tentative);
+  }
   EXPECT_NEAR(smoother_input.x_m, 0.05, 1e-9);
   const auto status = out.Get<slammtt_msgs::estimator_status_t>(4);
   EXPECT_EQ(status.utime, 100000);

@@ -183,17 +183,30 @@ TEST(NewObjectsTest, FreeMeasurementsOutsideDnOfEveryObjectStartUndecidedTentati
   scene.Measure({5.02, 0.0});  // 0: near the landmark (NIS < dn): no new object
   scene.Measure({0.0, 4.0});   // 1: new
   scene.Measure({0.0, -4.0});  // 2: new, the continuation of lost track 42
+  scene.Measure({3.0, 3.0});   // 3: new, a person: no landmark, so no first sighting
+  scene.measurements[3].person = true;
   ObservationPredictions predicted(scene.options.sensor);
   const ScanGating gating = GateScan(scene.measurements, predicted.At(scene.state), scene.options);
   ASSERT_LT(gating.nearest_nis[0], scene.options.new_object_gate_dn_chi2);
   const std::vector<uint8_t> may_update = {1};
   const ScanAssociation scan{scene.measurements, may_update, 4 * kSecond};
   int64_t next_id = 10;
-  AddNewObjects(scan, gating.nearest_nis, {0, 0, 42}, scene.options, Assignment(3, 1), &next_id,
-                &scene.state, &scene.counts);
-  EXPECT_EQ(scene.counts.new_objects, 2);
-  EXPECT_EQ(next_id, 12);
-  ASSERT_EQ(scene.state.num_objects(), 3);
+  const std::vector<StaticObservation> first_sightings =
+      AddNewObjects(scan, gating.nearest_nis, {0, 0, 42, 0}, scene.options, Assignment(4, 1),
+                    &next_id, &scene.state, &scene.counts);
+  EXPECT_EQ(scene.counts.new_objects, 3);
+  EXPECT_EQ(next_id, 13);
+  ASSERT_EQ(scene.state.num_objects(), 4);
+  // The smoother gets the measurements that started the two objects that may be landmarks,
+  // tentative (undecided objects), under the new objects' ids.
+  ASSERT_EQ(first_sightings.size(), 2u);
+  for (int k : {1, 2}) {
+    const StaticObservation& o = first_sightings[static_cast<size_t>(k - 1)];
+    EXPECT_EQ(o.landmark_id, 9 + k);
+    EXPECT_EQ(o.range_bearing, scene.measurements[static_cast<size_t>(k)].range_bearing);
+    EXPECT_EQ(o.covariance, scene.measurements[static_cast<size_t>(k)].covariance);
+    EXPECT_TRUE(o.tentative);
+  }
   for (int k : {1, 2}) {
     const StateObject& o = scene.state.object(k);
     EXPECT_EQ(o.record.id, 9 + k);
@@ -219,9 +232,14 @@ TEST(NewObjectsTest, TheCapRefusesAndTheStaticWorldMapsConfirmedLandmarks) {
   const std::vector<uint8_t> may_update;
   const ScanAssociation scan{scene.measurements, may_update, kSecond};
   int64_t next_id = 1;
-  AddNewObjects(scan, {kInfinity, kInfinity}, {0, 0}, scene.options, Assignment(2, 0), &next_id,
-                &scene.state, &scene.counts);
+  const std::vector<StaticObservation> first_sightings =
+      AddNewObjects(scan, {kInfinity, kInfinity}, {0, 0}, scene.options, Assignment(2, 0),
+                    &next_id, &scene.state, &scene.counts);
   EXPECT_EQ(scene.counts.new_objects, 1);
+  // A landmark from its first sighting: the smoother's observation is not tentative.
+  ASSERT_EQ(first_sightings.size(), 1u);
+  EXPECT_EQ(first_sightings[0].landmark_id, 1);
+  EXPECT_FALSE(first_sightings[0].tentative);
   EXPECT_EQ(scene.counts.objects_refused, 1);
   ASSERT_EQ(scene.state.num_objects(), 1);
   EXPECT_EQ(scene.state.object(0).record.object_class, ObjectClass::kStatic);

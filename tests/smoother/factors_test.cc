@@ -6,7 +6,7 @@
 #include <random>
 
 #include "smoother/factors.h"
-#include "smoother/pose2.h"
+#include "geometry/pose2.h"
 #include "tests/support/numerical_derivative.h"
 
 namespace slammtt {

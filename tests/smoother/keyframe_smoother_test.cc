@@ -12,7 +12,7 @@
 #include "common/angle.h"
 #include "estimator/range_bearing_model.h"
 #include "smoother/keyframe_smoother.h"
-#include "smoother/pose2.h"
+#include "geometry/pose2.h"
 
 namespace slammtt {
 namespace {

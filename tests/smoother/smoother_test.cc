@@ -16,7 +16,7 @@
 
 #include "common/angle.h"
 #include "smoother/factors.h"
-#include "smoother/pose2.h"
+#include "geometry/pose2.h"
 #include "tests/support/numerical_derivative.h"
 
 namespace slammtt {

@@ -1,4 +1,5 @@
-// Planar rigid motions (SE(2)) as the smoother stores them: a pose is the vector (x, y, theta),
+// Planar rigid motions (SE(2)) as the smoother stores them and the estimator hands it the robot's
+// motion (estimator/smoother_input.h): a pose is the vector (x, y, theta),
 // metres and radians, theta wrapped to (-pi, pi] (common/angle.h), frames x forward, y left,
 // angles counter-clockwise (docs/DEVELOPING.md).
 //

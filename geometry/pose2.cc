@@ -1,4 +1,4 @@
-#include "smoother/pose2.h"
+#include "geometry/pose2.h"
 
 #include <cmath>
 
