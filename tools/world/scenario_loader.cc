@@ -64,8 +64,8 @@ class ScenarioReader {
 
   Scenario Read() {
     root_.CheckKeysAmong({"name", "description", "duration_s", "start_utime", "output", "laser",
-                          "features", "odometry", "robot", "statics", "movers", "crowd",
-                          "people", "legs"});
+                          "features", "odometry", "robot", "statics", "scattered_landmarks",
+                          "movers", "crowd", "people", "legs"});
     Scenario s;
     s.name = root_.GetString("name", "");
     root_.GetString("description", "");  // for people only
@@ -94,6 +94,7 @@ class ScenarioReader {
       s.statics.push_back(ReadStatic(statics[i], next_id));
       next_id = s.statics.back().id + StaticIdCount(s.statics.back());
     }
+    ReadScatteredLandmarks(root_.Child("scattered_landmarks"), &s.scattered_landmarks);
     const std::vector<Config> movers = root_.Items("movers");
     for (size_t i = 0; i < movers.size(); ++i) s.movers.push_back(ReadMover(movers[i], i));
     if (root_.Has("crowd")) ReadCrowd(root_.Child("crowd"), &s.movers);
@@ -162,6 +163,19 @@ class ScenarioReader {
     l->mount_a_m = Double(c, "mount_a_m", l->mount_a_m);
     l->mount_b_m = Double(c, "mount_b_m", l->mount_b_m);
     l->mount_yaw_deg = Double(c, "mount_yaw_deg", l->mount_yaw_deg);
+  }
+
+  void ReadScatteredLandmarks(const Config& c, ScatteredLandmarksSpec* g) {
+    c.CheckKeysAmong({"count", "min_offset_m", "max_offset_m", "min_spacing_m", "radius_m",
+                      "first_id"});
+    const int64_t count = Int(c, "count", g->count);
+    if (count < 0 || count > 100000) c.FailKey("count", "must be within [0, 100000]");
+    g->count = static_cast<int>(count);
+    g->min_offset_m = Double(c, "min_offset_m", g->min_offset_m);
+    g->max_offset_m = Double(c, "max_offset_m", g->max_offset_m);
+    g->min_spacing_m = Double(c, "min_spacing_m", g->min_spacing_m);
+    g->radius_m = Double(c, "radius_m", g->radius_m);
+    g->first_id = Int(c, "first_id", g->first_id);
   }
 
   void ReadLegs(const Config& c, LegSpec* legs) {
