@@ -320,7 +320,7 @@ std::vector<StaticObservation> Estimator::ManageTracks(ScanInProgress* s) {
       TagPossibleContinuations(association, s->gating.nearest_nis, taken_over, options_,
                                &s->predicted, state_, s->assignment);
   PruneObjects(s->utime, taken_over, options_, after_updates, s->assignment, &state_,
-               s->counts);
+               s->counts, &archive_);
   // 10. New tracks outside gate dn of every object (line 13).
   AddNewObjects(association, s->gating.nearest_nis, continues_id, options_, s->assignment,
                 &next_id_, &state_, s->counts);

@@ -95,15 +95,23 @@ int LandmarkArchive::Archive(const LandmarkWindowOptions& options, SlamState* st
       leaving.push_back(candidates[i].second);
     }
   }
-  for (const int k : leaving) {
-    ArchivedLandmark landmark;
-    landmark.position_m = state->position(k);
-    landmark.covariance_m2 = state->ObjectCovariance(k).topLeftCorner<2, 2>();
-    landmark.record = state->object(k).record;
-    landmarks_[landmark.record.id] = landmark;
-  }
+  Store(*state, leaving);
   state->RemoveObjects(leaving);
   return static_cast<int>(leaving.size());
+}
+
+int LandmarkArchive::Store(const SlamState& state, const std::vector<int>& indices) {
+  int stored = 0;
+  for (const int k : indices) {
+    if (k < 0 || k >= state.num_objects() || !MayLeaveTheState(state, k)) continue;
+    ArchivedLandmark landmark;
+    landmark.position_m = state.position(k);
+    landmark.covariance_m2 = state.ObjectCovariance(k).topLeftCorner<2, 2>();
+    landmark.record = state.object(k).record;
+    landmarks_[landmark.record.id] = landmark;
+    ++stored;
+  }
+  return stored;
 }
 
 }  // namespace slammtt

@@ -33,6 +33,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <map>
+#include <vector>
 
 #include "common/options_schema.h"
 #include "estimator/slam_state.h"
@@ -71,6 +72,11 @@ class LandmarkArchive {
 
   // Leaving (above). Returns how many landmarks left. Nothing without a window.
   int Archive(const LandmarkWindowOptions& options, SlamState* state);
+
+  // Copies the objects of `state` listed in `indices` that may leave it (MayLeaveTheState)
+  // into the archive, without removing them from the state (the caller does: pruning.h).
+  // Returns how many.
+  int Store(const SlamState& state, const std::vector<int>& indices);
 
   // By id.
   const std::map<int64_t, ArchivedLandmark>& landmarks() const { return landmarks_; }
