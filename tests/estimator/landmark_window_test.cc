@@ -14,6 +14,7 @@
 
 #include "estimator/estimator.h"
 #include "estimator/landmark_window.h"
+#include "estimator/pruning.h"
 #include "estimator/testing/point_world.h"
 #include "tests/estimator/step_scene.h"
 
@@ -153,6 +154,28 @@ TEST(LandmarkWindowTest, OptionsThatCannotWorkAreRefusedByKey) {
   EstimatorOptions options;
   options.window = Window(40, 25);
   EXPECT_NE(CheckEstimatorOptions(options).find("window_reenter_radius_m"), std::string::npos);
+}
+
+TEST(LandmarkWindowTest, WithAWindowAnUnseenStaticLandmarkGoesToTheArchiveInsteadOfAway) {
+  for (const bool window : {false, true}) {
+    StepScene scene;
+    scene.options.window = window ? Window(40, 35) : LandmarkWindowOptions{};
+    const int landmark = scene.AddLandmark({5, 0}, 0.1, 31);
+    const int tentative = scene.AddLandmark({5, 2}, 0.1, 32);
+    scene.state.object(tentative).record.confirmed = false;
+    for (const int k : {landmark, tentative}) {
+      scene.state.object(k).record.unseen_in_view_s = 10.0;  // beyond 3.5 s: pruned
+      scene.state.object(k).record.last_seen_utime = -100 * testing::kSecond;
+    }
+    LandmarkArchive archive;
+    PruneObjects(0, {}, scene.options, scene.Predictions(), Assignment(0, 2), &scene.state,
+                 &scene.counts, &archive);
+    EXPECT_EQ(scene.state.num_objects(), 0);
+    EXPECT_EQ(scene.counts.pruned, window ? 1 : 2);
+    EXPECT_EQ(scene.counts.landmarks_archived, window ? 1 : 0);
+    EXPECT_EQ(archive.landmarks().count(31), window ? 1u : 0u);
+    EXPECT_EQ(archive.landmarks().count(32), 0u);  // a tentative object is no landmark yet
+  }
 }
 
 // Posts on both sides of a circle of radius 40 m, driven round once and 60 m more at 2 m/s
