@@ -93,6 +93,7 @@ void Estimator::StartOver() {
   last_finite_pose_ = state_.robot_pose();
   last_finite_pose_covariance_ = state_.robot_covariance();
   line_candidates_.clear();
+  archive_.Clear();
 }
 
 bool Estimator::AcceptTime(const char* what, int64_t utime, StreamClock* clock) {
@@ -207,6 +208,7 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
   // Line 2: propagate the whole state to the scan (step 1); the walls then correct the pose
   // before the points are judged (step 1b).
   PropagateState(scan, &s);
+  RestoreNearbyLandmarks(&s);
   lap(Substage::kPredict);
   // Lines 3-4: individual compatibility with gate d1, the association matrix J (steps 2-3).
   GateMeasurements(&s);
@@ -225,6 +227,7 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
   // Lines 11-13: prune, determine static or dynamic, initialise new tracks (steps 7-10); what
   // the scan measured of the static landmarks is kept for the smoother.
   result.static_observations = ManageTracks(&s);
+  ArchiveDistantLandmarks(&s);
   FinishScan(&s);
   lap(Substage::kTrackManagement);
   ++counters_.scans_processed;
@@ -317,7 +320,7 @@ std::vector<StaticObservation> Estimator::ManageTracks(ScanInProgress* s) {
       TagPossibleContinuations(association, s->gating.nearest_nis, taken_over, options_,
                                &s->predicted, state_, s->assignment);
   PruneObjects(s->utime, taken_over, options_, after_updates, s->assignment, &state_,
-               s->counts);
+               s->counts, &archive_);
   // 10. New tracks outside gate dn of every object (line 13); their first sightings go to the
   // smoother too.
   const std::vector<StaticObservation> first_sightings =
@@ -326,6 +329,14 @@ std::vector<StaticObservation> Estimator::ManageTracks(ScanInProgress* s) {
   static_observations.insert(static_observations.end(), first_sightings.begin(),
                              first_sightings.end());
   return static_observations;
+}
+
+void Estimator::RestoreNearbyLandmarks(ScanInProgress* s) {
+  s->counts->landmarks_restored = archive_.Restore(options_.window, &state_);
+}
+
+void Estimator::ArchiveDistantLandmarks(ScanInProgress* s) {
+  s->counts->landmarks_archived = archive_.Archive(options_.window, &state_);
 }
 
 void Estimator::FinishScan(ScanInProgress* s) {
@@ -493,6 +504,22 @@ void Estimator::ReportEstimate(int64_t utime, ScanResult* result) const {
     e.last_seen_utime = record.last_seen_utime;
     e.hits = record.hits;
     result->objects.push_back(e);
+  }
+  result->archived_landmarks.reserve(static_cast<size_t>(archive_.size()));
+  for (const auto& [id, landmark] : archive_.landmarks()) {
+    ObjectEstimate e;
+    e.id = id;
+    e.object_class = landmark.record.object_class;
+    e.kind = landmark.record.kind;
+    e.confirmed = true;
+    e.reported = true;
+    e.coasting_s = SecondsBetween(utime, landmark.record.last_seen_utime);
+    e.position = landmark.position_m;
+    e.covariance.topLeftCorner<2, 2>() = landmark.covariance_m2;
+    e.first_seen_utime = landmark.record.first_seen_utime;
+    e.last_seen_utime = landmark.record.last_seen_utime;
+    e.hits = landmark.record.hits;
+    result->archived_landmarks.push_back(e);
   }
   result->lines.reserve(static_cast<size_t>(state_.num_lines()));
   for (int k = 0; k < state_.num_lines(); ++k) {

@@ -6,6 +6,8 @@
 //   1. predict                the whole state to the scan time: robot by eq. 1 along the
 //                             odometry since the previous scan (odometry_buffer.h), movers by
 //                             eqs. 6-8, landmarks unchanged (line 2: scan_prediction.h);
+//                             with a local window, archived static landmarks near the robot
+//                             re-enter the state (landmark_window.h);
 //  1b. line landmarks        the scan's line features (walls) update the line landmarks and
 //                             the pose, and start new line landmarks; the point features on a
 //                             line landmark are dropped (line_landmarks.h; new walls start
@@ -30,7 +32,9 @@
 //   9. re-acquisition         new objects' possible continuations of lost movers
 //                             (reacquisition.h, step 1), then pruning (line 11: pruning.h);
 //  10. new objects            from measurements outside gate dn of every object (line 13:
-//                             new_objects.h).
+//                             new_objects.h); with a local window, static landmarks far from
+//                             the robot then leave the state for its archive
+//                             (landmark_window.h).
 // The levels share the assignment and the update of chosen pairs (association.h).
 // Baselines, same code paths where they share them (Options::mode):
 //   kStaticNearestNeighbour  plain EKF-SLAM assuming a static world (the paper's Fig. 5):
@@ -65,6 +69,7 @@
 #include "estimator/estimator_options.h"
 #include "estimator/feature_validation.h"
 #include "estimator/gating.h"
+#include "estimator/landmark_window.h"
 #include "estimator/ml_ransac.h"
 #include "estimator/odometry_buffer.h"
 #include "estimator/odometry_plausibility.h"
@@ -130,6 +135,9 @@ struct ScanResult {
   Eigen::Vector3d pose = Eigen::Vector3d::Zero();
   Eigen::Matrix3d pose_covariance = Eigen::Matrix3d::Zero();
   std::vector<ObjectEstimate> objects;
+  // The static landmarks of the local window's archive (landmark_window.h), by id: part of the
+  // map, not of the state (never measured in this scan).
+  std::vector<ObjectEstimate> archived_landmarks;
   std::vector<LineEstimate> lines;
   StepCounts counts;
   // For the smoother (smoother_input.h): the robot's motion the prediction applied, and the
@@ -186,6 +194,8 @@ class Estimator {
   // Description of the last unusual event ("" if none yet).
   const std::string& last_event() const { return last_event_; }
   const SlamState& state() const { return state_; }
+  // The landmarks out of the state (landmark_window.h; empty without a window).
+  const LandmarkArchive& archive() const { return archive_; }
   const EstimatorOptions& options() const { return options_; }
   int NumObjectsOfClass(ObjectClass object_class, bool confirmed_only) const;
   int NumTentative() const;
@@ -229,6 +239,10 @@ class Estimator {
   // tentative ones), taken right after classification (static_observations.h), then the
   // sightings that started new objects (new_objects.h).
   std::vector<StaticObservation> ManageTracks(ScanInProgress* s);
+  // The local window (landmark_window.h): archived landmarks near the robot's predicted pose
+  // re-enter the state before gating; far ones leave it at the end of the scan.
+  void RestoreNearbyLandmarks(ScanInProgress* s);
+  void ArchiveDistantLandmarks(ScanInProgress* s);
   // The scan's problems reported, the state made finite (EnsureFiniteState).
   void FinishScan(ScanInProgress* s);
   // Step 1 (scan_prediction.h), with what it made up for counted and described.
@@ -247,6 +261,7 @@ class Estimator {
 
   EstimatorOptions options_;
   SlamState state_;
+  LandmarkArchive archive_;
   EstimatorCounters counters_;
   std::string last_event_;
   std::optional<int64_t> last_scan_utime_;  // of the last processed scan

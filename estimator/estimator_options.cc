@@ -116,6 +116,9 @@ void VisitRobustnessOptions(OptionVisitor* v, EstimatorOptions* o) {
             "turn noise of motion extrapolated past the last odometry, per second", deg);
   v->Int("max_objects", &o->max_objects, R::Between(1, 100000),
          "the most objects held; new ones beyond are refused and counted");
+  v->BeginGroup("window");
+  VisitLandmarkWindowOptions(v, &o->window);
+  v->EndGroup();
   v->Int("max_features_per_scan", &o->max_features_per_scan, R::Between(1, 1000000),
          "the most features of a scan used (the nearest); the rest dropped and counted");
 }
@@ -185,6 +188,8 @@ std::string CheckEstimatorOptions(const EstimatorOptions& options) {
   if (o.level3 && !(o.gate_d2_chi2 > o.gate_d1_chi2)) {
     return "gate_d2_chi2 must be > gate_d1_chi2 (or level3 false)";
   }
+  const std::string window = CheckLandmarkWindowOptions(o.window, o.max_range_m);
+  if (!window.empty()) return window;
   if (o.field_of_view_start_rad != 0.0 || o.field_of_view_end_rad != 0.0) {
     if (!(o.field_of_view_end_rad > o.field_of_view_start_rad) ||
         o.field_of_view_end_rad - o.field_of_view_start_rad > 2.0 * M_PI + 1e-12) {

@@ -9,6 +9,7 @@
 
 #include "common/options_schema.h"
 #include "estimator/field_of_view.h"
+#include "estimator/landmark_window.h"
 #include "estimator/line_landmarks.h"
 #include "estimator/ml_ransac.h"
 #include "estimator/motion_classifier.h"
@@ -125,6 +126,10 @@ struct EstimatorOptions {
   // the outputs of every shipped run stay the same (scripts/check-outputs-identical.py).
   double extrapolation_turn_sigma_radps = 0.3 * 180.0 / M_PI * M_PI / 180.0;
   int max_objects = 500;
+  // The local window of static landmarks (landmark_window.h): off by default; with it, far
+  // confirmed static landmarks leave the state for an archive (kept in MAP and for the
+  // smoother) and come back when the robot does, so max_objects need not forget the map.
+  LandmarkWindowOptions window;
   // The most features of one scan that are used: beyond, the nearest are kept (ties: input
   // order) and the others dropped and counted (features_over_cap). With max_objects this
   // bounds the pairs a scan judges (gating, levels, RANSAC). 512 is above every real scene we

@@ -84,6 +84,7 @@ void CountScanWork(const ScanResult& result, StageTimer* timer) {
   timer->Count("ransac_pair_tests", counts.ransac_pair_tests);
   timer->Count("ransac_budget_cut", counts.ransac_budget_cut);
   timer->Count("state_recovered", counts.state_recovered);
+  timer->Count("archived", static_cast<int64_t>(result.archived_landmarks.size()));
 }
 
 slammtt_msgs::pose_t PoseMessage(int64_t utime, const ScanResult& result) {
@@ -140,11 +141,16 @@ slammtt_msgs::line_landmark_t LineLandmarkMessage(const LineEstimate& e) {
   return line;
 }
 
-// The confirmed static objects that are not people, and every line landmark.
+// The confirmed static objects that are not people (the state's, then the local window's
+// archive's: landmark_window.h), and every line landmark.
 slammtt_msgs::map_t MapMessage(int64_t utime, const ScanResult& result) {
   slammtt_msgs::map_t map;
   map.utime = utime;
-  for (const ObjectEstimate& e : result.objects) {
+  std::vector<const ObjectEstimate*> objects;
+  for (const ObjectEstimate& e : result.objects) objects.push_back(&e);
+  for (const ObjectEstimate& e : result.archived_landmarks) objects.push_back(&e);
+  for (const ObjectEstimate* object : objects) {
+    const ObjectEstimate& e = *object;
     // A standing person is a STATIC object of kind PERSON: tracked, never part of the map.
     if (e.object_class != ObjectClass::kStatic || !e.confirmed || e.kind == ObjectKind::kPerson) {
       continue;

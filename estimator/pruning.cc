@@ -32,9 +32,16 @@ std::vector<int> ObjectsToPrune(int64_t utime, const EstimatorOptions& options,
 void PruneObjects(int64_t utime, const std::vector<int>& taken_over,
                   const EstimatorOptions& options,
                   const std::vector<ObjectPrediction>& after_updates,
-                  const Assignment& assignment, SlamState* state, StepCounts* counts) {
+                  const Assignment& assignment, SlamState* state, StepCounts* counts,
+                  LandmarkArchive* archive) {
   std::vector<int> prune = ObjectsToPrune(utime, options, after_updates, *state, assignment);
-  counts->pruned = static_cast<int>(prune.size());
+  if (archive != nullptr && options.window.radius_m > 0.0) {
+    const int kept = archive->Store(*state, prune);
+    counts->landmarks_archived += kept;
+    counts->pruned = static_cast<int>(prune.size()) - kept;
+  } else {
+    counts->pruned = static_cast<int>(prune.size());
+  }
   for (int j : taken_over) {
     if (std::find(prune.begin(), prune.end(), j) == prune.end()) prune.push_back(j);
   }

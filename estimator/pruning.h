@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "estimator/association.h"
+#include "estimator/landmark_window.h"
 
 namespace slammtt {
 
@@ -19,10 +20,14 @@ std::vector<int> ObjectsToPrune(int64_t utime, const EstimatorOptions& options,
                                 const SlamState& state, const Assignment& assignment);
 
 // Removes the objects to prune (counts->pruned) and the lost tracks whose identity went to a
-// new object (reacquisition.h: `taken_over`).
+// new object (reacquisition.h: `taken_over`). With a local window (options.window, `archive`
+// not null) a confirmed static landmark among the objects to prune is part of the map, not a
+// track: it leaves the state for the archive instead (counts->landmarks_archived), so that the
+// map and the smoother keep it (landmark_window.h).
 void PruneObjects(int64_t utime, const std::vector<int>& taken_over,
                   const EstimatorOptions& options,
                   const std::vector<ObjectPrediction>& after_updates,
-                  const Assignment& assignment, SlamState* state, StepCounts* counts);
+                  const Assignment& assignment, SlamState* state, StepCounts* counts,
+                  LandmarkArchive* archive = nullptr);
 
 }  // namespace slammtt

@@ -35,6 +35,8 @@ SmootherScanInput SmootherInputBuilder::Build(const ScanResult& result,
   for (const ObjectEstimate& e : result.objects) {
     if (MayBePointLandmark(e.object_class, e.kind)) still_static.insert(e.id);
   }
+  // The local window's archive (landmark_window.h) holds landmarks, not removals.
+  for (const ObjectEstimate& e : result.archived_landmarks) still_static.insert(e.id);
   for (auto it = reported_.begin(); it != reported_.end();) {
     if (still_static.count(*it) == 0) {
       input.removed_landmark_ids.push_back(*it);

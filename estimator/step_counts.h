@@ -20,6 +20,8 @@ struct StepCounts {
   int reacquired = 0;           // lost movers seen again (identity taken over, reacquisition.h)
   int objects_refused = 0;      // by the object cap
   int pruned = 0;
+  int landmarks_archived = 0;   // left the state for the archive (landmark_window.h)
+  int landmarks_restored = 0;   // came back from it
   int became_moving = 0;
   int became_static = 0;
   int started_moving = 0;

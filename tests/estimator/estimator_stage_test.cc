@@ -325,7 +325,7 @@ TEST(EstimatorStageTest, PublishesEveryOutputWithTheFeaturesUtime) {
             (std::vector<std::string>{"features", "objects", "hypotheses", "updates",
                                       "updates_skipped", "lines", "line_updates", "new_lines",
                                       "features_over_cap", "ransac_pair_tests",
-                                      "ransac_budget_cut", "state_recovered"}));
+                                      "ransac_budget_cut", "state_recovered", "archived"}));
   EXPECT_EQ(timing.counter_value[0], 2);
   EXPECT_EQ(timing.counter_value[1], 2);
   EXPECT_EQ(timing.counter_value[3], 0);  // two new objects, nothing to update yet

@@ -206,7 +206,7 @@ TEST_F(ScenarioLoaderTest, EverySettingOfTheSchemasIsReadAndDocumented) {
       yaml += slammtt::testing::SectionOfDefaults(section, rows);
     }
   }
-  EXPECT_EQ(keys, 3u + 17u + 3u + 7u + 5u + 3u);
+  EXPECT_EQ(keys, 3u + 17u + 3u + 7u + 5u + 3u + 6u);
   const Scenario s = LoadScenarioFromString(yaml, "every.yaml", ".");
   const Scenario d;
   EXPECT_EQ(s.duration_s, d.duration_s);

@@ -120,6 +120,46 @@ constexpr size_t kMaxStaticObjects = 100000;
 constexpr int64_t kMaxPersonId = 100000000000000000;
 constexpr double kMaxRadiusM = 1000.0;
 
+// scattered_landmarks: ranges, a path to scatter along, room in the static-object bound, and
+// ids apart from every static object's (movers are checked against the statics' ids anyway).
+void FindScatteredLandmarkProblems(const Scenario& s, Problems* p) {
+  const ScatteredLandmarksSpec& g = s.scattered_landmarks;
+  const std::string path = "scattered_landmarks";
+  if (g.count < 0 || static_cast<size_t>(g.count) + s.statics.size() > kMaxStaticObjects) {
+    p->Add(path + ".count", "must be within [0, 100000] with the statics, got " +
+                                std::to_string(g.count));
+    return;
+  }
+  if (g.count == 0) return;
+  if (s.robot.waypoints.size() < 2) {
+    p->Add(path, "needs a robot path of at least two waypoints to scatter along");
+  }
+  p->Between(path + ".max_offset_m", g.max_offset_m, 0.0, 1000.0);
+  if (!(g.min_offset_m > 0.0 && g.min_offset_m < g.max_offset_m)) {
+    p->Add(path + ".min_offset_m", "must be within (0, max_offset_m), got " +
+                                       Problems::Text(g.min_offset_m));
+  }
+  p->Between(path + ".min_spacing_m", g.min_spacing_m, 0.0, 100.0);
+  if (!(g.radius_m > 0.0 && g.radius_m <= 10.0)) {
+    p->Add(path + ".radius_m", "must be within (0, 10], got " + Problems::Text(g.radius_m));
+  }
+  if (!(std::abs(g.first_id) <= kMaxPersonId)) {
+    p->Add(path + ".first_id", "must be within +-1e17");
+    return;
+  }
+  if (g.first_id == 0) return;  // after the statics' ids
+  const int64_t last_id = g.first_id + g.count - 1;
+  for (size_t i = 0; i < s.statics.size(); ++i) {
+    const int64_t id = s.statics[i].id;
+    if (id + StaticIdCount(s.statics[i]) - 1 >= g.first_id && id <= last_id) {
+      p->Add(path + ".first_id", "ids " + std::to_string(g.first_id) + ".." +
+                                     std::to_string(last_id) + " overlap statics[" +
+                                     std::to_string(i) + "]'s id " + std::to_string(id));
+      return;
+    }
+  }
+}
+
 std::string Indexed(const std::string& list, size_t i) {
   return list + "[" + std::to_string(i) + "]";
 }
@@ -280,6 +320,7 @@ std::vector<std::string> FindScenarioProblems(const Scenario& s) {
     p.Between(path + ".dropout_probability", o2.dropout_probability, 0.0, 1.0);
     FindShapeProblems(path, o2, &p);
   }
+  FindScatteredLandmarkProblems(s, &p);
   for (size_t i = 0; i < s.movers.size(); ++i) {
     const std::string path = Indexed("movers", i);
     const MoverSpec& m = s.movers[i];

@@ -256,6 +256,25 @@ struct MoverSpec {
   std::optional<MoverBody> body;
 };
 
+// Point landmarks (posts) scattered along the robot's waypoint path, so that a long route can
+// carry thousands of landmarks without listing them (the large-loop family, issue 14). Each
+// landmark lies at a point of the path drawn uniformly by arc length (the closed polygon
+// through the waypoints when the robot loops, else the open polyline), offset across the path
+// to a side drawn at random by a distance uniform in [min_offset_m, max_offset_m]; a draw
+// nearer than min_offset_m to any part of the path (inside a corner) or nearer than
+// min_spacing_m to a landmark already placed is drawn again. The layout comes from the run's
+// seed (scattered_landmarks.h), so every seed is another world of the same family. Ids
+// first_id, first_id + 1, ... in placement order (first_id 0: one past the statics' largest
+// id, 1 without statics); kind post.
+struct ScatteredLandmarksSpec {
+  int count = 0;               // [0, 100000]; 0: none
+  double min_offset_m = 2.0;   // (0, max_offset_m)
+  double max_offset_m = 12.0;  // <= 1000
+  double min_spacing_m = 1.0;  // [0, 100]
+  double radius_m = 0.2;       // (0, 10]
+  int64_t first_id = 0;
+};
+
 struct Scenario {
   std::string name;
   double duration_s = 60.0;
@@ -268,6 +287,7 @@ struct Scenario {
   OdometrySpec odometry;
   RobotMotionSpec robot;
   std::vector<StaticObjectSpec> statics;
+  ScatteredLandmarksSpec scattered_landmarks;  // added to statics by the simulator
   std::vector<MoverSpec> movers;
   MoverBody people = MoverBody::kDisc;  // body of movers that do not choose one
   LegSpec legs;

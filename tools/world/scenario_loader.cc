@@ -67,8 +67,8 @@ class ScenarioReader {
 
   Scenario Read() {
     root_.CheckKeysAmong({"name", "description", "duration_s", "start_utime", "output", "laser",
-                          "features", "odometry", "robot", "statics", "movers", "crowd",
-                          "people", "legs"});
+                          "features", "odometry", "robot", "statics", "scattered_landmarks",
+                          "movers", "crowd", "people", "legs"});
     Scenario s;
     s.name = root_.GetString("name", "");
     root_.GetString("description", "");  // for people only
@@ -76,7 +76,7 @@ class ScenarioReader {
     VisitScenarioSections(&s, [this](const std::string& section) -> OptionVisitor* {
       return Section(section);
     });
-    for (const char* section : {"laser", "features", "odometry", "legs"}) {
+    for (const char* section : {"laser", "features", "odometry", "legs", "scattered_landmarks"}) {
       root_.Child(section).CheckUnused();
     }
     ReadRobotPath(root_.Child("robot"), &s.robot);

@@ -87,6 +87,21 @@ void VisitLegSpec(OptionVisitor* v, LegSpec* legs) {
   v->Double("sway_m", &legs->sway_m, R::Between(0, 0.2), "standing sway amplitude");
 }
 
+void VisitScatteredLandmarksSpec(OptionVisitor* v, ScatteredLandmarksSpec* g) {
+  using R = OptionRange;
+  v->Int("count", &g->count, R::Between(0, 100000),
+         "posts scattered along the robot's waypoint path, drawn from the seed (0: none)");
+  v->Double("min_offset_m", &g->min_offset_m, R::Above(0),
+            "nearest distance of a post from the path; below `max_offset_m`");
+  v->Double("max_offset_m", &g->max_offset_m, R::AboveUpTo(0, 1000),
+            "farthest distance of a post from the path");
+  v->Double("min_spacing_m", &g->min_spacing_m, R::Between(0, 100),
+            "least distance between two posts");
+  v->Double("radius_m", &g->radius_m, R::AboveUpTo(0, 10), "post radius");
+  v->Int("first_id", &g->first_id, R::Between(-1e17, 1e17),
+         "id of the first post (0: after the statics' ids)");
+}
+
 void VisitRobotMotionSettings(OptionVisitor* v, RobotMotionSpec* r) {
   using R = OptionRange;
   v->Double("speed_mps", &r->speed_mps, R::AboveUpTo(0, kMaxRobotSpeedMps),
@@ -120,7 +135,7 @@ std::pair<std::string, std::string> FindScenarioSettingsProblem(const Scenario& 
 std::vector<std::pair<std::string, std::string>> ScenarioOptionsTables() {
   Scenario defaults;
   std::vector<std::pair<std::string, OptionsMarkdownTable>> tables;
-  tables.reserve(6);
+  tables.reserve(7);
   VisitScenarioSections(&defaults, [&tables](const std::string& section) -> OptionVisitor* {
     tables.emplace_back(section, OptionsMarkdownTable());
     return &tables.back().second;

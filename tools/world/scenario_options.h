@@ -26,6 +26,7 @@ void VisitLaserSpec(OptionVisitor* visitor, LaserSpec* laser);
 void VisitFeatureSpec(OptionVisitor* visitor, FeatureSpec* features);
 void VisitOdometrySpec(OptionVisitor* visitor, OdometrySpec* odometry);
 void VisitLegSpec(OptionVisitor* visitor, LegSpec* legs);
+void VisitScatteredLandmarksSpec(OptionVisitor* visitor, ScatteredLandmarksSpec* landmarks);
 // The waypoint controller's settings and `loop` (not start, profile, waypoints).
 void VisitRobotMotionSettings(OptionVisitor* visitor, RobotMotionSpec* robot);
 
@@ -40,6 +41,7 @@ void VisitScenarioSections(Scenario* scenario, VisitorFor&& visitor_for) {
   VisitOdometrySpec(visitor_for("odometry"), &scenario->odometry);
   VisitRobotMotionSettings(visitor_for("robot"), &scenario->robot);
   VisitLegSpec(visitor_for("legs"), &scenario->legs);
+  VisitScatteredLandmarksSpec(visitor_for("scattered_landmarks"), &scenario->scattered_landmarks);
 }
 
 // The first value of `scenario` outside its range, as ("laser.fov_deg", "must be in (0, 360],

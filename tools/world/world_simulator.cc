@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "tools/world/portable_random.h"
+#include "tools/world/scattered_landmarks.h"
 
 namespace slammtt {
 
@@ -44,17 +45,32 @@ void CountBeamsIntoTruth(const std::vector<SimulatedBeam>& beams, TruthSnapshot*
   }
 }
 
-WorldSimulator::WorldSimulator(const Scenario& scenario, uint64_t seed, SensorOutput output)
-    : scenario_(scenario),
-      output_(output),
-      beam_sequence_(scenario.laser),
-      odometry_(scenario.odometry) {
-  const std::vector<std::string> problems = FindScenarioProblems(scenario_);
+namespace {
+
+// std::invalid_argument listing every problem of `scenario`, if it has any.
+void RefuseProblems(const Scenario& scenario) {
+  const std::vector<std::string> problems = FindScenarioProblems(scenario);
   if (!problems.empty()) {
     std::string text = "invalid scenario";
     for (const std::string& line : problems) text += (text.size() > 16 ? "; " : ": ") + line;
     throw std::invalid_argument(text);
   }
+}
+
+// The scenario as simulated: checked, then its scattered landmarks drawn from the seed.
+Scenario Simulated(const Scenario& scenario, uint64_t seed) {
+  RefuseProblems(scenario);
+  return WithScatteredLandmarks(scenario, seed);
+}
+
+}  // namespace
+
+WorldSimulator::WorldSimulator(const Scenario& scenario, uint64_t seed, SensorOutput output)
+    : scenario_(Simulated(scenario, seed)),
+      output_(output),
+      beam_sequence_(scenario.laser),
+      odometry_(scenario.odometry) {
+  RefuseProblems(scenario_);  // the drawn landmarks' ids against the movers'
   duration_us_ = std::llround(scenario_.duration_s * 1e6);
   beam_angles_rad_ = LaserBeamAngles(scenario_.laser);
   const uint64_t mover_seed = DeriveSeed(seed, kMoverStreams);
