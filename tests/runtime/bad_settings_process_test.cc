@@ -79,7 +79,7 @@ TEST_F(BadSettingsTest, AConfigurationThatIsNoFileIsOneLine) {
 TEST_F(BadSettingsTest, AbsurdOptionValuesAreOneLine) {
   Expect({{Bin("slammtt-rplidar"), "--config",
            File("angle.yaml", "rplidar:\n  port: tcp://127.0.0.1:9\n  angle_offset_deg: 1e300\n")},
-          1, "rplidar.angle_offset_deg: must be within [-360, 360] degrees"});
+          1, "rplidar.angle_offset_deg: must be in [-360, 360], got 1e+300"});
   Expect({{Bin("slammtt-estimator"), "--config",
            File("objects.yaml", "estimator:\n  max_objects: 0\n")},
           1, "estimator.max_objects"});
