@@ -341,9 +341,7 @@ std::optional<ScanAlignment> Estimator::AlignWithPreviousScan(const ScanInput& s
                                                               ScanInProgress* s) const {
   if (!options_.scan_alignment.enabled || odometry_.anchored()) return std::nullopt;
   s->alignment_scan = AlignmentScanOf(s->features.measurements, scan.lines, options_.sensor);
-  return scan_motion_.MotionTo(*s->alignment_scan, s->interval.dt_s,
-                               options_.extrapolation_speed_sigma_mps,
-                               options_.extrapolation_turn_sigma_radps, options_.scan_alignment);
+  return scan_motion_.MotionTo(*s->alignment_scan, s->interval.dt_s, options_.scan_alignment);
 }
 
 bool Estimator::AcceptScanTime(int64_t utime) {

@@ -138,6 +138,27 @@ void AddLinePairs(const AlignmentScan& reference, const AlignmentScan& scan,
 
 bool Finite(const Eigen::Vector2d& v) { return std::isfinite(v.x()) && std::isfinite(v.y()); }
 
+// An angle modulo pi (a line has no direction), in (-pi/2, pi/2].
+double WrapHalfTurn(double angle_rad) {
+  double a = WrapAngle(angle_rad);
+  if (a > M_PI / 2) a -= M_PI;
+  if (a <= -M_PI / 2) a += M_PI;
+  return a;
+}
+
+struct LineShape {
+  double direction_rad = 0.0;
+  double distance_m = 0.0;  // of the infinite line from the robot
+  double length_m = 0.0;
+};
+
+LineShape ShapeOf(const AlignmentSegment& s) {
+  const Eigen::Vector2d along = s.to_m - s.from_m;
+  const double length = along.norm();
+  const Eigen::Vector2d n(-along.y() / length, along.x() / length);
+  return {std::atan2(along.y(), along.x()), std::abs(n.dot(s.from_m)), length};
+}
+
 }  // namespace
 
 void VisitScanAlignmentOptions(OptionVisitor* v, ScanAlignmentOptions* o) {
@@ -158,7 +179,35 @@ void VisitScanAlignmentOptions(OptionVisitor* v, ScanAlignmentOptions* o) {
             "Cauchy kernel scale, in sigmas: a pair this far off weighs half");
   v->Double("covariance_scale", &o->covariance_scale, R::AtLeast(1),
             "the alignment's covariance is its information's inverse times this");
+  v->Double("guess_speed_sigma_mps", &o->guess_speed_sigma_mps, R::Above(0),
+            "prior of the constant-velocity guess: change of speed per second");
+  v->Double("guess_turn_sigma_radps", &o->guess_turn_sigma_radps, R::Above(0),
+            "... and of turn rate per second", OptionUnit::kDegrees);
+  v->Double("max_turn_search_rad", &o->max_turn_search_rad, R::AboveUpTo(0, 90),
+            "the lines' vote for the turn is searched within this of the guess's",
+            OptionUnit::kDegrees);
 }
+
+namespace {
+
+// The corner of two segments (see AlignmentScanOf), or nullopt.
+std::optional<Eigen::Vector2d> CornerOf(const AlignmentSegment& a, const AlignmentSegment& b) {
+  const Eigen::Vector2d u = (a.to_m - a.from_m).normalized();
+  const Eigen::Vector2d v = (b.to_m - b.from_m).normalized();
+  const double sine = u.x() * v.y() - u.y() * v.x();
+  if (std::abs(sine) < std::sin(kMinCornerAngle_rad)) return std::nullopt;
+  double gap = std::numeric_limits<double>::infinity();
+  for (const Eigen::Vector2d& p : {a.from_m, a.to_m}) {
+    for (const Eigen::Vector2d& q : {b.from_m, b.to_m}) gap = std::min(gap, (p - q).norm());
+  }
+  if (gap > kCornerGap_m) return std::nullopt;
+  // a.from + s u = b.from + t v, solved for s.
+  const Eigen::Vector2d d = b.from_m - a.from_m;
+  const double s = (d.x() * v.y() - d.y() * v.x()) / sine;
+  return Eigen::Vector2d(a.from_m + s * u);
+}
+
+}  // namespace
 
 AlignmentScan AlignmentScanOf(const std::vector<PointMeasurement>& points,
                               const std::vector<LineReading>& lines, const SensorMount& mount) {
@@ -187,7 +236,57 @@ AlignmentScan AlignmentScanOf(const std::vector<PointMeasurement>& points,
       ++scan.skipped;
     }
   }
+  for (size_t i = 0; i < scan.segments.size(); ++i) {
+    for (size_t j = i + 1; j < scan.segments.size(); ++j) {
+      const std::optional<Eigen::Vector2d> corner = CornerOf(scan.segments[i], scan.segments[j]);
+      if (!corner) continue;
+      scan.points_m.push_back(*corner);
+      ++scan.corners;
+    }
+  }
   return scan;
+}
+
+std::optional<double> TurnFromLines(const AlignmentScan& reference, const AlignmentScan& scan,
+                                    double guess_heading_rad, double guess_shift_m,
+                                    const ScanAlignmentOptions& options) {
+  struct Vote {
+    double turn_rad;
+    double weight_m;
+  };
+  std::vector<Vote> votes;
+  for (const AlignmentSegment& c : scan.segments) {
+    const LineShape current = ShapeOf(c);
+    for (const AlignmentSegment& r : reference.segments) {
+      const LineShape previous = ShapeOf(r);
+      if (std::abs(current.distance_m - previous.distance_m) > options.match_m + guess_shift_m) {
+        continue;
+      }
+      const double turn = WrapHalfTurn(previous.direction_rad - current.direction_rad);
+      if (std::abs(WrapHalfTurn(turn - guess_heading_rad)) > options.max_turn_search_rad) {
+        continue;
+      }
+      votes.push_back({turn, std::min(current.length_m, previous.length_m)});
+    }
+  }
+  double best_support = 0.0;
+  double best_turn = 0.0;
+  for (const Vote& candidate : votes) {
+    double support = 0.0;
+    double weighted_turn = 0.0;
+    for (const Vote& v : votes) {
+      const double off = WrapHalfTurn(v.turn_rad - candidate.turn_rad);
+      if (std::abs(off) > kTurnVoteWidth_rad) continue;
+      support += v.weight_m;
+      weighted_turn += v.weight_m * off;
+    }
+    if (support > best_support) {
+      best_support = support;
+      best_turn = WrapHalfTurn(candidate.turn_rad + weighted_turn / support);
+    }
+  }
+  if (best_support < kMinTurnVote_m) return std::nullopt;
+  return best_turn;
 }
 
 ScanAlignment AlignScans(const AlignmentScan& reference, const AlignmentScan& scan,
@@ -196,6 +295,9 @@ ScanAlignment AlignScans(const AlignmentScan& reference, const AlignmentScan& sc
   const Eigen::Matrix3d prior_information = guess_covariance.inverse();
   ScanAlignment result;
   Eigen::Vector3d x = guess;
+  const std::optional<double> turn =
+      TurnFromLines(reference, scan, guess.z(), guess.head<2>().norm(), options);
+  if (turn) x.z() = *turn;
   NormalEquations eq;
   for (int iteration = 0; iteration < options.max_iterations; ++iteration) {
     eq = NormalEquations{};
@@ -220,14 +322,12 @@ ScanAlignment AlignScans(const AlignmentScan& reference, const AlignmentScan& sc
 }
 
 std::optional<ScanAlignment> ScanToScanMotion::MotionTo(const AlignmentScan& scan, double dt_s,
-                                                        double speed_sigma_mps,
-                                                        double turn_sigma_radps,
                                                         const ScanAlignmentOptions& options) const {
   if (!reference_) return std::nullopt;
   // A prior of zero width would pin the alignment to the guess: a millisecond at least.
   const double dt = std::max(dt_s, 1e-3);
-  const double position_sigma = speed_sigma_mps * dt;
-  const double heading_sigma = turn_sigma_radps * dt;
+  const double position_sigma = options.guess_speed_sigma_mps * dt;
+  const double heading_sigma = options.guess_turn_sigma_radps * dt;
   const Eigen::Matrix3d prior =
       Eigen::Vector3d(position_sigma * position_sigma, position_sigma * position_sigma,
                       heading_sigma * heading_sigma)

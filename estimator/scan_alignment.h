@@ -20,6 +20,12 @@
 //    match_m and whose extent overlaps or lies within match_m, 1 residual per end, sigma
 //    line_sigma_m (only the distance across a wall is measured: the ends of a seen run move
 //    with occlusions and the field of view).
+// The iterations start from the guess with its heading replaced by the heading change most of
+// the scan's line length agrees on (TurnFromLines): a rotation about the robot leaves a line's
+// distance from it unchanged, so the lines' angles give the turn before the translation is
+// known, and the associations of the first iteration are made at the right heading even when
+// the robot began to turn since the previous scan (the guess then is off by a whole scan's
+// turn, beyond match_angle).
 // Each residual r gets the Cauchy weight 1 / (1 + (r / (robust_scale sigma))^2), so that a leg
 // that walked or a wrong association pulls little (Zhang, "Parameter estimation techniques: a
 // tutorial with application to conic fitting", Image and Vision Computing 15(1), 1997, M-
@@ -48,6 +54,8 @@
 namespace slammtt {
 
 inline constexpr double kMinAlignmentSegment_m = 0.05;
+inline constexpr double kMinCornerAngle_rad = 45.0 * M_PI / 180.0;
+inline constexpr double kCornerGap_m = 0.15;
 
 struct ScanAlignmentOptions {
   // On: a robot with no odometry (no ODOMETRY received since the estimator started) moves by
@@ -59,7 +67,13 @@ struct ScanAlignmentOptions {
   double point_sigma_m = 0.03;                   // per coordinate of a point-to-point residual
   double line_sigma_m = 0.02;                    // of a point-to-line residual
   double robust_scale = 2.0;                     // Cauchy scale, in sigmas
-  double covariance_scale = 4.0;                 // the information's inverse times this
+  double covariance_scale = 1.0;                 // the information's inverse times this
+  // The constant-velocity guess's prior: sigmas of the change of speed and of turn rate since
+  // the previous scan, per second. A P3-DX turns from straight to 60 deg/s within one scan.
+  double guess_speed_sigma_mps = 0.3;
+  double guess_turn_sigma_radps = 60.0 * M_PI / 180.0;
+  // The heading change the lines vote for is searched within this of the guess's.
+  double max_turn_search_rad = 30.0 * M_PI / 180.0;
 };
 
 // The schema of these options (keys in EstimatorOptions' group `scan_alignment`; the ranges are
@@ -72,14 +86,19 @@ struct AlignmentSegment {
   Eigen::Vector2d to_m = Eigen::Vector2d::Zero();
 };
 struct AlignmentScan {
-  std::vector<Eigen::Vector2d> points_m;
+  std::vector<Eigen::Vector2d> points_m;  // point features, then corners
   std::vector<AlignmentSegment> segments;
+  int corners = 0;  // of points_m
   int skipped = 0;  // features left out: non-finite, or a segment too short
 };
 
-// The scan's point features that are not people, and its line features' extents (their end
-// points projected onto the fitted line, whose fit is better than the two end beams), placed in
-// the robot frame by the sensor mount (eq. 11 and its yaw).
+// The scan's point features that are not people, its line features' extents (their end points
+// projected onto the fitted line, whose fit is better than the two end beams), and its corners
+// as points: where two of its lines at more than kMinCornerAngle_rad to each other have ends
+// within kCornerGap_m of each other, the lines' intersection (a corner of a room, a door jamb:
+// the static structure that fixes the motion along a corridor, which its walls cannot; the end
+// of a lone run moves with occlusions and is not used). Placed in the robot frame by the sensor
+// mount (eq. 11 and its yaw).
 AlignmentScan AlignmentScanOf(const std::vector<PointMeasurement>& points,
                               const std::vector<LineReading>& lines, const SensorMount& mount);
 
@@ -90,6 +109,17 @@ struct ScanAlignment {
   int line_pairs = 0;
   int iterations = 0;
 };
+
+// The heading change (within max_turn_search of guess_heading_rad) that the most line length
+// agrees on within kTurnVoteWidth_rad: each pair of a line of `scan` and one of `reference` at
+// about the same distance from the robot (within match_m plus guess_shift_m) votes for the
+// angle between them with the shorter one's length. nullopt with under kMinTurnVote_m of
+// agreeing length.
+inline constexpr double kTurnVoteWidth_rad = 1.0 * M_PI / 180.0;
+inline constexpr double kMinTurnVote_m = 1.0;
+std::optional<double> TurnFromLines(const AlignmentScan& reference, const AlignmentScan& scan,
+                                    double guess_heading_rad, double guess_shift_m,
+                                    const ScanAlignmentOptions& options);
 
 // Aligns `scan` with `reference` from `guess` (prior covariance `guess_covariance`, positive
 // definite), as the header says.
@@ -103,10 +133,10 @@ ScanAlignment AlignScans(const AlignmentScan& reference, const AlignmentScan& sc
 class ScanToScanMotion {
  public:
   // The motion from the previous scan (Keep) to `scan`, dt_s later: the alignment from the
-  // constant-velocity guess, whose prior sigmas are speed_sigma_mps * dt_s for each coordinate
-  // and turn_sigma_radps * dt_s for the heading. nullopt before the first Keep.
+  // constant-velocity guess, whose prior sigmas are guess_speed_sigma_mps * dt_s for each
+  // coordinate and guess_turn_sigma_radps * dt_s for the heading. nullopt before the first
+  // Keep.
   std::optional<ScanAlignment> MotionTo(const AlignmentScan& scan, double dt_s,
-                                        double speed_sigma_mps, double turn_sigma_radps,
                                         const ScanAlignmentOptions& options) const;
   // `scan` becomes the reference; `pose` (map frame) is where the estimator left the robot at
   // utime. The velocity is the pose change since the previous Keep over the time between them.

@@ -77,6 +77,26 @@ TEST(ScanAlignmentTest, RecoversAKnownMotion) {
   EXPECT_LT(std::sqrt(a.covariance(2, 2)), 0.01);
 }
 
+TEST(ScanAlignmentTest, RecoversATurnThatBeganSinceThePreviousScan) {
+  // 60 deg/s for 0.1 s since the previous scan, which went straight on: the guess is off by
+  // 6 degrees, beyond match_angle, and the posts 4 m away by 40 cm, beyond match_m.
+  const Eigen::Vector3d truth(0.03, 0.0, 0.105);
+  const Eigen::Vector3d guess(0.03, 0.0, 0.0);
+  const ScanAlignmentOptions options;
+  const std::optional<double> turn = TurnFromLines(Room(), Moved(Room(), truth), 0.0, 0.03, options);
+  ASSERT_TRUE(turn.has_value());
+  EXPECT_NEAR(*turn, truth.z(), 1e-9);
+  const ScanAlignment a = AlignScans(Room(), Moved(Room(), truth), guess, Prior(0.03, 0.1), options);
+  EXPECT_NEAR(a.increment.x(), truth.x(), 3e-3);
+  EXPECT_NEAR(a.increment.y(), truth.y(), 3e-3);
+  EXPECT_NEAR(a.increment.z(), truth.z(), 2e-3);
+  EXPECT_EQ(a.line_pairs, 4);
+  // A scan of one short line does not vote (under kMinTurnVote_m of agreeing length).
+  AlignmentScan stub;
+  stub.segments = {{{1.0, 0.0}, {1.0, 0.5}}};
+  EXPECT_FALSE(TurnFromLines(stub, stub, 0.0, 0.0, options).has_value());
+}
+
 TEST(ScanAlignmentTest, WalkingLegsAndStraysAreNotFollowed) {
   const Eigen::Vector3d truth(0.05, 0.02, -0.03);
   AlignmentScan reference = Room();
@@ -169,21 +189,46 @@ TEST(ScanAlignmentTest, TakesTheStaticLookingFeaturesInTheRobotFrame) {
   EXPECT_TRUE(scan.segments[0].from_m.isApprox(Eigen::Vector2d(1.1, 1.0)));
   EXPECT_TRUE(scan.segments[0].to_m.isApprox(Eigen::Vector2d(-0.9, 1.0)));
   EXPECT_EQ(scan.skipped, 2);
+  EXPECT_EQ(scan.corners, 0);
+}
+
+TEST(ScanAlignmentTest, CornersOfTwoLinesArePoints) {
+  // A room corner 3 m ahead (the lines end 5 cm short of it) and a door jamb: a wall along the
+  // left and its 15 cm end face; and a lone run, whose end is no corner.
+  std::vector<LineReading> lines(5);
+  const auto set = [](LineReading* l, double rho, double alpha_deg, Eigen::Vector2d first,
+                      Eigen::Vector2d last) {
+    l->rho_m = rho;
+    l->alpha_rad = alpha_deg * M_PI / 180.0;
+    l->first_m = first;
+    l->last_m = last;
+  };
+  set(&lines[0], 3.0, 0.0, {3.0, -2.0}, {3.0, -0.05});   // the wall ahead
+  set(&lines[1], 0.0, 90.0, {0.5, 0.0}, {2.95, 0.0});    // along the robot's x axis
+  set(&lines[2], 1.0, 90.0, {-2.0, 1.0}, {-0.5, 1.0});   // the left wall up to the jamb
+  set(&lines[3], 0.5, 180.0, {-0.5, 1.0}, {-0.5, 1.15});  // the jamb's face
+  set(&lines[4], 2.0, -90.0, {-3.0, -2.0}, {-1.0, -2.0});  // a lone run
+  const AlignmentScan scan = AlignmentScanOf({}, lines, SensorMount{});
+  ASSERT_EQ(scan.corners, 2);
+  ASSERT_EQ(scan.points_m.size(), 2u);
+  EXPECT_TRUE(scan.points_m[0].isApprox(Eigen::Vector2d(3.0, 0.0), 1e-12));
+  EXPECT_TRUE(scan.points_m[1].isApprox(Eigen::Vector2d(-0.5, 1.0), 1e-12));
 }
 
 TEST(ScanToScanMotionTest, GuessesWithTheVelocityOfTheLastScans) {
   const ScanAlignmentOptions options;
   ScanToScanMotion motion;
-  EXPECT_FALSE(motion.MotionTo(Room(), 0.1, 0.3, 0.3, options).has_value());
+  EXPECT_FALSE(motion.MotionTo(Room(), 0.1, options).has_value());
   motion.Keep(AlignmentScan{}, Eigen::Vector3d(1.0, 1.0, M_PI / 2), 1000000);
   motion.Keep(AlignmentScan{}, Eigen::Vector3d(1.0, 1.2, M_PI / 2 + 0.1), 1100000);
   // 2 m/s forward and 1 rad/s; with no feature to align, 0.05 s later the guess stands.
-  const std::optional<ScanAlignment> a = motion.MotionTo(Room(), 0.05, 0.3, 0.3, options);
+  const std::optional<ScanAlignment> a = motion.MotionTo(Room(), 0.05, options);
   ASSERT_TRUE(a);
   EXPECT_TRUE(a->increment.isApprox(Eigen::Vector3d(0.1, 0.0, 0.05), 1e-9));
-  EXPECT_NEAR(a->covariance(0, 0), options.covariance_scale * 0.015 * 0.015, 1e-12);
+  const double sigma = options.guess_speed_sigma_mps * 0.05;
+  EXPECT_NEAR(a->covariance(0, 0), options.covariance_scale * sigma * sigma, 1e-12);
   motion.Clear();
-  EXPECT_FALSE(motion.MotionTo(Room(), 0.1, 0.3, 0.3, options).has_value());
+  EXPECT_FALSE(motion.MotionTo(Room(), 0.1, options).has_value());
 }
 
 TEST(PoseIncrementPredictionTest, ComposesThePoseWithNumericallyCheckedJacobians) {
