@@ -190,6 +190,17 @@ void VisitScanAlignmentOptions(OptionVisitor* v, ScanAlignmentOptions* o) {
 
 namespace {
 
+// Keeps the first `cap` of `items` in the order of `before` (stable: ties in input order),
+// counting the others in `dropped`.
+template <class T, class Before>
+void KeepFirst(int cap, Before before, std::vector<T>* items, int* dropped) {
+  const size_t n = static_cast<size_t>(cap);
+  if (items->size() <= n) return;
+  std::stable_sort(items->begin(), items->end(), before);
+  *dropped += static_cast<int>(items->size() - n);
+  items->resize(n);
+}
+
 // The corner of two segments (see AlignmentScanOf), or nullopt.
 std::optional<Eigen::Vector2d> CornerOf(const AlignmentSegment& a, const AlignmentSegment& b) {
   const Eigen::Vector2d u = (a.to_m - a.from_m).normalized();
@@ -236,6 +247,16 @@ AlignmentScan AlignmentScanOf(const std::vector<PointMeasurement>& points,
       ++scan.skipped;
     }
   }
+  KeepFirst(kMaxAlignmentPoints,
+            [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+              return a.squaredNorm() < b.squaredNorm();
+            },
+            &scan.points_m, &scan.over_cap);
+  KeepFirst(kMaxAlignmentSegments,
+            [](const AlignmentSegment& a, const AlignmentSegment& b) {
+              return (a.to_m - a.from_m).squaredNorm() > (b.to_m - b.from_m).squaredNorm();
+            },
+            &scan.segments, &scan.over_cap);
   for (size_t i = 0; i < scan.segments.size(); ++i) {
     for (size_t j = i + 1; j < scan.segments.size(); ++j) {
       const std::optional<Eigen::Vector2d> corner = CornerOf(scan.segments[i], scan.segments[j]);
@@ -269,22 +290,36 @@ std::optional<double> TurnFromLines(const AlignmentScan& reference, const Alignm
       votes.push_back({turn, std::min(current.length_m, previous.length_m)});
     }
   }
+  // Each vote's window of kTurnVoteWidth_rad either side, over the votes sorted by their offset
+  // from the guess (all within max_turn_search < pi/2 of it, so no window wraps): two pointers,
+  // O(V log V) for V votes.
+  for (Vote& v : votes) v.turn_rad = WrapHalfTurn(v.turn_rad - guess_heading_rad);
+  std::sort(votes.begin(), votes.end(),
+            [](const Vote& a, const Vote& b) { return a.turn_rad < b.turn_rad; });
   double best_support = 0.0;
   double best_turn = 0.0;
+  size_t first = 0;
+  size_t last = 0;  // the window is [first, last)
+  double support = 0.0;
+  double weighted_turn = 0.0;
   for (const Vote& candidate : votes) {
-    double support = 0.0;
-    double weighted_turn = 0.0;
-    for (const Vote& v : votes) {
-      const double off = WrapHalfTurn(v.turn_rad - candidate.turn_rad);
-      if (std::abs(off) > kTurnVoteWidth_rad) continue;
-      support += v.weight_m;
-      weighted_turn += v.weight_m * off;
+    while (last < votes.size() &&
+           votes[last].turn_rad <= candidate.turn_rad + kTurnVoteWidth_rad) {
+      support += votes[last].weight_m;
+      weighted_turn += votes[last].weight_m * votes[last].turn_rad;
+      ++last;
+    }
+    while (votes[first].turn_rad < candidate.turn_rad - kTurnVoteWidth_rad) {
+      support -= votes[first].weight_m;
+      weighted_turn -= votes[first].weight_m * votes[first].turn_rad;
+      ++first;
     }
     if (support > best_support) {
       best_support = support;
-      best_turn = WrapHalfTurn(candidate.turn_rad + weighted_turn / support);
+      best_turn = weighted_turn / support;
     }
   }
+  best_turn = WrapHalfTurn(best_turn + guess_heading_rad);
   if (best_support < kMinTurnVote_m) return std::nullopt;
   return best_turn;
 }

@@ -54,6 +54,11 @@
 namespace slammtt {
 
 inline constexpr double kMinAlignmentSegment_m = 0.05;
+// What one alignment may cost is bounded (docs/estimator.md, "Hostile sizes"): the nearest
+// kMaxAlignmentPoints points and the longest kMaxAlignmentSegments lines of a scan are used.
+// Far above a room's (office: at most 8 lines and a few points per scan).
+inline constexpr int kMaxAlignmentPoints = 128;
+inline constexpr int kMaxAlignmentSegments = 64;
 inline constexpr double kMinCornerAngle_rad = 45.0 * M_PI / 180.0;
 inline constexpr double kCornerGap_m = 0.15;
 
@@ -90,6 +95,7 @@ struct AlignmentScan {
   std::vector<AlignmentSegment> segments;
   int corners = 0;  // of points_m
   int skipped = 0;  // features left out: non-finite, or a segment too short
+  int over_cap = 0;  // beyond kMaxAlignmentPoints / kMaxAlignmentSegments, left out
 };
 
 // The scan's point features that are not people, its line features' extents (their end points
@@ -98,7 +104,7 @@ struct AlignmentScan {
 // within kCornerGap_m of each other, the lines' intersection (a corner of a room, a door jamb:
 // the static structure that fixes the motion along a corridor, which its walls cannot; the end
 // of a lone run moves with occlusions and is not used). Placed in the robot frame by the sensor
-// mount (eq. 11 and its yaw).
+// mount (eq. 11 and its yaw). The caps apply before the corners are found (ties: input order).
 AlignmentScan AlignmentScanOf(const std::vector<PointMeasurement>& points,
                               const std::vector<LineReading>& lines, const SensorMount& mount);
 
