@@ -192,6 +192,27 @@ TEST(ScanAlignmentTest, TakesTheStaticLookingFeaturesInTheRobotFrame) {
   EXPECT_EQ(scan.corners, 0);
 }
 
+TEST(ScanAlignmentTest, AHostileScanIsCappedToItsNearestPointsAndLongestLines) {
+  std::vector<PointMeasurement> points(kMaxAlignmentPoints + 10);
+  for (size_t i = 0; i < points.size(); ++i) {
+    points[i].range_bearing = {1.0 + static_cast<double>(points.size() - i), 0.0};
+  }
+  std::vector<LineReading> lines(kMaxAlignmentSegments + 5);
+  for (size_t i = 0; i < lines.size(); ++i) {
+    // Parallel walls (no corners), the later ones longer.
+    lines[i].rho_m = 1.0 + static_cast<double>(i);
+    lines[i].first_m = {1.0 + static_cast<double>(i), 0.0};
+    lines[i].last_m = {1.0 + static_cast<double>(i), 0.1 * static_cast<double>(i + 1)};
+  }
+  const AlignmentScan scan = AlignmentScanOf(points, lines, SensorMount{});
+  ASSERT_EQ(scan.points_m.size(), static_cast<size_t>(kMaxAlignmentPoints));
+  ASSERT_EQ(scan.segments.size(), static_cast<size_t>(kMaxAlignmentSegments));
+  EXPECT_EQ(scan.over_cap, 15);
+  EXPECT_NEAR(scan.points_m.front().x(), 2.0, 1e-12);  // the nearest first
+  EXPECT_NEAR(scan.segments.front().to_m.y(), 0.1 * static_cast<double>(lines.size()), 1e-12);
+  EXPECT_EQ(scan.corners, 0);
+}
+
 TEST(ScanAlignmentTest, CornersOfTwoLinesArePoints) {
   // A room corner 3 m ahead (the lines end 5 cm short of it) and a door jamb: a wall along the
   // left and its 15 cm end face; and a lone run, whose end is no corner.
