@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "common/angle.h"
 #include "estimator/constant_velocity_model.h"
 
 namespace slammtt {
@@ -99,6 +100,24 @@ void RobotMotionAccumulator::Add(const OdometryIncrement& increment,
 
 void RobotMotionAccumulator::AddPoseNoise(const Eigen::Matrix3d& noise) {
   noise_.topLeftCorner<3, 3>() += noise;
+}
+
+void RobotMotionAccumulator::AddPoseIncrement(const Eigen::Vector3d& increment,
+                                              const Eigen::Matrix3d& covariance) {
+  const double c = std::cos(pose_.z());
+  const double s = std::sin(pose_.z());
+  // pose' = pose (+) increment; F = d pose' / d pose, G = d pose' / d increment.
+  Eigen::Matrix4d f = Eigen::Matrix4d::Identity();
+  f(0, 2) = -s * increment.x() - c * increment.y();
+  f(1, 2) = c * increment.x() - s * increment.y();
+  Eigen::Matrix<double, 4, 3> g = Eigen::Matrix<double, 4, 3>::Zero();
+  g.topLeftCorner<2, 2>() << c, -s, s, c;
+  g(2, 2) = 1.0;
+  pose_ += Eigen::Vector3d(c * increment.x() - s * increment.y(),
+                           s * increment.x() + c * increment.y(), increment.z());
+  pose_.z() = WrapAngle(pose_.z());
+  jacobian_ = f * jacobian_;
+  noise_ = f * noise_ * f.transpose() + g * covariance * g.transpose();
 }
 
 }  // namespace slammtt

@@ -58,6 +58,10 @@ class RobotMotionAccumulator {
   void Add(const OdometryIncrement& increment, const Eigen::Matrix2d& increment_covariance);
   // Adds pose noise directly (3x3), e.g. for unmodelled motion.
   void AddPoseNoise(const Eigen::Matrix3d& noise);
+  // One step by a pose increment (dx_m, dy_m, dheading_rad) in the robot frame, with its
+  // covariance (3x3), from a motion source that is not the wheels (scan_alignment.h): the pose
+  // composed with it; the heading drift b corrects wheel odometry only, so it is left out.
+  void AddPoseIncrement(const Eigen::Vector3d& increment, const Eigen::Matrix3d& covariance);
   const Eigen::Vector3d& pose() const { return pose_; }
   const Eigen::Matrix4d& jacobian() const { return jacobian_; }
   const Eigen::Matrix4d& noise() const { return noise_; }

@@ -90,6 +90,7 @@ void Estimator::StartOver() {
   odometry_clock_.Reset();
   odometry_check_.Reset();
   odometry_.Clear();
+  scan_motion_.Clear();
   last_finite_pose_ = state_.robot_pose();
   last_finite_pose_covariance_ = state_.robot_covariance();
   line_candidates_.clear();
@@ -181,6 +182,8 @@ struct Estimator::ScanInProgress {
   ScanGating gating;                   // at the predicted state
   std::vector<uint8_t> may_update;     // per object: the budget of updates
   Assignment assignment{0, 0};         // measurement <-> object, level by level
+  // Without odometry: the scan's static-looking features, the next scan's alignment reference.
+  std::optional<AlignmentScan> alignment_scan;
 };
 
 namespace {
@@ -236,7 +239,8 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
 }
 
 void Estimator::PropagateState(const ScanInput& scan, ScanInProgress* s) {
-  Predict(scan.utime, s->interval);
+  const std::optional<ScanAlignment> aligned = AlignWithPreviousScan(scan, s);
+  Predict(scan.utime, s->interval, aligned ? &*aligned : nullptr);
   last_scan_utime_ = scan.utime;
   UpdateLines(scan, s->counts);
   DropPointsOnLines(&s->features, s->counts);
@@ -343,6 +347,16 @@ void Estimator::FinishScan(ScanInProgress* s) {
   ReportScanProblems(s->utime, *s->counts);
   s->counts->observation_predictions = s->predicted.computations();
   EnsureFiniteState(s->utime, s->counts);
+  if (s->alignment_scan) {
+    scan_motion_.Keep(std::move(*s->alignment_scan), state_.robot_pose(), s->utime);
+  }
+}
+
+std::optional<ScanAlignment> Estimator::AlignWithPreviousScan(const ScanInput& scan,
+                                                              ScanInProgress* s) const {
+  if (!options_.scan_alignment.enabled || odometry_.anchored()) return std::nullopt;
+  s->alignment_scan = AlignmentScanOf(s->features.measurements, scan.lines, options_.sensor);
+  return scan_motion_.MotionTo(*s->alignment_scan, s->interval.dt_s, options_.scan_alignment);
 }
 
 bool Estimator::AcceptScanTime(int64_t utime) {
@@ -398,13 +412,16 @@ ValidatedFeatures Estimator::TakeFeatures(const std::vector<FeatureReading>& fea
   return validated;
 }
 
-void Estimator::Predict(int64_t utime, const ScanInterval& interval) {
-  const PredictionNotes notes = PredictToScan(utime, interval, options_, &odometry_, &state_);
+void Estimator::Predict(int64_t utime, const ScanInterval& interval,
+                        const ScanAlignment* aligned) {
+  const PredictionNotes notes =
+      PredictToScan(utime, interval, options_, &odometry_, &state_, aligned);
   last_motion_ = notes.motion;
   if (notes.without_odometry) {
     ++counters_.scans_without_odometry;
-    Event("scan at utime " + std::to_string(utime) +
-          ": no odometry since the previous scan, predicted with the last velocity");
+    Event("scan at utime " + std::to_string(utime) + ": no odometry since the previous scan, " +
+          (aligned != nullptr ? "moved by the alignment with the previous scan"
+                              : "predicted with the last velocity"));
   }
   if (notes.time_gap) {
     ++counters_.time_gaps;

@@ -4,10 +4,11 @@
 //
 // Per scan (ProcessScan), the steps of Algorithm 2 in order, each in its own file pair:
 //   1. predict                the whole state to the scan time: robot by eq. 1 along the
-//                             odometry since the previous scan (odometry_buffer.h), movers by
-//                             eqs. 6-8, landmarks unchanged (line 2: scan_prediction.h);
-//                             with a local window, archived static landmarks near the robot
-//                             re-enter the state (landmark_window.h);
+//                             odometry since the previous scan (odometry_buffer.h; a robot that
+//                             sends no odometry: by aligning the scan with the previous one,
+//                             scan_alignment.h), movers by eqs. 6-8, landmarks unchanged
+//                             (line 2: scan_prediction.h); with a local window, archived static
+//                             landmarks near the robot re-enter the state (landmark_window.h);
 //  1b. line landmarks        the scan's line features (walls) update the line landmarks and
 //                             the pose, and start new line landmarks; the point features on a
 //                             line landmark are dropped (line_landmarks.h; new walls start
@@ -73,6 +74,7 @@
 #include "estimator/ml_ransac.h"
 #include "estimator/odometry_buffer.h"
 #include "estimator/odometry_plausibility.h"
+#include "estimator/scan_alignment.h"
 #include "estimator/scan_prediction.h"
 #include "estimator/slam_state.h"
 #include "estimator/static_observations.h"
@@ -220,6 +222,11 @@ class Estimator {
   struct ScanInProgress;
   // Line 2: Predict, then UpdateLines and DropPointsOnLines.
   void PropagateState(const ScanInput& scan, ScanInProgress* s);
+  // With no odometry received and scan_alignment_enabled: the robot's motion since the previous
+  // scan from aligning the scan with it (scan_alignment.h); the scan is kept in `s` to be the
+  // next one's reference (FinishScan). nullopt otherwise, and at the first scan.
+  std::optional<ScanAlignment> AlignWithPreviousScan(const ScanInput& scan,
+                                                     ScanInProgress* s) const;
   // Lines 3-4 (scan_gating.h), and the budget of updates (update_budget.h).
   void GateMeasurements(ScanInProgress* s);
   // Lines 5-6 (level1.h; the static-world baseline: nearest_neighbour.h). Returns the pairs J
@@ -243,10 +250,12 @@ class Estimator {
   // re-enter the state before gating; far ones leave it at the end of the scan.
   void RestoreNearbyLandmarks(ScanInProgress* s);
   void ArchiveDistantLandmarks(ScanInProgress* s);
-  // The scan's problems reported, the state made finite (EnsureFiniteState).
+  // The scan's problems reported, the state made finite (EnsureFiniteState); without odometry
+  // the scan becomes the next one's alignment reference.
   void FinishScan(ScanInProgress* s);
-  // Step 1 (scan_prediction.h), with what it made up for counted and described.
-  void Predict(int64_t utime, const ScanInterval& interval);
+  // Step 1 (scan_prediction.h), with what it made up for counted and described; `aligned`
+  // (optional): the motion without odometry (AlignWithPreviousScan).
+  void Predict(int64_t utime, const ScanInterval& interval, const ScanAlignment* aligned);
   // Step 1b (line_landmarks.h): the walls update the pose and the line landmarks.
   void UpdateLines(const ScanInput& scan, StepCounts* counts);
   // Takes the point features that lie on a line landmark out of the scan's measurements
@@ -269,6 +278,7 @@ class Estimator {
   StreamClock odometry_clock_;
   OdometryPlausibility odometry_check_;
   OdometryBuffer odometry_;
+  ScanToScanMotion scan_motion_;  // without odometry (scan_alignment.h)
   Eigen::Vector3d last_finite_pose_;
   Eigen::Matrix3d last_finite_pose_covariance_ = Eigen::Matrix3d::Zero();
   std::vector<LineCandidate> line_candidates_;  // straight runs not yet line landmarks

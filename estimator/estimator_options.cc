@@ -151,6 +151,9 @@ void VisitAssociationOptions(OptionVisitor* v, EstimatorOptions* o) {
   v->BeginGroup("lines");
   VisitLineLandmarkOptions(v, &o->lines);
   v->EndGroup();
+  v->BeginGroup("scan_alignment");
+  VisitScanAlignmentOptions(v, &o->scan_alignment);
+  v->EndGroup();
 }
 
 }  // namespace

@@ -17,6 +17,7 @@
 #include "estimator/people.h"
 #include "estimator/range_bearing_model.h"
 #include "estimator/robot_motion_model.h"
+#include "estimator/scan_alignment.h"
 #include "estimator/track_management.h"
 
 namespace slammtt {
@@ -164,6 +165,8 @@ struct EstimatorOptions {
   // Walls and furniture sides as line landmarks (line_landmarks.h); gates d1 and dn and the
   // update group size are the points'.
   LineLandmarkOptions lines;
+  // A robot without odometry moves by aligning consecutive scans (scan_alignment.h).
+  ScanAlignmentOptions scan_alignment;
 };
 
 // The options schema of the estimator (common/options_schema.h): every option once, with its

@@ -11,7 +11,8 @@ namespace {
 // The robot's motion over the interval: from the odometry, or standing still with the
 // extrapolation noise when no odometry has ever arrived. Returns whether readings covered it.
 bool AddRobotMotion(int64_t utime, const ScanInterval& interval, const EstimatorOptions& options,
-                    OdometryBuffer* odometry, RobotMotionAccumulator* motion) {
+                    OdometryBuffer* odometry, const ScanAlignment* aligned,
+                    RobotMotionAccumulator* motion) {
   ExtrapolationNoise extrapolation;
   extrapolation.speed_var_per_s2 =
       options.extrapolation_speed_sigma_mps * options.extrapolation_speed_sigma_mps;
@@ -20,6 +21,10 @@ bool AddRobotMotion(int64_t utime, const ScanInterval& interval, const Estimator
   extrapolation.max_s = options.max_prediction_s;
   if (odometry->anchored()) {
     return odometry->AddMotionTo(utime, options.odometry_noise, extrapolation, motion);
+  }
+  if (aligned != nullptr && !interval.first_scan) {
+    motion->AddPoseIncrement(aligned->increment, aligned->covariance);
+    return false;
   }
   if (!interval.first_scan) {
     const double dt = interval.dt_s;
@@ -50,14 +55,14 @@ void InflateForTimeGap(double dt, const EstimatorOptions& options, RobotMotionAc
 
 PredictionNotes PredictToScan(int64_t utime, const ScanInterval& interval,
                               const EstimatorOptions& options, OdometryBuffer* odometry,
-                              SlamState* state) {
+                              SlamState* state, const ScanAlignment* aligned) {
   // With the drift state off its variance stays exactly 0 (no random walk), so b stays 0.
   const double drift_walk_var_per_m =
       options.heading_drift_sigma_rad_per_m > 0.0 ? options.heading_drift_walk_var_per_m : 0.0;
   RobotMotionAccumulator motion(state->robot_pose(), state->heading_drift_rad_per_m(),
                                 drift_walk_var_per_m);
   PredictionNotes notes;
-  const bool covered = AddRobotMotion(utime, interval, options, odometry, &motion);
+  const bool covered = AddRobotMotion(utime, interval, options, odometry, aligned, &motion);
   notes.without_odometry = !interval.first_scan && !covered;
   notes.time_gap = interval.gap_s > options.max_time_gap_s;
   if (notes.time_gap) InflateForTimeGap(interval.dt_s, options, &motion, state);

@@ -3,9 +3,10 @@
 //
 //  - The robot follows eq. 1 along the odometry received since the previous scan
 //    (odometry_buffer.h), corrected by the heading drift state, all steps composed into one
-//    transition. With no odometry ever received it stands still, with the extrapolation noise
-//    over the interval; the map frame is the robot's pose at the first message, so at the first
-//    scan the motion since the first odometry reading counts too.
+//    transition. With no odometry ever received it moves by the alignment of the scan with the
+//    previous one when the estimator gives one (scan_alignment.h), else it stands still, with
+//    the extrapolation noise over the interval; the map frame is the robot's pose at the first
+//    message, so at the first scan the motion since the first odometry reading counts too.
 //  - After a time gap (the interval exceeds max_time_gap_s) the robot's pose gets
 //    gap_robot_position_sigma_mps and gap_robot_heading_sigma_radps (at most pi) per second of
 //    the predicted interval, and every mover's velocity gap_mover_velocity_sigma_mps, instead of
@@ -19,6 +20,7 @@
 
 #include "estimator/estimator_options.h"
 #include "estimator/odometry_buffer.h"
+#include "estimator/scan_alignment.h"
 #include "estimator/slam_state.h"
 
 namespace slammtt {
@@ -48,8 +50,10 @@ struct PredictionNotes {
   RobotMotion motion;
 };
 
+// `aligned` (optional): the robot's motion since the previous scan from the static structure
+// (scan_alignment.h), used instead of standing still when no odometry has ever arrived.
 PredictionNotes PredictToScan(int64_t utime, const ScanInterval& interval,
                               const EstimatorOptions& options, OdometryBuffer* odometry,
-                              SlamState* state);
+                              SlamState* state, const ScanAlignment* aligned = nullptr);
 
 }  // namespace slammtt

@@ -2,7 +2,7 @@
 """Measures every figure of the estimator's issue (issue 6) with the shipped programs.
 
     scripts/measure-estimator.py OUTDIR [--seeds 1-5] [--scenarios s1-crossing,...]
-        [--modes ml_ransac,...] [--summary] [--set KEY=VALUE ...]
+        [--modes ml_ransac,...] [--summary] [--set KEY=VALUE ...] [--no-odometry]
 
 For each scenario and seed it runs exactly what the target tests run
 (tests/estimator/pipeline_runner.cc):
@@ -23,7 +23,11 @@ target); "people in map" (office, corridor): final-map landmarks within that dis
 person's path. --summary adds, per scenario and mode, the worst seed and the median of the
 columns in SUMMARISED. The pseudo-scenario s1-static-only is s1-crossing with its five movers
 taken out (the same landmarks, robot path and sensor): the robot error EKF-SLAM reaches when
-nothing moves.
+nothing moves. --no-odometry runs each ml_ransac run once more with `slammtt-replay
+--drop-channel ODOMETRY` (mode "ml_ransac no-odometry": a robot without wheel odometry, issue
+13 item 5), whose column "ATE ratio" is its ATE over the ATE of the same seed with odometry;
+column "non-person movers/min" is slammtt-eval's non_person_movers_per_minute (at
+--people-match-m).
 
 Prints one Markdown table row per run; every file stays in OUTDIR. Needs a build (build/bin) and
 python3 with no extra modules. Per-scan times depend on the machine's load: quote them from a
@@ -43,7 +47,8 @@ SCENARIOS = ["s1-crossing", "s1-static-only", "s2-lobby", "s3-no-static", "rplid
 # The columns summarised over the seeds of each scenario and mode (--summary): worst and median.
 # Higher is better for MOTA, lower for the others.
 SUMMARISED = {"MOTA": max, "MOTA coast": max, "people MOTA": max, "people IDSW": min,
-              "IDSW": min, "ATE m": min, "movers in map": min, "people in map": min}
+              "IDSW": min, "ATE m": min, "movers in map": min, "people in map": min,
+              "non-person movers/min": min, "ATE ratio": min}
 
 
 def modes_of(scenario):
@@ -130,6 +135,8 @@ def main():
     parser.add_argument("--modes", default="", help="only these modes (default: all of each)")
     parser.add_argument("--people-match-m", default="0.75")
     parser.add_argument("--summary", action="store_true")
+    parser.add_argument("--no-odometry", action="store_true",
+                        help="also run every ml_ransac run without its ODOMETRY channel")
     parser.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
                         help="an estimator option appended to every run's configuration "
                              "(repeatable; for measuring an option's effect)")
@@ -144,7 +151,8 @@ def main():
     os.makedirs(args.outdir, exist_ok=True)
     only_modes = [m for m in args.modes.split(",") if m]
     columns = ["scenario", "seed", "mode", "MOTA", "MOTA norules", "MOTA coast", "people MOTA",
-               "people IDSW", "people in map", "MOTP m", "IDSW", "frag",
+               "people IDSW", "people in map", "non-person movers/min", "ATE ratio", "MOTP m",
+               "IDSW", "frag",
                "OSPA m", "GOSPA m", "ATE m", "odom ATE m", "movers in map", "landmark RMSE m",
                "static recall", "class. acc.", "mean delay s", "max delay s", "hypotheses",
                "p50 us", "p99 us"]
@@ -168,28 +176,34 @@ def main():
             if not os.path.exists(world):
                 run([os.path.join(BIN, "slammtt-world"), "--quiet", "--scenario", source,
                      "--seed", str(seed), "--log", world])
-            for mode in [m for m in modes_of(scenario) if not only_modes or m in only_modes]:
+            runs = [(m, m, []) for m in modes_of(scenario) if not only_modes or m in only_modes]
+            if args.no_odometry and any(m == "ml_ransac" for m, _, _ in runs):
+                runs.append(("ml_ransac", "ml_ransac no-odometry",
+                             ["--drop-channel", "ODOMETRY"]))
+            ate_with_odometry = None
+            for mode, label, dropped in runs:
                 config = f"{stem}-{mode}.yaml"
                 with open(config, "w") as f:
                     f.write(shipped_config + f"  mode: {mode}\n")
                     for setting in args.set:
                         key, _, value = setting.partition("=")
                         f.write(f"  {key}: {value}\n")
-                out = f"{stem}-{mode}.out.lcm"
+                out = f"{stem}-{label.replace(' ', '-')}.out.lcm"
                 run([os.path.join(BIN, "slammtt-replay"), "--quiet", world, "-o", out,
-                     "--config", config] + stages)
-                report_path = f"{stem}-{mode}.json"
+                     "--config", config] + stages + dropped)
+                stem_label = f"{stem}-{label.replace(' ', '-')}"
+                report_path = f"{stem_label}.json"
                 run([os.path.join(BIN, "slammtt-eval"), "--quiet", out, "--json", report_path])
                 with open(report_path) as f:
                     report = json.load(f)
                 norules = "-"
                 if mode == "ml_ransac":
-                    norules_path = f"{stem}-{mode}.norules.json"
+                    norules_path = f"{stem_label}.norules.json"
                     run([os.path.join(BIN, "slammtt-eval"), "--quiet", out, "--json",
                          norules_path, "--min-beams", "1", "--min-moving-speed-mps", "0"])
                     with open(norules_path) as f:
                         norules = fmt(json.load(f)["mota"])
-                people_path = f"{stem}-{mode}.people.json"
+                people_path = f"{stem_label}.people.json"
                 run([os.path.join(BIN, "slammtt-eval"), "--quiet", out, "--json", people_path,
                      "--match-threshold-m", args.people_match_m])
                 with open(people_path) as f:
@@ -199,9 +213,16 @@ def main():
                                  if scenario in ("office", "corridor") else None)
                 p50, p99, hypotheses = timing(out + ".timing.lcm")
                 classification = report["detail"]["classification"]
-                row = [scenario, str(seed), mode, fmt(report["mota"]), norules,
+                ate = report["ate_rmse_m"]
+                ratio = None
+                if label == "ml_ransac":
+                    ate_with_odometry = ate
+                elif dropped and ate is not None and ate_with_odometry:
+                    ratio = ate / ate_with_odometry
+                row = [scenario, str(seed), label, fmt(report["mota"]), norules,
                        fmt(report["mota_with_coasting"]), fmt(people_report["people_mota"]),
                        fmt(people_report["people_id_switches"]), fmt(people_in_map),
+                       fmt(people_report.get("non_person_movers_per_minute")), fmt(ratio),
                        fmt(report["motp_m"]), fmt(report["id_switches"]),
                        fmt(report["fragmentations"]), fmt(report["ospa_mean_m"]),
                        fmt(report["gospa_mean_m"]), fmt(report["ate_rmse_m"]),
@@ -212,7 +233,7 @@ def main():
                        fmt(classification.get("max_delay_s"), 2), str(hypotheses),
                        fmt(p50, 0), fmt(p99, 0)]
                 print("| " + " | ".join(row) + " |", flush=True)
-                results.setdefault((scenario, mode), []).append(dict(zip(columns, row)))
+                results.setdefault((scenario, label), []).append(dict(zip(columns, row)))
     if args.summary:
         print_summary(results, seeds)
 

@@ -2,7 +2,7 @@
 // `slammtt-replay --drop-channel ODOMETRY` moves by the alignment of consecutive scans
 // (scan_alignment.h). The bounds are those measured on office seeds 1-20 (docs/targets.md,
 // "No odometry": ATE at most 0.112 m, at most 6.5 movers that are no person per minute, 7.5 with
-// odometry) with a margin; without the alignment the same run loses the robot (9.6 m on seed 1).
+// odometry) with a margin; without the alignment the same run loses the robot.
 #include <string>
 
 #include "tests/estimator/target_figures.h"

@@ -46,8 +46,9 @@ PipelineRunner& SharedPipelineRunner() {
 
 const PipelineRun& PipelineRunner::Run(const std::string& scenario, int seed,
                                        const std::string& mode,
-                                       const std::vector<std::string>& extra_yaml) {
-  std::string key = scenario + "|" + std::to_string(seed) + "|" + mode;
+                                       const std::vector<std::string>& extra_yaml,
+                                       const std::string& replay_arguments) {
+  std::string key = scenario + "|" + std::to_string(seed) + "|" + mode + "|" + replay_arguments;
   for (const std::string& line : extra_yaml) key += "|" + line;
   if (const auto it = runs_.find(key); it != runs_.end()) return it->second;
   const std::string input = WorldLog(scenario, seed);
@@ -70,7 +71,8 @@ const PipelineRun& PipelineRunner::Run(const std::string& scenario, int seed,
   std::string stages = " --stage estimator";
   if (ScanScenario(scenario)) stages = " --stage segmenter" + stages;
   Execute(std::string(SLAMMTT_BIN_DIR) + "/slammtt-replay --quiet " + Quote(input) + " -o " +
-          Quote(run.output_log) + " --config " + Quote(config) + stages);
+          Quote(run.output_log) + " --config " + Quote(config) + stages +
+          (replay_arguments.empty() ? "" : " " + replay_arguments));
   Execute(std::string(SLAMMTT_BIN_DIR) + "/slammtt-eval --quiet " + Quote(run.output_log) +
           " --json " + Quote(report) + " > /dev/null");
   std::ifstream json(report);

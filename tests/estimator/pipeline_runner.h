@@ -29,11 +29,13 @@ class PipelineRunner {
   PipelineRunner& operator=(const PipelineRunner&) = delete;
 
   // Runs scenario/seed in `mode` (ml_ransac, static_nn, ransac_all_pairs). `extra_yaml` lines go
-  // into the estimator section ("key: value"). Throws std::runtime_error naming the failing
+  // into the estimator section ("key: value"); `replay_arguments` are added to slammtt-replay's
+  // command line (e.g. "--drop-channel ODOMETRY"). Throws std::runtime_error naming the failing
   // command. The same arguments run once per runner (the pipeline is deterministic): later
   // calls return the first run.
   const PipelineRun& Run(const std::string& scenario, int seed, const std::string& mode,
-                         const std::vector<std::string>& extra_yaml = {});
+                         const std::vector<std::string>& extra_yaml = {},
+                         const std::string& replay_arguments = "");
 
   // slammtt-eval --json of `run`'s output with `eval_arguments` added (e.g.
   // "--match-threshold-m 0.75").

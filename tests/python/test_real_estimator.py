@@ -33,9 +33,15 @@ WORSE = 1.05     # a floor is the measured figure made 5 % worse
 # the README runs it) gives the same estimate: test_the_mount_file_alone_gives_the_sensors_
 # estimate asserts it. Lower is better for *_per_minute, *_spread_m and *_rms_m; higher is
 # better for match_pairs and map_line_share.
+# Neither real people recording has ODOMETRY: since the robot moves by the alignment of
+# consecutive scans (docs/estimator.md, "Motion without odometry"), negative_2 went from 58.1 to
+# 42.6 identities per minute and the demo's agreement with the leg pairs from 0.318 to 0.360,
+# while the demo's identities went from 17.6 to 19.0 per minute (its still scanner's estimated
+# pose wanders about as much as before: median 1.5 cm against 1.0 cm, at most 9.5 cm and 4.3
+# degrees against 12.1 cm and 3.3 degrees).
 MEASURED = {
-    ("negative_2", "sensor"): {"person_identities_per_minute": 58.1},
-    ("leg_tracker_demo", "sensor"): {"person_identities_per_minute": 17.6, "match_pairs": 0.318},
+    ("negative_2", "sensor"): {"person_identities_per_minute": 42.6},
+    ("leg_tracker_demo", "sensor"): {"person_identities_per_minute": 19.0, "match_pairs": 0.360},
     ("mines_exp1", "sensor"): {"wall_spread_m": 0.0984, "map_line_rms_m": 0.0645,
                                "map_line_share": 0.973},
     ("mines_exp2", "sensor"): {"wall_spread_m": 0.0950, "map_line_rms_m": 0.0717,

@@ -121,6 +121,36 @@ EvaluationReport EvaluateFile(const std::string& path, const EvalOptions& option
   return Evaluate(*input, options);
 }
 
+TEST(EvalPeopleTest, MoversThatAreNoPersonAreCountedByIdentity) {
+  // The two-beam scan log (movers 10, invisible, and 11, tracked by 110 throughout) plus: track
+  // 200, MOVING at every scan 10 m from anything (the scenery taken for a mover); 201, MOVING on
+  // the invisible mover 10 (excused); 202, STATIC far away (no mover). One identity over the
+  // TRACKS span of 3 scans of 0.125 s: 1 / (0.375 s / 60) = 160 per minute.
+  testing::TempDir dir;
+  {
+    LogWriter log(dir.File("scans.lcm"));
+    for (int k = 0; k < 4; ++k) {
+      WriteScan(&log, k,
+                {Truth(10, 15.0 + 0.125 * k, 0, true, 1.0, 2, true),
+                 Truth(11, 5.0 + 0.125 * k, 2, true, 1.0, 5, true)},
+                {Track(110, 5.0 + 0.125 * k, 2, Trk::CLASS_MOVING),
+                 Track(200, 25.0, 10.0, Trk::CLASS_MOVING),
+                 Track(201, 15.0 + 0.125 * k, 0.1, Trk::CLASS_MOVING),
+                 Track(202, 40.0, 0.0, Trk::CLASS_STATIC)},
+                true);
+    }
+    log.Commit();
+  }
+  EvalInput input;
+  const EvaluationReport r = EvaluateFile(dir.File("scans.lcm"), EvalOptions(), &input);
+  ASSERT_TRUE(r.people_tracking.has_value());
+  EXPECT_EQ(r.people_tracking->false_mover_identities, 1);
+  EXPECT_NEAR(r.people_tracking->false_movers_per_minute, 160.0, 1e-9);
+  const nlohmann::json j = ReportToJson(input, r);
+  EXPECT_NEAR(j["non_person_movers_per_minute"].get<double>(), 160.0, 1e-9);
+  EXPECT_EQ(j["detail"]["people_tracking"]["false_mover_identities"], 1);
+}
+
 TEST(EvalVisibilityTest, TwoBeamsAreSeenInAFeatureLog) {
   // Feature log: the world's flag. Truth sets {10, 11} x 4 scans = 8; 11 matched 4 times, 10 at
   // scans 2-3: 2 misses, MOTA = 1 - 2/8. The post counts for the map (recall 0 of 1) and the

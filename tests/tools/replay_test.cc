@@ -217,6 +217,34 @@ TEST(ReplayTest, SkipsAStageWhoseInputIsAbsent) {
   EXPECT_EQ(Text(out[5]), "ODOM:o;FEAT:f1;FEAT:f2;");
 }
 
+TEST(ReplayTest, ADroppedChannelIsNeitherCopiedNorHandedToAStage) {
+  // --drop-channel ODOM: a robot without odometry. The estimator still runs (FEAT), sees no
+  // ODOM, and the output holds none; a stage whose only input is dropped does not run.
+  TempDir dir;
+  WriteLog(dir.File("in.lcm"), LiveLikeLog());
+  ReplayFileOptions options = Options(dir);
+  options.dropped_channels = {"ODOM"};
+  const ReplayFileResult r =
+      ReplayLogFile(dir.File("in.lcm"), dir.File("out.lcm"), FakeStack(), options);
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  EXPECT_EQ(r.events_read, 9);
+  std::vector<std::string> lines;
+  for (const LogEvent& e : ReadLog(dir.File("out.lcm"))) {
+    lines.push_back(std::to_string(e.timestamp_us) + " " + e.channel + " " + Text(e));
+  }
+  const std::vector<std::string> expected = {
+      "110 SCAN abc", "110 FEAT cba#1", "110 EST FEAT:cba#1;", "112 TRUTH t1",
+      "210 SCAN de",  "210 FEAT ed#2",  "210 EST FEAT:cba#1;FEAT:ed#2;", "212 TRUTH t2"};
+  EXPECT_EQ(lines, expected);
+
+  options.dropped_channels = {"SCAN"};
+  const ReplayFileResult without_scans =
+      ReplayLogFile(dir.File("in.lcm"), dir.File("out2.lcm"), FakeStack(), options);
+  ASSERT_TRUE(without_scans.error.empty()) << without_scans.error;
+  EXPECT_FALSE(without_scans.stages[0].runs);
+  EXPECT_EQ(without_scans.stages[0].messages_handled, 0);
+}
+
 TEST(ReplayTest, WithoutAnyStageInputTheLogIsCopied) {
   TempDir dir;
   const std::vector<LogEvent> in = {Event(1, "TRUTH", "t"), Event(2, "STAGE_TIMING", "live"),

@@ -108,6 +108,25 @@ bool CountedAsPerson(const TruthObjectSample& o, bool log_names_people) {
   return log_names_people ? o.kind == TruthKind::kPerson : o.moving;
 }
 
+// Adds one scan to the per-id counts of TrackingResult::false_mover_identities: each track of
+// `tracks` (null: no TRACKS message) reported MOVING by `rule`, and whether `frame` left it a
+// false positive (neither matched nor excused).
+void CountFalseMovers(const TrackScan* tracks, const TrackingRule& rule,
+                      const ClearMotFrame& frame, const std::set<int64_t>& excused,
+                      std::map<int64_t, std::pair<int64_t, int64_t>>* moving_scans) {
+  if (tracks == nullptr) return;
+  std::set<int64_t> matched;
+  for (const auto& [truth_id, track_id] : frame.matches) matched.insert(track_id);
+  for (const TrackSample& t : tracks->tracks) {
+    if (!(rule.coasting_tracks ? t.confirmed : t.reported) || t.label != ObjectLabel::kMoving) {
+      continue;
+    }
+    auto& [scans, false_scans] = (*moving_scans)[t.id];
+    ++scans;
+    false_scans += matched.count(t.id) == 0 && excused.count(t.id) == 0 ? 1 : 0;
+  }
+}
+
 // Scores the tracks of `input` (TRACKS span) against its truth by `rule`. `paths` and
 // `classification` (either may be null) collect the pictures' track paths and the
 // classification score.
@@ -134,6 +153,8 @@ TrackingResult ScoreTracking(const EvalInput& input, const Pose2& anchor, bool s
   double ospa_loc_sum = 0.0;
   double ospa_card_sum = 0.0;
   double gospa_sum = 0.0;
+  // Per reported MOVING track id: (scans reported MOVING, scans of those a false positive).
+  std::map<int64_t, std::pair<int64_t, int64_t>> moving_scans;
   for (const TruthScan& scan : input.truth) {
     if (scan.utime < window_begin || scan.utime > window_end) continue;
     const auto found = tracks_at.find(scan.utime);
@@ -202,6 +223,8 @@ TrackingResult ScoreTracking(const EvalInput& input, const Pose2& anchor, bool s
 
     const std::set<int64_t> excused(frame.dont_care_hypotheses.begin(),
                                     frame.dont_care_hypotheses.end());
+    CountFalseMovers(row.had_tracks_message ? found->second : nullptr, rule, frame, excused,
+                     &moving_scans);
     PointSet truth_points;
     PointSet track_points;
     std::vector<IdentifiedPoint> scored_hypotheses;
@@ -242,6 +265,12 @@ TrackingResult ScoreTracking(const EvalInput& input, const Pose2& anchor, bool s
   tracking.identity = identity.Scores();
   tracking.movers_few_beams = static_cast<int64_t>(movers_few_beams.size());
   tracking.movers_standing = static_cast<int64_t>(movers_standing.size());
+  for (const auto& [id, counts] : moving_scans) {
+    tracking.false_mover_identities += 2 * counts.second > counts.first ? 1 : 0;
+  }
+  const double minutes = static_cast<double>(window_end - window_begin) * 1e-6 / 60.0;
+  tracking.false_movers_per_minute =
+      minutes > 0.0 ? static_cast<double>(tracking.false_mover_identities) / minutes : 0.0;
   return tracking;
 }
 

@@ -163,6 +163,12 @@ struct TrackingResult {
   int64_t gospa_missed = 0;
   int64_t gospa_false = 0;
   int64_t scans_without_tracks = 0;
+  // Movers the scenery became (issue 13, item 5): the identities of reported MOVING tracks that
+  // were false positives (matched to no counted truth object, not excused) in more than half of
+  // the scans they were reported MOVING in; per minute of the TRACKS span (0 minutes: none).
+  // With the people rule: confirmed movers that are not a person.
+  int64_t false_mover_identities = 0;
+  double false_movers_per_minute = 0.0;
 };
 
 // A track's path in the truth frame (confirmed MOVING samples), for pictures.

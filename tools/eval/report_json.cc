@@ -104,6 +104,7 @@ json TrackingDetail(const TrackingResult& t) {
   return {
       {"scans", static_cast<int64_t>(t.scans.size())},
       {"scans_without_tracks", t.scans_without_tracks},
+      {"false_mover_identities", t.false_mover_identities},
       {"ospa", {{"mean_m", t.ospa_mean_m},
                 {"max_m", t.ospa_max_m},
                 {"localisation_mean_m", t.ospa_localisation_mean_m},
@@ -179,6 +180,7 @@ const std::vector<std::string>& TopLevelMetricKeys() {
       "mota",            "motp_m",               "id_switches",     "fragmentations",
       "idf1",            "hota",                 "mota_with_coasting",
       "id_switches_with_coasting",               "people_mota",     "people_id_switches",
+      "non_person_movers_per_minute",
       "movers_in_static_map", "landmark_rmse_m", "static_recall",   "classification_accuracy",
       "smoothed_ate_rmse_m",  "smoothed_landmark_rmse_m"};
   return keys;
@@ -240,6 +242,8 @@ json ReportToJson(const EvalInput& input, const EvaluationReport& report,
   const auto& people = report.people_tracking;
   j["people_mota"] = people ? OrNull(people->clear_mot.mota) : json(nullptr);
   j["people_id_switches"] = people ? json(people->clear_mot.num_id_switches) : json(nullptr);
+  j["non_person_movers_per_minute"] =
+      people ? json(people->false_movers_per_minute) : json(nullptr);
   j["movers_in_static_map"] =
       report.map ? json(report.map->num_movers_in_static_map) : json(nullptr);
   j["landmark_rmse_m"] = report.map ? OrNull(report.map->landmark_rmse_m) : json(nullptr);
@@ -358,7 +362,7 @@ json ReportToJson(const EvalInput& input, const EvaluationReport& report,
       for (const char* key : {"ospa_mean_m", "gospa_mean_m", "mota", "motp_m", "id_switches",
                               "fragmentations", "idf1", "hota", "mota_with_coasting",
                               "id_switches_with_coasting", "people_mota",
-                              "people_id_switches"}) {
+                              "people_id_switches", "non_person_movers_per_minute"}) {
         j[key] = nullptr;
       }
     }
@@ -445,7 +449,10 @@ std::string ReportSummaryText(const EvaluationReport& report,
       const ClearMotSummary& c = report.people_tracking->clear_mot;
       out << "\n  people:         MOTA " << FixedOr(c.mota, 3) << ", MOTP "
           << FixedOr(c.motp_m, 3, " m") << ", " << c.num_id_switches
-          << " identity switches (visible people, standing ones counted)";
+          << " identity switches (visible people, standing ones counted); "
+          << report.people_tracking->false_mover_identities << " movers that are no person ("
+          << Fixed(report.people_tracking->false_movers_per_minute, 2)
+          << " per minute)";
     }
   } else {
     out << "n/a";

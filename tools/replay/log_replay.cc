@@ -189,7 +189,9 @@ ReplayFileResult ReplayLogFile(const std::string& input_path, const std::string&
 
   LogReplay replay(std::move(stages), options.timing_channel);
   std::set<std::string> channels;
-  for (const auto& entry : result.input.channels) channels.insert(entry.first);
+  for (const auto& entry : result.input.channels) {
+    if (options.dropped_channels.count(entry.first) == 0) channels.insert(entry.first);
+  }
   replay.Plan(channels);
   result.replaced_channels = replay.produced_channels();
 
@@ -234,7 +236,9 @@ ReplayFileResult ReplayLogFile(const std::string& input_path, const std::string&
     const auto* bytes = static_cast<const uint8_t*>(e.data);
     event.data.assign(bytes, bytes + e.size);
     ++result.events_read;
-    replay.HandleEvent(event, output, timing);
+    if (options.dropped_channels.count(event.channel) == 0) {
+      replay.HandleEvent(event, output, timing);
+    }
     progress.events_done = result.events_read;
     progress.log_time_us =
         SaturatingDifference(event.timestamp_us, result.input.first_timestamp_us);

@@ -99,6 +99,10 @@ struct ReplayFileOptions {
   // Checked before every event: true stops the replay (a SIGINT or SIGTERM), with `error`
   // saying so and no output left behind.
   std::function<bool()> should_stop;
+  // Channels taken out of the input before anything sees it: neither copied nor handed to a
+  // stage, as if the log had never held them (e.g. ODOMETRY, to run the estimator as on a robot
+  // without wheel odometry). Their events still count in events_read.
+  std::set<std::string> dropped_channels;
 };
 
 struct ReplayFileResult {

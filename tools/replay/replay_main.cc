@@ -35,6 +35,9 @@ int Run(int argc, char** argv) {
                        "replay.stages)");
   cl.AddFlag("smoother",
             "run the smoother as well (slammtt-smoother; as a `smoother:` section does)");
+  cl.AddRepeatedOption("drop-channel", "CHANNEL",
+                       "leave this channel of the input out: not copied, not handed to any "
+                       "stage (e.g. ODOMETRY: a robot without wheel odometry)");
   cl.AddFlag("strict", "treat a truncated final event as an error (default: a warning)");
   cl.AddFlag("options-table",
              "print the table of the replay: section's settings (Markdown, docs/tools.md) and "
@@ -62,6 +65,9 @@ int Run(int argc, char** argv) {
     enabled.push_back("smoother");
   }
   if (cl.Flag("strict")) options.truncated_tail_is_error = true;
+  for (const std::string& channel : cl.Values("drop-channel")) {
+    options.dropped_channels.insert(channel);
+  }
   options.timing_channel = settings.channels.Get("stage_timing");
   if (!cl.Flag("no-timing")) {
     options.timing_path = cl.ValueOr("timing-log", *output + ".timing.lcm");
