@@ -22,7 +22,9 @@
 //     (no velocity states, not a person) whose mean lies farther than radius_m from the robot
 //     leaves the state for the archive; then, while more than max_landmarks remain, the
 //     farthest leave too. Undecided, moving and tentative objects never leave: the tracker
-//     keeps and prunes them as before.
+//     keeps and prunes them as before. A confirmed static landmark that pruning would drop for
+//     being unseen in view goes to the archive too (pruning.h): with a window it is a part of
+//     the map, not a track.
 // reenter_radius_m <= radius_m gives the hysteresis that keeps a landmark at the edge from
 // leaving and coming back every scan, and reenter_radius_m >= max_range_m (checked with the
 // options) keeps every landmark the laser can see in the state, so that a sighting of an

@@ -19,6 +19,7 @@ p50 / p99 / max over the run's scans. Times are wall-clock times of the replay o
 Usage:
   scripts/measure-large-loop.py OUT [--seeds 1-10] [--curve 100,500,1000,2000,5000]
       [--curve-seed 1] [--no-seeds] [--no-curve] [--smoother-yaml FILE] [--keep-logs]
+      [--bin-dir DIR]
 Prints one line per run and writes OUT/large-loop.json. Needs the venv of
 scripts/python-env.sh (the log reader) as every Python tool: run it with build/venv/bin/python
 or PYTHONPATH=python and a venv holding lcm.
@@ -130,7 +131,7 @@ def cost_figures(per_scan):
 def one_run(args, out, config, count, seed):
     stem = os.path.join(out, f"large-loop-{count}-seed{seed}")
     world, replay, report = stem + ".world.lcm", stem + ".lcm", stem + ".json"
-    bin_dir = os.path.join(ROOT, "build", "bin")
+    bin_dir = args.bin_dir
     run([os.path.join(bin_dir, "slammtt-world"), "--quiet", "--scenario",
          scenario_file(out, count), "--seed", str(seed), "--log", world])
     run([os.path.join(bin_dir, "slammtt-replay"), "--quiet", world, "-o", replay,
@@ -190,6 +191,8 @@ def main():
     parser.add_argument("--smoother-yaml", default=None,
                         help="a file with a `smoother:` section replacing the configuration's")
     parser.add_argument("--keep-logs", action="store_true")
+    parser.add_argument("--bin-dir", default=os.path.join(ROOT, "build", "bin"),
+                        help="where slammtt-world, -replay and -eval are (default: build/bin)")
     args = parser.parse_args()
     os.makedirs(args.out, exist_ok=True)
     config = config_file(args.out, args.smoother_yaml)
