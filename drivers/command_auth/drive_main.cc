@@ -8,6 +8,7 @@
 #include "drivers/command_auth/velocity_sender.h"
 #include "drivers/common/driver_clock.h"
 #include "runtime/command_line.h"
+#include "runtime/event_loop.h"
 #include "runtime/lcm_bus.h"
 #include "runtime/log.h"
 #include "runtime/process.h"
@@ -42,14 +43,18 @@ int Run(int argc, char** argv) {
   LcmBus bus(settings.lcm_url);
   SystemDriverClock clock;
   SignedVelocitySender sender(key, settings.channels.Get("velocity_command"), &bus, &clock);
-  const int64_t start_us = clock.NowMonotonicUs();
-  const int64_t end_us = start_us + static_cast<int64_t>(std::llround(duration_s * 1e6));
-  for (int64_t next_us = start_us; next_us < end_us && !ShutdownRequested(); next_us += period_us) {
-    const int64_t wait_us = next_us - clock.NowMonotonicUs();
-    if (wait_us > 0) clock.SleepUs(wait_us);
-    if (ShutdownRequested()) break;
-    sender.Send(linear, angular);
-  }
+  // One command now and one every period while the duration lasts (due times start + k *
+  // period < end), paced by the process's loop.
+  SteadyMonotonicClock loop_clock;
+  EventLoop loop(&bus, &loop_clock);
+  const int64_t duration_us = static_cast<int64_t>(std::llround(duration_s * 1e6));
+  const int64_t commands = (duration_us + period_us - 1) / period_us;
+  const auto send_due = [&] {
+    if (sender.sent() < commands) sender.Send(linear, angular);
+  };
+  send_due();
+  loop.AddTimer(period_us, send_due);
+  while (sender.sent() < commands && !ShutdownRequested()) loop.HandleTimeoutUs(period_us);
   sender.Send(0.0, 0.0);
   LogInfo() << "sent " << sender.sent() << " signed commands on " << sender.channel()
             << " (the last one a stop)";

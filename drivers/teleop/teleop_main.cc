@@ -3,15 +3,14 @@
 // --rate-hz so that the base driver's command timeout never stops the robot while it is
 // driven. Every way out sends a stop command and, in keyboard mode, gives the terminal its
 // settings back. docs/robot.md, "Driving the robot".
-#include <poll.h>
 #include <termios.h>
 #include <unistd.h>
 
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -22,6 +21,7 @@
 #include "drivers/teleop/teleop_keys.h"
 #include "drivers/teleop/velocity_profile.h"
 #include "runtime/command_line.h"
+#include "runtime/event_loop.h"
 #include "runtime/lcm_bus.h"
 #include "runtime/log.h"
 #include "runtime/process.h"
@@ -90,58 +90,65 @@ std::string ReadTextFile(const std::string& path) {
   return text.str();
 }
 
-void RunProfile(const std::vector<VelocityProfileStep>& steps, int64_t period_us,
-                SignedVelocitySender* sender, DriverClock* clock) {
-  const int64_t start_us = clock->NowMonotonicUs();
+// Sends the profile's command of the moment now and every period until it ends, paced by the
+// process's loop.
+void RunProfile(const std::vector<VelocityProfileStep>& steps, SignedVelocitySender* sender,
+                EventLoop* loop, int64_t period_us) {
+  const int64_t start_us = loop->clock().NowUs();
   int last_line = 0;
-  for (int64_t next_us = start_us; !ShutdownRequested(); next_us += period_us) {
-    const int64_t wait_us = next_us - clock->NowMonotonicUs();
-    if (wait_us > 0) clock->SleepUs(wait_us);
-    if (ShutdownRequested()) break;
-    const double elapsed_s = static_cast<double>(clock->NowMonotonicUs() - start_us) * 1e-6;
+  bool done = false;
+  const auto send_due = [&] {
+    const double elapsed_s = static_cast<double>(loop->clock().NowUs() - start_us) * 1e-6;
     const std::optional<VelocityProfileStep> step = ProfileStepAt(steps, elapsed_s);
-    if (!step) break;
+    if (!step) {
+      done = true;
+      return;
+    }
     if (step->line != last_line) {
       LogInfo() << "line " << step->line << ": " << step->linear_mps << " m/s, "
                 << step->angular_radps << " rad/s for " << step->duration_s << " s";
       last_line = step->line;
     }
     sender->Send(step->linear_mps, step->angular_radps);
-  }
+  };
+  send_due();
+  loop->AddTimer(period_us, send_due);
+  while (!done && !ShutdownRequested()) loop->HandleTimeoutUs(period_us);
 }
 
-void RunKeyboard(const TeleopSteps& steps, int64_t period_us, SignedVelocitySender* sender,
-                 DriverClock* clock) {
+// The keyboard on stdin through the loop's descriptor hook; the command of the moment goes out
+// at once when a key changes it and every period from the loop's timer.
+void RunKeyboard(const TeleopSteps& steps, SignedVelocitySender* sender, EventLoop* loop,
+                 int64_t period_us) {
   RawTerminal terminal;
   std::fputs("slammtt-teleop: arrows or w a s d change speed and turn, space stops, q quits\n",
              stderr);
   TerminalKeyDecoder decoder;
   TeleopCommand command;
-  int64_t next_us = clock->NowMonotonicUs();
   bool quit = false;
-  while (!quit && !ShutdownRequested()) {
-    const int64_t wait_us = std::max<int64_t>(0, next_us - clock->NowMonotonicUs());
-    pollfd input{STDIN_FILENO, POLLIN, 0};
-    if (poll(&input, 1, static_cast<int>((wait_us + 999) / 1000)) > 0) {
-      uint8_t bytes[64];
-      const ssize_t got = read(STDIN_FILENO, bytes, sizeof bytes);
-      if (got == 0 && (input.revents & POLLHUP) != 0) break;  // the terminal went away
-      const TeleopCommand before = command;
-      for (TeleopKey key : decoder.Feed(bytes, got > 0 ? static_cast<size_t>(got) : 0)) {
-        if (key == TeleopKey::kQuit) quit = true;
-        command = ApplyTeleopKey(command, key, steps);
-      }
-      if (command.linear_mps != before.linear_mps ||
-          command.angular_radps != before.angular_radps) {
-        std::fprintf(stderr, "\rlinear %+.2f m/s  angular %+.2f rad/s   ", command.linear_mps,
-                     command.angular_radps);
-        next_us = clock->NowMonotonicUs();  // a change goes out at once
-      }
+  loop->AddFdHook(STDIN_FILENO, [&] {
+    uint8_t bytes[64];
+    const ssize_t got = read(STDIN_FILENO, bytes, sizeof bytes);
+    if (got == 0) {  // the terminal went away
+      quit = true;
+      return;
     }
-    if (quit || clock->NowMonotonicUs() < next_us) continue;
-    sender->Send(command.linear_mps, command.angular_radps);
-    next_us += period_us;
-  }
+    const TeleopCommand before = command;
+    for (TeleopKey key : decoder.Feed(bytes, got > 0 ? static_cast<size_t>(got) : 0)) {
+      if (key == TeleopKey::kQuit) quit = true;
+      command = ApplyTeleopKey(command, key, steps);
+    }
+    if (!quit && (command.linear_mps != before.linear_mps ||
+                  command.angular_radps != before.angular_radps)) {
+      std::fprintf(stderr, "\rlinear %+.2f m/s  angular %+.2f rad/s   ", command.linear_mps,
+                   command.angular_radps);
+      sender->Send(command.linear_mps, command.angular_radps);  // a change goes out at once
+    }
+  });
+  const auto send = [&] { sender->Send(command.linear_mps, command.angular_radps); };
+  send();
+  loop->AddTimer(period_us, send);
+  while (!quit && !ShutdownRequested()) loop->HandleTimeoutUs(period_us);
 }
 
 int Run(int argc, char** argv) {
@@ -189,12 +196,14 @@ int Run(int argc, char** argv) {
   SystemDriverClock clock;
   SignedVelocitySender sender(key, settings.channels.Get("velocity_command"), &bus, &clock);
   StopOnExit stop(&sender);
+  SteadyMonotonicClock loop_clock;
+  EventLoop loop(&bus, &loop_clock);
   if (!profile.empty()) {
     LogInfo() << "profile of " << profile.size() << " steps, " << ProfileDurationS(profile)
               << " s";
-    RunProfile(profile, period_us, &sender, &clock);
+    RunProfile(profile, &sender, &loop, period_us);
   } else {
-    RunKeyboard(steps, period_us, &sender, &clock);
+    RunKeyboard(steps, &sender, &loop, period_us);
   }
   return 0;
 }
