@@ -6,6 +6,7 @@
 #include <termios.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -129,7 +130,7 @@ void RunKeyboard(const TeleopSteps& steps, SignedVelocitySender* sender, EventLo
   loop->AddFdHook(STDIN_FILENO, [&] {
     uint8_t bytes[64];
     const ssize_t got = read(STDIN_FILENO, bytes, sizeof bytes);
-    if (got == 0) {  // the terminal went away
+    if (got == 0 || (got < 0 && errno != EAGAIN && errno != EINTR)) {  // the terminal went away
       quit = true;
       return;
     }
