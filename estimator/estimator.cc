@@ -326,12 +326,14 @@ std::vector<StaticObservation> Estimator::ManageTracks(ScanInProgress* s) {
   PruneObjects(s->utime, taken_over, options_, after_updates, s->assignment, &state_,
                s->counts, &archive_);
   // 10. New tracks outside gate dn of every object (line 13); their first sightings go to the
-  // smoother too.
+  // smoother too when asked (smoother_first_sightings).
   const std::vector<StaticObservation> first_sightings =
       AddNewObjects(association, s->gating.nearest_nis, continues_id, options_, s->assignment,
                     &next_id_, &state_, s->counts);
-  static_observations.insert(static_observations.end(), first_sightings.begin(),
-                             first_sightings.end());
+  if (options_.smoother_first_sightings) {
+    static_observations.insert(static_observations.end(), first_sightings.begin(),
+                               first_sightings.end());
+  }
   return static_observations;
 }
 

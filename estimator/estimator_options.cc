@@ -119,6 +119,8 @@ void VisitRobustnessOptions(OptionVisitor* v, EstimatorOptions* o) {
   v->BeginGroup("window");
   VisitLandmarkWindowOptions(v, &o->window);
   v->EndGroup();
+  v->Bool("smoother_first_sightings", &o->smoother_first_sightings,
+          "SMOOTHER_INPUT also carries the sighting that started each object (tentative)");
   v->Int("max_features_per_scan", &o->max_features_per_scan, R::Between(1, 1000000),
          "the most features of a scan used (the nearest); the rest dropped and counted");
 }

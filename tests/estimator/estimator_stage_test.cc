@@ -259,6 +259,27 @@ TEST(ScanInputFromFeaturesTest, BadOrSharedLegIndicesAreIgnored) {
   EXPECT_DOUBLE_EQ(scan.features[2].range_m, 4.0);
 }
 
+TEST(EstimatorStageTest, WithSmootherFirstSightingsTheStartingSightingsGoToTheSmoother) {
+  EstimatorStageOptions options;
+  options.estimator.smoother_first_sightings = true;
+  EstimatorStage stage(options, Channels());
+  RecordingSink out;
+  Feed(&stage, "ODOMETRY", OdometryBytes(0, 0.0, 0.5), out);
+  Feed(&stage, "ODOMETRY", OdometryBytes(100000, 0.05, 0.5), out);
+  Feed(&stage, "FEATURES", FeaturesBytes(100000, {{5.0, 0.2}, {7.0, -0.4}}), out);
+  ASSERT_EQ(out.messages.size(), 6u);
+  const auto tracks = out.Get<slammtt_msgs::tracks_t>(2);
+  ASSERT_EQ(tracks.num_tracks, 2);
+  // Both features start objects; their starting sightings go to the smoother, tentative, under
+  // the new tracks' ids.
+  const auto smoother_input = out.Get<slammtt_msgs::smoother_input_t>(3);
+  ASSERT_EQ(smoother_input.num_observations, 2);
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_EQ(smoother_input.observations[k].landmark_id, tracks.tracks[k].id);
+    EXPECT_TRUE(smoother_input.observations[k].tentative);
+  }
+}
+
 TEST(EstimatorStageTest, PublishesEveryOutputWithTheFeaturesUtime) {
   EstimatorStage stage(EstimatorStageOptions{}, Channels());
   EXPECT_EQ(stage.Name(), "estimator");
@@ -288,16 +309,12 @@ TEST(EstimatorStageTest, PublishesEveryOutputWithTheFeaturesUtime) {
   EXPECT_FALSE(tracks.tracks[0].confirmed);
   EXPECT_EQ(tracks.tracks[0].first_seen_utime, 100000);
   // The first scan: no motion from a previous one; both features start objects (no
-  // association yet), and their starting sightings go to the smoother, tentative, under the
-  // new tracks' ids.
+  // association yet), whose starting sightings the smoother does not get by default
+  // (smoother_first_sightings; the next test).
   const auto smoother_input = out.Get<slammtt_msgs::smoother_input_t>(3);
   EXPECT_EQ(smoother_input.utime, 100000);
   EXPECT_FALSE(smoother_input.continues);
-  ASSERT_EQ(smoother_input.num_observations, 2);
-  for (int k = 0; k < 2; ++k) {
-    EXPECT_EQ(smoother_input.observations[k].landmark_id, tracks.tracks[k].id);
-    EXPECT_TRUE(smoother_input.observations[k].tentative);
-  }
+  EXPECT_EQ(smoother_input.num_observations, 0);
   EXPECT_NEAR(smoother_input.x_m, 0.05, 1e-9);
   const auto status = out.Get<slammtt_msgs::estimator_status_t>(4);
   EXPECT_EQ(status.utime, 100000);
