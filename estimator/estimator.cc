@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "common/angle.h"
+#include "common/checked_options.h"
 #include "common/utime.h"
 #include "estimator/association.h"
 #include "estimator/classification.h"
@@ -37,12 +38,6 @@ SlamState InitialState(const EstimatorOptions& options) {
   return SlamState(pose, Eigen::Matrix3d::Zero(), drift_sigma * drift_sigma);
 }
 
-const EstimatorOptions& Checked(const EstimatorOptions& options) {
-  const std::string problem = CheckEstimatorOptions(options);
-  if (!problem.empty()) throw std::invalid_argument("estimator options: " + problem);
-  return options;
-}
-
 }  // namespace
 
 const char* SubstageName(Substage substage) {
@@ -64,7 +59,7 @@ const char* SubstageName(Substage substage) {
 }
 
 Estimator::Estimator(const EstimatorOptions& options)
-    : options_(Checked(options)),
+    : options_(CheckedOptions(options, &CheckEstimatorOptions, "estimator options")),
       state_(InitialState(options)),
       last_finite_pose_(state_.robot_pose()) {}
 
@@ -75,7 +70,7 @@ void Estimator::SetLaserGeometry(const EstimatorOptions& options) {
   next.field_of_view_start_rad = options.field_of_view_start_rad;
   next.field_of_view_end_rad = options.field_of_view_end_rad;
   next.max_range_m = options.max_range_m;
-  options_ = Checked(next);
+  options_ = CheckedOptions(next, &CheckEstimatorOptions, "estimator options");
 }
 
 TimeJumpLimits Estimator::time_jump_limits() const {

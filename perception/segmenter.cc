@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "common/angle.h"
+#include "common/checked_options.h"
 #include <Eigen/Dense>
 
 #include "perception/centre_estimation.h"
@@ -37,16 +38,10 @@ double CcwDelta(double a_rad, double b_rad) {
   return d < 0.0 ? d + kTwoPi : d;
 }
 
-const SegmenterOptions& Checked(const SegmenterOptions& options) {
-  const std::string problem = CheckSegmenterOptions(options);
-  if (!problem.empty()) throw std::invalid_argument("segmenter options: " + problem);
-  return options;
-}
-
 }  // namespace
 
 Segmenter::Segmenter(const SegmenterOptions& options)
-    : options_(Checked(options)),
+    : options_(CheckedOptions(options, &CheckSegmenterOptions, "segmenter options")),
       criterion_(options.lambda_rad, options.sigma_r_m, options.max_beam_gap_rad),
       leg_model_(options.leg_model != nullptr ? options.leg_model : &TrainedLegModel()) {
   const char* problem = CheckLegModel(*leg_model_);

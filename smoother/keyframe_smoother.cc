@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "common/angle.h"
+#include "common/checked_options.h"
 #include "common/utime.h"
 #include "geometry/pose2.h"
 
@@ -53,12 +54,6 @@ std::optional<std::string> ObservationProblem(const StaticObservation& o) {
   return std::nullopt;
 }
 
-const KeyframeSmootherOptions& Checked(const KeyframeSmootherOptions& options) {
-  const std::string problem = CheckKeyframeSmootherOptions(options);
-  if (!problem.empty()) throw std::invalid_argument("smoother options: " + problem);
-  return options;
-}
-
 }  // namespace
 
 void VisitKeyframeSmootherOptions(OptionVisitor* v, KeyframeSmootherOptions* o) {
@@ -100,7 +95,7 @@ std::string CheckKeyframeSmootherOptions(const KeyframeSmootherOptions& options)
 }
 
 KeyframeSmoother::KeyframeSmoother(const KeyframeSmootherOptions& options)
-    : options_(Checked(options)) {}
+    : options_(CheckedOptions(options, &CheckKeyframeSmootherOptions, "smoother options")) {}
 
 SmoothedScan KeyframeSmoother::AddScan(const SmootherScanInput& scan) {
   SmoothedScan out;

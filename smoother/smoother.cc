@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "common/angle.h"
+#include "common/checked_options.h"
 #include "smoother/factors.h"
 #include "geometry/pose2.h"
 
@@ -117,12 +118,6 @@ std::optional<std::string> CheckFinite(const Eigen::MatrixXd& value, const char*
   return std::nullopt;
 }
 
-const SmootherOptions& Checked(const SmootherOptions& options) {
-  const std::string problem = CheckSmootherOptions(options);
-  if (!problem.empty()) throw std::invalid_argument("smoother options: " + problem);
-  return options;
-}
-
 }  // namespace
 
 void VisitSmootherOptions(OptionVisitor* v, SmootherOptions* o) {
@@ -178,7 +173,7 @@ std::string CheckSmootherOptions(const SmootherOptions& options) {
 }
 
 Smoother::Smoother(const SmootherOptions& options)
-    : options_(Checked(options)),
+    : options_(CheckedOptions(options, &CheckSmootherOptions, "smoother options")),
       layout_(std::make_unique<Layout>()),
       cholesky_(std::make_unique<SparseCholesky>()) {}
 

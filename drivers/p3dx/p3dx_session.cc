@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "common/checked_options.h"
 #include "common/report_count.h"
 #include "drivers/p3dx/p3dx_commands.h"
 
@@ -24,18 +25,11 @@ constexpr int64_t kShutdownQuietUs = 150000;
 
 int64_t Seconds(double s) { return static_cast<int64_t>(std::llround(s * 1e6)); }
 
-// The options as given, after CheckP3dxDriverOptions (std::invalid_argument naming the key).
-const P3dxDriverOptions& Checked(const P3dxDriverOptions& options) {
-  const std::string problem = CheckP3dxDriverOptions(options);
-  if (!problem.empty()) throw std::invalid_argument("P3-DX driver options: " + problem);
-  return options;
-}
-
 }  // namespace
 
 P3dxSession::P3dxSession(const P3dxDriverOptions& options, ByteStreamFactory factory,
                          DriverClock* clock, P3dxSessionOutput* output, DriverLog* log)
-    : options_(Checked(options)),
+    : options_(CheckedOptions(options, &CheckP3dxDriverOptions, "P3-DX driver options")),
       factory_(std::move(factory)),
       clock_(clock),
       output_(output),

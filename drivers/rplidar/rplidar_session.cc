@@ -6,6 +6,7 @@
 #include <string>
 #include <utility>
 
+#include "common/checked_options.h"
 namespace slammtt {
 namespace rplidar {
 namespace {
@@ -33,18 +34,11 @@ std::string Hex4(int value) {
   return text;
 }
 
-// The options as given, after CheckRplidarSessionOptions (std::invalid_argument naming the key).
-const RplidarDriverOptions& Checked(const RplidarDriverOptions& options) {
-  const std::string problem = CheckRplidarSessionOptions(options);
-  if (!problem.empty()) throw std::invalid_argument("RPLIDAR driver options: " + problem);
-  return options;
-}
-
 }  // namespace
 
 RplidarSession::RplidarSession(const RplidarDriverOptions& options, StreamFactory open_stream,
                                DriverClock* clock, RplidarSessionOutput* output, DriverLog* log)
-    : options_(Checked(options)),
+    : options_(CheckedOptions(options, &CheckRplidarSessionOptions, "RPLIDAR driver options")),
       open_stream_(std::move(open_stream)),
       clock_(clock),
       output_(output),
