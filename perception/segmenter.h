@@ -199,7 +199,8 @@ class Segmenter {
   bool TryMergeLines(size_t first, size_t second, LineFeature* merged);
   void MergeCollinearLines();
   void ClassifyLoneBeam(const Cluster& cluster);
-  bool LiesOnALine(size_t count) const;
+  // Every point of sensor_x_/sensor_y_ [0, count) within tolerance_m of one line of lines_.
+  bool LiesOnALine(size_t count, double tolerance_m) const;
   void FillSensorFromCluster(size_t count, double reference_bearing_rad);
   bool IsStructurePiece(const ClusterView& cluster, double width_m, bool leg_like);
   void MakeFeature(const Cluster& cluster);
