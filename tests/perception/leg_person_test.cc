@@ -327,6 +327,44 @@ TEST(SegmenterPeopleTest, AFlatPieceBetweenNoReturnsIsNoPerson) {
   }
 }
 
+// A stub of a wall beyond an opening, in line with the wall the sensor faces (the world's door
+// frames and corridor ends): every point within the range noise of the wall's line feature, so
+// it is a piece of that line even where it looks like a leg (leg_threshold 0 makes every
+// cluster leg-like: only the tight on-line test, kOnSurfaceM, can then reject it). A leg
+// standing on the same line, centred on it, is round: its outline departs from the line by up
+// to its radius and it stays a point feature; so does a leg 0.1 m in front of the line.
+TEST(SegmenterPeopleTest, AStubInLineWithAWallIsAPieceOfItAndALegThereIsNot) {
+  SegmenterOptions options;
+  options.leg_threshold = 0.0;
+  const WallSegment wall = {3.0, 0.3, 3.0, 3.0};
+  int stubs_on_line = 0;
+  for (uint64_t seed = 1; seed <= 20; ++seed) {
+    SCOPED_TRACE(testing::Message() << "seed " << seed);
+    std::mt19937_64 rng(seed);
+    const auto fate_near = [&](const std::vector<Circle>& circles,
+                               const std::vector<WallSegment>& walls, double x_m, double y_m) {
+      const TestScan scan = CastScene(circles, walls, Angles(0.35), 12.0, 0.01, 0.0, &rng);
+      Segmenter segmenter(options);
+      segmenter.Segment(scan.View());
+      EXPECT_FALSE(segmenter.lines().empty());
+      for (const LegClusterRecord& r : segmenter.leg_clusters()) {
+        if (std::hypot(r.centroid_x_m - x_m, r.centroid_y_m - y_m) < 0.1) return r.fate;
+      }
+      ADD_FAILURE() << "no cluster near y = " << y_m;
+      return LegClusterFate::kNotALeg;
+    };
+    stubs_on_line +=
+        fate_near({}, {wall, {3.0, -0.2, 3.0, -0.1}}, 3.0, -0.15) == LegClusterFate::kOnALine;
+    // Centroids: the legs' visible arcs, about half a radius in front of their centres.
+    EXPECT_EQ(fate_near({{3.0, -0.15, 0.06}}, {wall}, 2.96, -0.15),
+              LegClusterFate::kPointFeature);
+    EXPECT_EQ(fate_near({{2.84, -0.15, 0.06}}, {wall}, 2.80, -0.15),
+              LegClusterFate::kPointFeature);
+  }
+  // 5-6 beams on the stub, each within 0.025 m of the line with 0.01 m of noise: almost always.
+  EXPECT_GE(stubs_on_line, 17);
+}
+
 // Chair legs (radius 1.5 cm, four at the corners of 0.45 m) at 0.35 degrees: no person.
 TEST(SegmenterPeopleTest, ChairLegsAreNotPeople) {
   int people = 0;
