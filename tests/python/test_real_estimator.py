@@ -45,13 +45,20 @@ WORSE = 1.05     # a floor is the measured figure made 5 % worse
 # (a point feature within 0.25 m of a wall is a piece of it): negative_2 44.6 -> 29.1, the demo
 # 18.1 and 0.316 -> 0.355; Mines spread 0.0968 -> 0.0951 (exp1) and 0.0907 -> 0.0935 m (exp2),
 # wall points to the estimator's own final lines 0.0797 -> 0.0650 and 0.0771 -> 0.0716 m.
+# Then perception's leg-like clusters within 0.025 m of a line of the scan became pieces of it
+# (docs/perception.md; 0.06 of 10.6 point features and 0.03 of 2.2 person features per Mines
+# scan fewer): negative_2 29.1 -> 27.0, the demo unchanged (18.1, 0.355); Mines exp1 spread
+# 0.0951 -> 0.0933 m, RMS to the final lines 0.0650 -> 0.0610 m, share 0.983 -> 0.974; exp2
+# spread 0.0935 -> 0.1005 m, RMS 0.0716 -> 0.0744 m, share 0.984 -> 0.973 (one recording
+# better, the other worse, from a change of 0.6 % of the point features: the estimate's
+# sensitivity, not a rule that places Mines walls worse).
 MEASURED = {
-    ("negative_2", "sensor"): {"person_identities_per_minute": 29.1},
+    ("negative_2", "sensor"): {"person_identities_per_minute": 27.0},
     ("leg_tracker_demo", "sensor"): {"person_identities_per_minute": 18.1, "match_pairs": 0.355},
-    ("mines_exp1", "sensor"): {"wall_spread_m": 0.0951, "map_line_rms_m": 0.0650,
-                               "map_line_share": 0.983},
-    ("mines_exp2", "sensor"): {"wall_spread_m": 0.0935, "map_line_rms_m": 0.0716,
-                               "map_line_share": 0.984},
+    ("mines_exp1", "sensor"): {"wall_spread_m": 0.0933, "map_line_rms_m": 0.0610,
+                               "map_line_share": 0.974},
+    ("mines_exp2", "sensor"): {"wall_spread_m": 0.1005, "map_line_rms_m": 0.0744,
+                               "map_line_share": 0.973},
 }
 HIGHER_IS_BETTER = {"match_pairs", "map_line_share"}
 
