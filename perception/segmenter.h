@@ -42,8 +42,9 @@
 //     isolated beam; two points may be a provisional leg (step 7). A cluster becomes a point
 //     feature when the distance between its first and last point is at most max_width_m and
 //     it spans less than pi (a cluster that surrounds the sensor has no centre), and it is not
-//     a piece of a line of this scan (every point within the split distance of one; kept if
-//     it has more than three points and looks like a leg), and, in a scan with a line
+//     a piece of a line of this scan (every point within the split distance of one; if it
+//     has more than three points and looks like a leg, every point within 0.025 m of one: a
+//     leg's round outline departs farther from a line), and, in a scan with a line
 //     feature, not a piece of structure too short for a line: straight (every point within
 //     the split distance of its chord) and either at least straight_piece_width_m wide with
 //     at least min_line_points points, or with both edges hidden by nearer objects; or at
