@@ -190,6 +190,9 @@ std::string CheckEstimatorOptions(const EstimatorOptions& options) {
       o.tracks.confirm_window_scans < o.tracks.confirm_hits) {
     return "tracks_confirm_window_scans must be 0 or >= tracks_confirm_hits";
   }
+  if (o.tracks.report_other_window_scans < o.tracks.report_other_hits) {
+    return "tracks_report_other_window_scans must be >= tracks_report_other_hits";
+  }
   if (o.level3 && !(o.gate_d2_chi2 > o.gate_d1_chi2)) {
     return "gate_d2_chi2 must be > gate_d1_chi2 (or level3 false)";
   }

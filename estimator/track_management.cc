@@ -30,12 +30,14 @@ void RecordHit(int64_t utime, const TrackManagementOptions& options, ObjectRecor
   record->unseen_observable_s = 0.0;
   if (record->confirmed) return;
   const int window = options.confirm_window_scans;
-  const int hits_in_window =
-      window <= 0 ? record->hits
-                  : static_cast<int>(std::bitset<32>(
-                        record->recent_hits & (window >= 32 ? ~0u : (1u << window) - 1u))
-                                         .count());
+  const int hits_in_window = window <= 0 ? record->hits : HitsInLastScans(*record, window);
   if (hits_in_window >= options.confirm_hits) record->confirmed = true;
+}
+
+int HitsInLastScans(const ObjectRecord& record, int window_scans) {
+  if (window_scans <= 0) return 0;
+  const uint32_t mask = window_scans >= 32 ? ~0u : (1u << window_scans) - 1u;
+  return static_cast<int>(std::bitset<32>(record.recent_hits & mask).count());
 }
 
 void RecordMiss(double dt_s, bool in_geometry, bool expected_visible, ObjectRecord* record) {
@@ -82,6 +84,10 @@ bool ReportedTrack(const ObjectRecord& record, bool has_velocity, int64_t utime,
                    const TrackManagementOptions& options) {
   if (!ReportedConfirmed(record, has_velocity, utime, options)) return false;
   if (!has_velocity && record.kind != ObjectKind::kPerson) return true;
+  if (has_velocity && record.kind != ObjectKind::kPerson && options.report_other_hits > 0 &&
+      HitsInLastScans(record, options.report_other_window_scans) < options.report_other_hits) {
+    return false;
+  }
   return SecondsBetween(utime, record.last_seen_utime) <= options.report_measured_within_s;
 }
 
@@ -133,6 +139,10 @@ void VisitTrackManagementOptions(OptionVisitor* v, TrackManagementOptions* t) {
             "reported unconfirmed after this long unseen (0: off)");
   v->Double("report_measured_within_s", &t->report_measured_within_s, R::AtLeast(0),
             "a reported track was measured within this time (track_t.reported)");
+  v->Int("report_other_hits", &t->report_other_hits, R::Between(0, 32),
+         "a mover that is no person is reported while measured in M of N scans (0: off)");
+  v->Int("report_other_window_scans", &t->report_other_window_scans, R::Between(1, 32),
+         "N of report_other_hits' M of N");
   v->Double("prune_out_of_view_s", &t->prune_out_of_view_s, R::AtLeast(0),
             "a MOVING object out of view goes after this long");
   v->Double("max_coast_sigma_m", &t->max_coast_sigma_m, R::Above(0),

@@ -60,6 +60,16 @@ struct TrackManagementOptions {
   // scores) when it is confirmed (above) and was measured within this time; a static landmark
   // that is not a person is reported while confirmed (it is the map).
   double report_measured_within_s = 0.5;
+  // A confirmed object with velocity states that is not a person counts as reported only while
+  // report_other_hits of its last report_other_window_scans scans (at most 32) had a
+  // measurement. A person is found by its shape (two legs paired, perception's person
+  // features); any other mover only by its motion, and a cluster that comes and goes (a wall
+  // at the edge of range seen through dropouts, a door jamb, mixed pixels) moves as much as it
+  // jumps. Its existence is backed by evidence only while it is measured nearly every scan, as
+  // a track's existence probability falls with each scan without a detection (IPDA: Musicki,
+  // Evans and Stankovic, IEEE TAC 1994) faster where the clutter density is high. 0: off.
+  int report_other_hits = 4;
+  int report_other_window_scans = 5;
   double prune_out_of_view_s = 30.0;
   double max_coast_sigma_m = 2.5;
   // Re-acquisition of lost movers (reacquisition.h): the largest speed at which a person is
@@ -75,12 +85,16 @@ void VisitTrackManagementOptions(OptionVisitor* visitor, TrackManagementOptions*
 bool ReportedConfirmed(const ObjectRecord& record, bool has_velocity, int64_t utime,
                        const TrackManagementOptions& options);
 
-// Whether an object is a reported track at utime (see report_measured_within_s).
+// Whether an object is a reported track at utime (see report_measured_within_s and
+// report_other_hits).
 bool ReportedTrack(const ObjectRecord& record, bool has_velocity, int64_t utime,
                    const TrackManagementOptions& options);
 
 // A fresh record for an object first seen at utime.
 ObjectRecord NewObjectRecord(int64_t id, int64_t utime, ObjectClass object_class);
+
+// How many of the object's last `window_scans` scans (at most 32) had a measurement.
+int HitsInLastScans(const ObjectRecord& record, int window_scans);
 
 // Marks a scan in which the object got a measurement (confirmation: confirm_hits of the last
 // confirm_window_scans scans).

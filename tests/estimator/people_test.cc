@@ -5,6 +5,7 @@
 
 #include <cstdint>
 
+#include "estimator/estimator_options.h"
 #include "estimator/people.h"
 #include "estimator/track_management.h"
 #include "tests/estimator/step_scene.h"
@@ -102,6 +103,7 @@ TEST(TrackManagementTest, OnlyRecentlyMeasuredTracksAreReported) {
   TrackManagementOptions options;
   ObjectRecord mover = NewObjectRecord(1, 0, ObjectClass::kMoving);
   mover.confirmed = true;
+  mover.recent_hits = 0x1fu;  // measured in each of its last 5 scans
   mover.last_seen_utime = 10 * kSecond;
   EXPECT_TRUE(ReportedTrack(mover, true, 10 * kSecond, options));
   EXPECT_TRUE(ReportedTrack(mover, true, 10 * kSecond + kSecond / 2, options));  // 0.5 s
@@ -118,6 +120,41 @@ TEST(TrackManagementTest, OnlyRecentlyMeasuredTracksAreReported) {
   EXPECT_FALSE(ReportedTrack(landmark, false, 60 * kSecond, options));
   ObjectRecord tentative = NewObjectRecord(3, 0, ObjectClass::kUndecided);
   EXPECT_FALSE(ReportedTrack(tentative, true, 0, options));
+}
+
+// A mover that is no person is reported only while measured in 4 of its last 5 scans; a person
+// (found by its shape) while measured within 0.5 s, whatever its scans before.
+TEST(TrackManagementTest, AMoverThatIsNoPersonIsReportedWhileMeasuredNearlyEveryScan) {
+  TrackManagementOptions options;
+  ObjectRecord mover = NewObjectRecord(1, 0, ObjectClass::kMoving);
+  mover.confirmed = true;
+  mover.last_seen_utime = 10 * kSecond;
+  mover.recent_hits = 0x1du;  // newest first: hit, miss, hit, hit, hit: 4 of 5
+  EXPECT_EQ(HitsInLastScans(mover, 5), 4);
+  EXPECT_TRUE(ReportedTrack(mover, true, 10 * kSecond, options));
+  mover.recent_hits = 0x35u;  // hit, miss, hit, miss, hit (then a hit 6 scans ago): 3 of 5
+  EXPECT_EQ(HitsInLastScans(mover, 5), 3);
+  EXPECT_FALSE(ReportedTrack(mover, true, 10 * kSecond, options));
+  ObjectRecord person = mover;
+  person.kind = ObjectKind::kPerson;
+  EXPECT_TRUE(ReportedTrack(person, true, 10 * kSecond, options));
+  options.report_other_hits = 3;
+  EXPECT_TRUE(ReportedTrack(mover, true, 10 * kSecond, options));
+  options.report_other_hits = 0;  // off
+  mover.recent_hits = 1u;
+  EXPECT_TRUE(ReportedTrack(mover, true, 10 * kSecond, options));
+  // A static landmark that is no person is the map: reported while confirmed.
+  ObjectRecord landmark = NewObjectRecord(2, 0, ObjectClass::kStatic);
+  landmark.confirmed = true;
+  EXPECT_TRUE(ReportedTrack(landmark, false, 60 * kSecond, TrackManagementOptions()));
+}
+
+TEST(TrackManagementTest, ReportingWindowMustHoldItsHits) {
+  EstimatorOptions options;
+  options.tracks.report_other_hits = 6;
+  options.tracks.report_other_window_scans = 5;
+  EXPECT_EQ(CheckEstimatorOptions(options),
+            "tracks_report_other_window_scans must be >= tracks_report_other_hits");
 }
 
 }  // namespace
