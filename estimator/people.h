@@ -38,16 +38,8 @@ namespace slammtt {
 
 struct PeopleOptions {
   // sigma_Q of eq. 8 for MOVING people (MOVING objects of other kinds:
-  // EstimatorOptions::mover_acceleration_sigma_mps2). A walking person turns: a corner taken
-  // at 1.2 m/s in about 2 s changes the velocity by 1.7 m/s, about 1 m/s^2; Bar-Shalom's rule
-  // for the piecewise-constant white acceleration model puts sigma_Q between half the largest
-  // acceleration and all of it (Bar-Shalom, Li and Kirubarajan, "Estimation with Applications
-  // to Tracking and Navigation", Wiley 2001, section 6.3.3). The paper's 0.02 m/s^2 (its discs
-  // move in straight lines) held a person's velocity so firmly that the track fell behind at
-  // the first turn and a second track was born on the person. 0.25 m/s^2, below that rule: 0.5
-  // did better on office and corridor but moved the wall spread of the real Mines exp2
-  // recording 0.0935 -> 0.102 m (scripts/measure-real.py; docs/targets.md).
-  double acceleration_sigma_mps2 = 0.25;
+  // EstimatorOptions::mover_acceleration_sigma_mps2).
+  double acceleration_sigma_mps2 = 0.02;
   double max_speed_mps = 3.0;         // people (see above); 0: no limit
   double other_max_speed_mps = 12.5;  // every other mover; 0: no limit
 };

@@ -53,7 +53,8 @@ struct TrackManagementOptions {
   // features), in the same window. 2 confirmed people one scan sooner and raised office's and
   // corridor's person MOTA by about 0.02, but the real negative_2 recording (no person in it)
   // went from 28 to 35 reported person identities per minute: perception's person features are
-  // not yet precise enough for it, so a person needs the same 3 hits as anything else.
+  // not yet precise enough for it (measured with people's sigma_Q 0.5 m/s^2), so a person
+  // needs the same 3 hits as anything else.
   int confirm_person_hits = 3;
   double prune_unseen_s = 3.5;                // paper section 5.1
   double tentative_prune_unseen_s = 1.0;

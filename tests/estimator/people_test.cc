@@ -200,8 +200,9 @@ TEST(TrackManagementTest, APersonIsConfirmedByConfirmPersonHitsOfTheLastFiveScan
 TEST(TrackManagementTest, WindowsMustHoldTheirHits) {
   EstimatorOptions options;
   options.tracks.report_other_hits = 6;
-  EXPECT_EQ(CheckEstimatorOptions(options), "tracks_report_window_scans must be >= "
-                                            "tracks_report_person_hits and tracks_report_other_hits");
+  EXPECT_EQ(CheckEstimatorOptions(options),
+            "tracks_report_window_scans must be >= tracks_report_person_hits and "
+            "tracks_report_other_hits");
   options = EstimatorOptions();
   options.tracks.confirm_person_hits = 6;
   EXPECT_EQ(CheckEstimatorOptions(options),
