@@ -1,5 +1,7 @@
 #include "estimator/estimator_options.h"
 
+#include <algorithm>
+
 namespace slammtt {
 
 FieldOfView FieldOfViewOf(const EstimatorOptions& options) {
@@ -189,6 +191,15 @@ std::string CheckEstimatorOptions(const EstimatorOptions& options) {
   if (o.tracks.confirm_window_scans > 0 &&
       o.tracks.confirm_window_scans < o.tracks.confirm_hits) {
     return "tracks_confirm_window_scans must be 0 or >= tracks_confirm_hits";
+  }
+  if (o.tracks.confirm_window_scans > 0 &&
+      o.tracks.confirm_window_scans < o.tracks.confirm_person_hits) {
+    return "tracks_confirm_window_scans must be 0 or >= tracks_confirm_person_hits";
+  }
+  if (o.tracks.report_window_scans <
+      std::max(o.tracks.report_person_hits, o.tracks.report_other_hits)) {
+    return "tracks_report_window_scans must be >= tracks_report_person_hits and "
+           "tracks_report_other_hits";
   }
   if (o.level3 && !(o.gate_d2_chi2 > o.gate_d1_chi2)) {
     return "gate_d2_chi2 must be > gate_d1_chi2 (or level3 false)";

@@ -45,6 +45,12 @@ struct ObjectRecord {
   // The object's last scans, newest in bit 0: 1 for a scan with a measurement (M-of-N
   // confirmation, TrackManagementOptions::confirm_window_scans).
   uint32_t recent_hits = 0;
+  // The same scans, 1 for every scan of its life (hit or miss): a young object's misses are
+  // counted over the scans it lived (TrackManagementOptions::report_other_hits).
+  uint32_t recent_scans = 0;
+  // The same scans, 1 for a scan without a measurement in which it should have been seen
+  // (track_management.h, ExpectedVisible).
+  uint32_t recent_visible_misses = 0;
   int64_t first_seen_utime = 0;
   int64_t last_seen_utime = 0;
   Eigen::Vector2d last_seen_m = Eigen::Vector2d::Zero();  // position estimate after that scan

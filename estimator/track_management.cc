@@ -19,23 +19,48 @@ ObjectRecord NewObjectRecord(int64_t id, int64_t utime, ObjectClass object_class
   record.class_change_utime = utime;
   record.hits = 1;
   record.recent_hits = 1;
+  record.recent_scans = 1;
   return record;
 }
 
 void RecordHit(int64_t utime, const TrackManagementOptions& options, ObjectRecord* record) {
   ++record->hits;
   record->recent_hits = (record->recent_hits << 1) | 1u;
+  record->recent_scans = (record->recent_scans << 1) | 1u;
+  record->recent_visible_misses <<= 1;
   record->last_seen_utime = utime;
   record->unseen_in_view_s = 0.0;
   record->unseen_observable_s = 0.0;
   if (record->confirmed) return;
   const int window = options.confirm_window_scans;
-  const int hits_in_window =
-      window <= 0 ? record->hits
-                  : static_cast<int>(std::bitset<32>(
-                        record->recent_hits & (window >= 32 ? ~0u : (1u << window) - 1u))
-                                         .count());
-  if (hits_in_window >= options.confirm_hits) record->confirmed = true;
+  const int hits_in_window = window <= 0 ? record->hits : HitsInLastScans(*record, window);
+  // The kind of the scans before this one (a new object's: of its first measurement).
+  const int needed =
+      record->kind == ObjectKind::kPerson ? options.confirm_person_hits : options.confirm_hits;
+  if (hits_in_window >= needed) record->confirmed = true;
+}
+
+namespace {
+uint32_t LastScansMask(int window_scans) {
+  if (window_scans <= 0) return 0u;
+  return window_scans >= 32 ? ~0u : (1u << window_scans) - 1u;
+}
+}  // namespace
+
+int HitsInLastScans(const ObjectRecord& record, int window_scans) {
+  return static_cast<int>(
+      std::bitset<32>(record.recent_hits & LastScansMask(window_scans)).count());
+}
+
+int VisibleMissesInLastScans(const ObjectRecord& record, int window_scans) {
+  return static_cast<int>(
+      std::bitset<32>(record.recent_visible_misses & LastScansMask(window_scans)).count());
+}
+
+int MissesInLastScans(const ObjectRecord& record, int window_scans) {
+  return static_cast<int>(
+      std::bitset<32>(record.recent_scans & ~record.recent_hits & LastScansMask(window_scans))
+          .count());
 }
 
 void RecordMiss(double dt_s, bool in_geometry, bool expected_visible, ObjectRecord* record) {
@@ -43,6 +68,9 @@ void RecordMiss(double dt_s, bool in_geometry, bool expected_visible, ObjectReco
   // a time gap nobody was looking in between): at most kMaxMissPerScan_s per scan.
   const double miss_s = std::min(dt_s, kMaxMissPerScan_s);
   record->recent_hits <<= 1;
+  record->recent_scans = (record->recent_scans << 1) | 1u;
+  record->recent_visible_misses =
+      (record->recent_visible_misses << 1) | (expected_visible ? 1u : 0u);
   if (expected_visible) record->unseen_in_view_s += miss_s;
   if (in_geometry) record->unseen_observable_s += miss_s;
 }
@@ -82,6 +110,17 @@ bool ReportedTrack(const ObjectRecord& record, bool has_velocity, int64_t utime,
                    const TrackManagementOptions& options) {
   if (!ReportedConfirmed(record, has_velocity, utime, options)) return false;
   if (!has_velocity && record.kind != ObjectKind::kPerson) return true;
+  if (has_velocity) {
+    const bool person = record.kind == ObjectKind::kPerson;
+    const int needed = !person ? options.report_other_hits
+                       : record.object_class == ObjectClass::kMoving ? options.report_person_hits
+                                                                      : 0;
+    // Misses, not hits: an object younger than the window is judged by the scans it lived.
+    const int window = options.report_window_scans;
+    const int misses = person ? MissesInLastScans(record, window)
+                              : VisibleMissesInLastScans(record, window);
+    if (needed > 0 && misses > window - needed) return false;
+  }
   return SecondsBetween(utime, record.last_seen_utime) <= options.report_measured_within_s;
 }
 
@@ -117,6 +156,8 @@ void VisitTrackManagementOptions(OptionVisitor* v, TrackManagementOptions* t) {
          "hits that confirm a tentative object (T_th; M of M-of-N)");
   v->Int("confirm_window_scans", &t->confirm_window_scans, R::Between(0, 32),
          "N of M-of-N: confirm_hits of the last N scans (0: at any time)");
+  v->Int("confirm_person_hits", &t->confirm_person_hits, R::Between(1, 1000),
+         "M of M-of-N for an object of kind person");
   v->Double("prune_unseen_s", &t->prune_unseen_s, R::AtLeast(0),
             "an object with velocity unseen this long goes (paper 5.1: 3.5 s)");
   v->Double("tentative_prune_unseen_s", &t->tentative_prune_unseen_s, R::AtLeast(0),
@@ -133,6 +174,12 @@ void VisitTrackManagementOptions(OptionVisitor* v, TrackManagementOptions* t) {
             "reported unconfirmed after this long unseen (0: off)");
   v->Double("report_measured_within_s", &t->report_measured_within_s, R::AtLeast(0),
             "a reported track was measured within this time (track_t.reported)");
+  v->Int("report_person_hits", &t->report_person_hits, R::Between(0, 32),
+         "a MOVING person is reported while measured in this many of the window (0: off)");
+  v->Int("report_other_hits", &t->report_other_hits, R::Between(0, 32),
+         "an object with velocity that is no person: the same (0: off)");
+  v->Int("report_window_scans", &t->report_window_scans, R::Between(1, 32),
+         "the last scans that report_person_hits and report_other_hits count");
   v->Double("prune_out_of_view_s", &t->prune_out_of_view_s, R::AtLeast(0),
             "a MOVING object out of view goes after this long");
   v->Double("max_coast_sigma_m", &t->max_coast_sigma_m, R::Above(0),

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 
+#include "estimator/estimator_options.h"
 #include "estimator/people.h"
 #include "estimator/track_management.h"
 #include "tests/estimator/step_scene.h"
@@ -102,6 +103,7 @@ TEST(TrackManagementTest, OnlyRecentlyMeasuredTracksAreReported) {
   TrackManagementOptions options;
   ObjectRecord mover = NewObjectRecord(1, 0, ObjectClass::kMoving);
   mover.confirmed = true;
+  mover.recent_hits = 0x1fu;  // measured in each of its last 5 scans
   mover.last_seen_utime = 10 * kSecond;
   EXPECT_TRUE(ReportedTrack(mover, true, 10 * kSecond, options));
   EXPECT_TRUE(ReportedTrack(mover, true, 10 * kSecond + kSecond / 2, options));  // 0.5 s
@@ -118,6 +120,93 @@ TEST(TrackManagementTest, OnlyRecentlyMeasuredTracksAreReported) {
   EXPECT_FALSE(ReportedTrack(landmark, false, 60 * kSecond, options));
   ObjectRecord tentative = NewObjectRecord(3, 0, ObjectClass::kUndecided);
   EXPECT_FALSE(ReportedTrack(tentative, true, 0, options));
+}
+
+// A mover that is no person is reported while it missed at most 1 of its last 5 scans where it
+// should have been seen; a MOVING person while measured in 3 of its last 5 scans, occluded or
+// not; a standing person while measured within 0.5 s whatever its scans before.
+TEST(TrackManagementTest, AMoverIsReportedWhileMeasuredInMOfItsLastNScans) {
+  TrackManagementOptions options;
+  ObjectRecord mover = NewObjectRecord(1, 0, ObjectClass::kMoving);
+  mover.confirmed = true;
+  mover.last_seen_utime = 10 * kSecond;
+  mover.recent_scans = 0xffu;  // lived 8 scans
+  mover.recent_hits = 0x15u;   // newest first: hit, miss, hit, miss, hit: 3 of 5
+  mover.recent_visible_misses = 0x2u;  // the first miss where it should have been seen
+  EXPECT_EQ(HitsInLastScans(mover, 5), 3);
+  EXPECT_EQ(MissesInLastScans(mover, 5), 2);
+  EXPECT_EQ(VisibleMissesInLastScans(mover, 5), 1);
+  EXPECT_TRUE(ReportedTrack(mover, true, 10 * kSecond, options));
+  mover.recent_visible_misses = 0xau;  // both misses where it should have been seen
+  EXPECT_FALSE(ReportedTrack(mover, true, 10 * kSecond, options));
+  options.report_other_hits = 3;
+  EXPECT_TRUE(ReportedTrack(mover, true, 10 * kSecond, options));
+  options.report_other_hits = 0;  // off
+  EXPECT_TRUE(ReportedTrack(mover, true, 10 * kSecond, options));
+  options = TrackManagementOptions();
+  // A walking person: 3 of 5 whatever the misses were.
+  ObjectRecord person = mover;
+  person.kind = ObjectKind::kPerson;
+  person.recent_visible_misses = 0u;
+  EXPECT_TRUE(ReportedTrack(person, true, 10 * kSecond, options));
+  person.recent_hits = 0x11u;  // hit, miss, miss, miss, hit: 2 of 5
+  EXPECT_FALSE(ReportedTrack(person, true, 10 * kSecond, options));
+  person.object_class = ObjectClass::kUndecided;  // not walking: the 0.5 s rule alone
+  EXPECT_TRUE(ReportedTrack(person, true, 10 * kSecond, options));
+  // A person that lived 3 scans and was measured in each: no miss, reported at once.
+  person.object_class = ObjectClass::kMoving;
+  person.recent_scans = 0x7u;
+  person.recent_hits = 0x7u;
+  EXPECT_TRUE(ReportedTrack(person, true, 10 * kSecond, options));
+  // A static landmark that is no person is the map: reported while confirmed.
+  ObjectRecord landmark = NewObjectRecord(2, 0, ObjectClass::kStatic);
+  landmark.confirmed = true;
+  EXPECT_TRUE(ReportedTrack(landmark, false, 60 * kSecond, options));
+}
+
+// RecordHit and RecordMiss keep the three histories.
+TEST(TrackManagementTest, HitsAndMissesKeepTheirHistories) {
+  TrackManagementOptions options;
+  ObjectRecord r = NewObjectRecord(1, 0, ObjectClass::kUndecided);
+  RecordMiss(0.1, true, true, &r);    // should have been seen
+  RecordMiss(0.1, true, false, &r);   // in a shadow
+  RecordHit(kSecond / 2, options, &r);
+  EXPECT_EQ(r.recent_scans, 0xfu);
+  EXPECT_EQ(r.recent_hits, 0x9u);
+  EXPECT_EQ(r.recent_visible_misses, 0x4u);
+  EXPECT_EQ(MissesInLastScans(r, 5), 2);
+  EXPECT_EQ(VisibleMissesInLastScans(r, 5), 1);
+}
+
+// With confirm_person_hits 2, two scans of person features in the window confirm a person;
+// anything else needs three (the default asks three of a person too).
+TEST(TrackManagementTest, APersonIsConfirmedByConfirmPersonHitsOfTheLastFiveScans) {
+  TrackManagementOptions options;
+  EXPECT_EQ(options.confirm_person_hits, 3);
+  options.confirm_person_hits = 2;
+  ObjectRecord person = NewObjectRecord(1, 0, ObjectClass::kUndecided);
+  person.kind = ObjectKind::kPerson;
+  ObjectRecord other = NewObjectRecord(2, 0, ObjectClass::kUndecided);
+  for (ObjectRecord* r : {&person, &other}) {
+    RecordMiss(0.1, true, true, r);
+    RecordHit(kSecond / 5, options, r);
+  }
+  EXPECT_TRUE(person.confirmed);
+  EXPECT_FALSE(other.confirmed);
+  RecordHit(kSecond * 3 / 10, options, &other);
+  EXPECT_TRUE(other.confirmed);
+}
+
+TEST(TrackManagementTest, WindowsMustHoldTheirHits) {
+  EstimatorOptions options;
+  options.tracks.report_other_hits = 6;
+  EXPECT_EQ(CheckEstimatorOptions(options),
+            "tracks_report_window_scans must be >= tracks_report_person_hits and "
+            "tracks_report_other_hits");
+  options = EstimatorOptions();
+  options.tracks.confirm_person_hits = 6;
+  EXPECT_EQ(CheckEstimatorOptions(options),
+            "tracks_confirm_window_scans must be 0 or >= tracks_confirm_person_hits");
 }
 
 }  // namespace
