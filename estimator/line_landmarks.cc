@@ -418,10 +418,10 @@ void VisitLineLandmarkOptions(OptionVisitor* v, LineLandmarkOptions* o) {
             "a line feature and a landmark are associated only if their extents come closer");
   v->Double("point_on_line_m", &o->point_on_line_m, R::AtLeast(0),
             "a point feature this close to a line landmark is a piece of wall (0: off)");
-  v->Double("point_behind_line_m", &o->point_behind_line_m, R::AtLeast(0),
-            "a point feature this far behind a line landmark (seen from the sensor) is too");
   v->Double("point_end_margin_m", &o->point_end_margin_m, R::AtLeast(0),
             "...within the landmark's seen extent lengthened by this at both ends");
+  v->Double("point_behind_line_m", &o->point_behind_line_m, R::AtLeast(0),
+            "a point feature this far behind a line landmark's seen extent is one too (0: off)");
   v->Int("confirm_scans", &o->confirm_scans, R::Between(1, 1000),
          "scans a candidate line is seen in before it becomes a landmark");
   v->Double("candidate_timeout_s", &o->candidate_timeout_s, R::AtLeast(0),
@@ -455,17 +455,23 @@ std::vector<uint8_t> PointsOnLineLandmarks(const std::vector<Eigen::Vector2d>& r
       const Eigen::Vector2d line = state.line_params(j);
       const Eigen::Vector2d normal(std::cos(line(1)), std::sin(line(1)));
       const double across = point.dot(normal) - line(0);
-      const double sensor_across = sensor.dot(normal) - line(0);
-      // Behind: on the other side of the line than the sensor.
-      const bool behind = across * sensor_across < 0.0;
-      if (!(std::abs(across) <= options.point_on_line_m ||
-            (behind && std::abs(across) <= options.point_behind_line_m))) {
+      const LineRecord& record = state.line(j).record;
+      if (std::abs(across) <= options.point_on_line_m) {
+        const double along = PositionAlongLine(line, point);
+        on_line[i] = along >= record.extent_from_m - options.point_end_margin_m &&
+                     along <= record.extent_to_m + options.point_end_margin_m;
         continue;
       }
-      const double along = PositionAlongLine(line, point);
-      const LineRecord& record = state.line(j).record;
-      on_line[i] = along >= record.extent_from_m - options.point_end_margin_m &&
-                   along <= record.extent_to_m + options.point_end_margin_m;
+      // Behind: on the other side of the line than the sensor, the beam to it crossing the
+      // wall's seen extent (no end margin: past a wall's end the laser does see behind it).
+      const double sensor_across = sensor.dot(normal) - line(0);
+      if (!(across * sensor_across < 0.0 && std::abs(across) <= options.point_behind_line_m)) {
+        continue;
+      }
+      const Eigen::Vector2d crossing =
+          sensor + sensor_across / (sensor_across - across) * (point - sensor);
+      const double along = PositionAlongLine(line, crossing);
+      on_line[i] = along >= record.extent_from_m && along <= record.extent_to_m;
     }
   }
   return on_line;

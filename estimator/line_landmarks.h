@@ -80,7 +80,8 @@ struct LineLandmarkOptions {
   double point_on_line_m = 0.25;
   double point_end_margin_m = 0.2;
   // A point feature behind a line landmark (on the far side of its line from the sensor) by at
-  // most this, within the same extent, is a piece of that wall too: the laser does not see
+  // most this, the beam to it crossing the landmark's seen extent, is a piece of that wall too
+  // (past a wall's end the laser does see behind it: no end margin): the laser does not see
   // through a wall, so the point is the wall's own short run whose fitted centre fell behind
   // its surface (a wall with dropouts broken into runs too short for a line). 0: off. The
   // corridor's far end (50 % dropouts): 58 of its 90 movers that are no person (seeds 1-20,
