@@ -179,6 +179,7 @@ struct Estimator::ScanInProgress {
   Assignment assignment{0, 0};         // measurement <-> object, level by level
   // Without odometry: the scan's static-looking features, the next scan's alignment reference.
   std::optional<AlignmentScan> alignment_scan;
+  std::optional<ScanAlignment> alignment;  // its alignment with the previous one
 };
 
 namespace {
@@ -234,8 +235,8 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
 }
 
 void Estimator::PropagateState(const ScanInput& scan, ScanInProgress* s) {
-  const std::optional<ScanAlignment> aligned = AlignWithPreviousScan(scan, s);
-  Predict(scan.utime, s->interval, aligned ? &*aligned : nullptr);
+  s->alignment = AlignWithPreviousScan(scan, s);
+  Predict(scan.utime, s->interval, s->alignment ? &*s->alignment : nullptr);
   last_scan_utime_ = scan.utime;
   UpdateLines(scan, s->counts);
   DropPointsOnLines(&s->features, s->counts);
@@ -345,7 +346,8 @@ void Estimator::FinishScan(ScanInProgress* s) {
   s->counts->observation_predictions = s->predicted.computations();
   EnsureFiniteState(s->utime, s->counts);
   if (s->alignment_scan) {
-    scan_motion_.Keep(std::move(*s->alignment_scan), state_.robot_pose(), s->utime);
+    scan_motion_.Keep(std::move(*s->alignment_scan), state_.robot_pose(), s->utime,
+                      s->alignment ? &*s->alignment : nullptr);
   }
 }
 

@@ -420,6 +420,8 @@ void VisitLineLandmarkOptions(OptionVisitor* v, LineLandmarkOptions* o) {
             "a point feature this close to a line landmark is a piece of wall (0: off)");
   v->Double("point_end_margin_m", &o->point_end_margin_m, R::AtLeast(0),
             "...within the landmark's seen extent lengthened by this at both ends");
+  v->Double("point_behind_line_m", &o->point_behind_line_m, R::AtLeast(0),
+            "a point feature this far behind a line landmark's seen extent is one too (0: off)");
   v->Int("confirm_scans", &o->confirm_scans, R::Between(1, 1000),
          "scans a candidate line is seen in before it becomes a landmark");
   v->Double("candidate_timeout_s", &o->candidate_timeout_s, R::AtLeast(0),
@@ -438,22 +440,38 @@ std::vector<uint8_t> PointsOnLineLandmarks(const std::vector<Eigen::Vector2d>& r
                                            const LineLandmarkOptions& options,
                                            const SensorMount& mount, const SlamState& state) {
   std::vector<uint8_t> on_line(range_bearings.size(), 0);
-  if (!options.enabled || !(options.point_on_line_m > 0.0) || state.num_lines() == 0) {
+  if (!options.enabled ||
+      !(options.point_on_line_m > 0.0 || options.point_behind_line_m > 0.0) ||
+      state.num_lines() == 0) {
     return on_line;
   }
   const Eigen::Vector3d robot = state.robot_pose();
+  const Eigen::Vector2d sensor = SensorPointToMap(robot, mount, Eigen::Vector2d::Zero());
   for (size_t i = 0; i < range_bearings.size(); ++i) {
     const Eigen::Vector2d& z = range_bearings[i];
     const Eigen::Vector2d point =
         SensorPointToMap(robot, mount, z(0) * Eigen::Vector2d(std::cos(z(1)), std::sin(z(1))));
     for (int j = 0; j < state.num_lines() && !on_line[i]; ++j) {
       const Eigen::Vector2d line = state.line_params(j);
-      const double across = point.dot(Eigen::Vector2d(std::cos(line(1)), std::sin(line(1))));
-      if (!(std::abs(across - line(0)) <= options.point_on_line_m)) continue;
-      const double along = PositionAlongLine(line, point);
+      const Eigen::Vector2d normal(std::cos(line(1)), std::sin(line(1)));
+      const double across = point.dot(normal) - line(0);
       const LineRecord& record = state.line(j).record;
-      on_line[i] = along >= record.extent_from_m - options.point_end_margin_m &&
-                   along <= record.extent_to_m + options.point_end_margin_m;
+      if (std::abs(across) <= options.point_on_line_m) {
+        const double along = PositionAlongLine(line, point);
+        on_line[i] = along >= record.extent_from_m - options.point_end_margin_m &&
+                     along <= record.extent_to_m + options.point_end_margin_m;
+        continue;
+      }
+      // Behind: on the other side of the line than the sensor, the beam to it crossing the
+      // wall's seen extent (no end margin: past a wall's end the laser does see behind it).
+      const double sensor_across = sensor.dot(normal) - line(0);
+      if (!(across * sensor_across < 0.0 && std::abs(across) <= options.point_behind_line_m)) {
+        continue;
+      }
+      const Eigen::Vector2d crossing =
+          sensor + sensor_across / (sensor_across - across) * (point - sensor);
+      const double along = PositionAlongLine(line, crossing);
+      on_line[i] = along >= record.extent_from_m && along <= record.extent_to_m;
     }
   }
   return on_line;

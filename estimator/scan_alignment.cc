@@ -86,19 +86,31 @@ void AddPointPairs(const AlignmentScan& reference, const AlignmentScan& scan,
   }
 }
 
-// The reference segment that the segment (e1, e2) of the previous frame continues: parallel
-// within match_angle, both ends within match_m of its line, extents overlapping or within
-// match_m; the one with the smallest summed distance. -1 when none.
+// The angle within which two lines are parallel: match_angle, or 3 sigmas of the difference of
+// their directions when wider; at most a right angle.
+double ParallelWithin_rad(double direction_var_a, double direction_var_b,
+                          const ScanAlignmentOptions& options) {
+  return std::min(M_PI / 2,
+                  std::max(options.match_angle_rad, 3.0 * std::sqrt(direction_var_a +
+                                                                    direction_var_b)));
+}
+
+// The reference segment that the segment (e1, e2) of the previous frame, of direction variance
+// `direction_var`, continues: parallel (ParallelWithin_rad), both ends within match_m of its
+// line, extents overlapping or within match_m; the one with the smallest summed distance. -1
+// when none.
 int MatchingSegment(const std::vector<AlignmentSegment>& segments, const Eigen::Vector2d& e1,
-                    const Eigen::Vector2d& e2, const ScanAlignmentOptions& options) {
+                    const Eigen::Vector2d& e2, double direction_var,
+                    const ScanAlignmentOptions& options) {
   const Eigen::Vector2d d = (e2 - e1).normalized();
-  const double max_sine = std::sin(options.match_angle_rad);
   int best = -1;
   double best_sum = std::numeric_limits<double>::infinity();
   for (size_t i = 0; i < segments.size(); ++i) {
     const Eigen::Vector2d along = segments[i].to_m - segments[i].from_m;
     const double length = along.norm();
     const Eigen::Vector2d u = along / length;
+    const double max_sine =
+        std::sin(ParallelWithin_rad(direction_var, segments[i].direction_var_rad2, options));
     if (std::abs(d.x() * u.y() - d.y() * u.x()) > max_sine) continue;
     const Eigen::Vector2d n(-u.y(), u.x());
     const double d1 = std::abs(n.dot(e1 - segments[i].from_m));
@@ -122,15 +134,21 @@ void AddLinePairs(const AlignmentScan& reference, const AlignmentScan& scan,
   for (const AlignmentSegment& s : scan.segments) {
     const Eigen::Vector2d e1 = r * s.from_m + x.head<2>();
     const Eigen::Vector2d e2 = r * s.to_m + x.head<2>();
-    const int k = MatchingSegment(reference.segments, e1, e2, options);
+    const int k = MatchingSegment(reference.segments, e1, e2, s.direction_var_rad2, options);
     if (k < 0) continue;
     const AlignmentSegment& ref = reference.segments[static_cast<size_t>(k)];
     const Eigen::Vector2d u = (ref.to_m - ref.from_m).normalized();
     const Eigen::Vector2d n(-u.y(), u.x());
+    const Eigen::Vector2d ref_middle = 0.5 * (ref.from_m + ref.to_m);
+    const double half_length = 0.5 * (s.to_m - s.from_m).norm();
     for (const auto& [end, local] : {std::make_pair(e1, s.from_m), std::make_pair(e2, s.to_m)}) {
       Eigen::Matrix<double, 1, 3> j;
       j << n.x(), n.y(), n.dot(dr * local);
-      eq->Add(j, n.dot(end - ref.from_m), options.line_sigma_m, options.robust_scale);
+      const double from_middle = u.dot(end - ref_middle);
+      const double sigma = std::sqrt(options.line_sigma_m * options.line_sigma_m +
+                                     ref.direction_var_rad2 * from_middle * from_middle +
+                                     s.direction_var_rad2 * half_length * half_length);
+      eq->Add(j, n.dot(end - ref.from_m), sigma, options.robust_scale);
     }
     ++eq->line_pairs;
   }
@@ -239,8 +257,10 @@ AlignmentScan AlignmentScanOf(const std::vector<PointMeasurement>& points,
     const Eigen::Vector2d n(std::cos(line.alpha_rad), std::sin(line.alpha_rad));
     const Eigen::Vector2d from = line.first_m - (n.dot(line.first_m) - line.rho_m) * n;
     const Eigen::Vector2d to = line.last_m - (n.dot(line.last_m) - line.rho_m) * n;
-    AlignmentSegment s{SensorToRobot(mount, from), SensorToRobot(mount, to)};
-    if (Finite(s.from_m) && Finite(s.to_m) &&
+    AlignmentSegment s{SensorToRobot(mount, from), SensorToRobot(mount, to),
+                       line.alpha_var_rad2};
+    if (Finite(s.from_m) && Finite(s.to_m) && std::isfinite(s.direction_var_rad2) &&
+        s.direction_var_rad2 >= 0.0 &&
         (s.to_m - s.from_m).norm() >= kMinAlignmentSegment_m) {
       scan.segments.push_back(s);
     } else {
@@ -370,11 +390,16 @@ std::optional<ScanAlignment> ScanToScanMotion::MotionTo(const AlignmentScan& sca
   return AlignScans(*reference_, scan, velocity_ * dt_s, prior, options);
 }
 
-void ScanToScanMotion::Keep(AlignmentScan scan, const Eigen::Vector3d& pose, int64_t utime) {
+void ScanToScanMotion::Keep(AlignmentScan scan, const Eigen::Vector3d& pose, int64_t utime,
+                            const ScanAlignment* aligned) {
   if (reference_ && utime > utime_) {
     const double dt = SecondsBetween(utime, utime_);
-    const Eigen::Vector2d moved = Rotation(-pose_.z()) * (pose.head<2>() - pose_.head<2>());
-    velocity_ << moved / dt, WrapAngle(pose.z() - pose_.z()) / dt;
+    if (aligned != nullptr) {
+      velocity_ = aligned->increment / dt;
+    } else {
+      const Eigen::Vector2d moved = Rotation(-pose_.z()) * (pose.head<2>() - pose_.head<2>());
+      velocity_ << moved / dt, WrapAngle(pose.z() - pose_.z()) / dt;
+    }
   }
   reference_ = std::move(scan);
   pose_ = pose;

@@ -235,6 +235,27 @@ TEST_F(LineLandmarksTest, PointFeaturesOnALineLandmarkArePiecesOfIt) {
   EXPECT_EQ(PointsOnLineLandmarks(points, options_, mount_, state_),
             (std::vector<uint8_t>{1, 1, 1, 0, 0, 0}));
   options_.point_on_line_m = 0.0;
+  options_.point_behind_line_m = 0.0;
+  EXPECT_EQ(PointsOnLineLandmarks(points, options_, mount_, state_),
+            std::vector<uint8_t>(points.size(), 0));
+}
+
+TEST_F(LineLandmarksTest, PointFeaturesJustBehindALineLandmarkArePiecesOfItToo) {
+  // A wall 3 m ahead with dropouts: its short runs are point features whose fitted centres lie
+  // behind it, where the laser cannot see.
+  Run({See({{3.0, 0.0}, -1.0, 1.0}, state_.robot_pose())}, kSecond);
+  ASSERT_EQ(state_.num_lines(), 1);
+  auto at = [](double x, double y) {
+    return Eigen::Vector2d(std::hypot(x, y), std::atan2(y, x));
+  };
+  // 0.4 m behind it; 0.7 m behind (beyond point_behind_line_m); 0.4 m behind but beyond the
+  // end margin; 0.4 m in front of it (a person).
+  const std::vector<Eigen::Vector2d> points = {at(3.4, 0.0), at(3.7, 0.3), at(3.4, 1.5),
+                                               at(2.6, 0.0)};
+  ASSERT_EQ(options_.point_behind_line_m, 0.6);
+  EXPECT_EQ(PointsOnLineLandmarks(points, options_, mount_, state_),
+            (std::vector<uint8_t>{1, 0, 0, 0}));
+  options_.point_behind_line_m = 0.0;
   EXPECT_EQ(PointsOnLineLandmarks(points, options_, mount_, state_),
             std::vector<uint8_t>(points.size(), 0));
 }

@@ -149,6 +149,7 @@ TEST(EvalPeopleTest, MoversThatAreNoPersonAreCountedByIdentity) {
   const nlohmann::json j = ReportToJson(input, r);
   EXPECT_NEAR(j["non_person_movers_per_minute"].get<double>(), 160.0, 1e-9);
   EXPECT_EQ(j["detail"]["people_tracking"]["false_mover_identities"], 1);
+  EXPECT_EQ(j["detail"]["people_tracking"]["false_mover_ids"], nlohmann::json::array({200}));
 }
 
 TEST(EvalVisibilityTest, TwoBeamsAreSeenInAFeatureLog) {

@@ -266,7 +266,9 @@ TrackingResult ScoreTracking(const EvalInput& input, const Pose2& anchor, bool s
   tracking.movers_few_beams = static_cast<int64_t>(movers_few_beams.size());
   tracking.movers_standing = static_cast<int64_t>(movers_standing.size());
   for (const auto& [id, counts] : moving_scans) {
-    tracking.false_mover_identities += 2 * counts.second > counts.first ? 1 : 0;
+    if (2 * counts.second <= counts.first) continue;
+    ++tracking.false_mover_identities;
+    tracking.false_mover_ids.push_back(id);
   }
   const double minutes = static_cast<double>(window_end - window_begin) * 1e-6 / 60.0;
   tracking.false_movers_per_minute =

@@ -168,6 +168,7 @@ struct TrackingResult {
   // the scans they were reported MOVING in; per minute of the TRACKS span (0 minutes: none).
   // With the people rule: confirmed movers that are not a person.
   int64_t false_mover_identities = 0;
+  std::vector<int64_t> false_mover_ids;  // those identities, ascending
   double false_movers_per_minute = 0.0;
 };
 

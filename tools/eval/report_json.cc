@@ -105,6 +105,7 @@ json TrackingDetail(const TrackingResult& t) {
       {"scans", static_cast<int64_t>(t.scans.size())},
       {"scans_without_tracks", t.scans_without_tracks},
       {"false_mover_identities", t.false_mover_identities},
+      {"false_mover_ids", t.false_mover_ids},
       {"ospa", {{"mean_m", t.ospa_mean_m},
                 {"max_m", t.ospa_max_m},
                 {"localisation_mean_m", t.ospa_localisation_mean_m},
