@@ -93,8 +93,13 @@ struct StateLine {
 struct StateObject {
   int position_index = -1;  // x at position_index, y at position_index + 1
   int velocity_index = -1;  // vx, vy; -1 for a static landmark
+  // The stationary hypothesis of an object with velocity states: a copy of its position taken
+  // when it got them (AddStationaryAnchor), -1 for none. No model moves it and no measurement
+  // updates it directly; it keeps, through its correlations, where the object was then.
+  int anchor_index = -1;
   ObjectRecord record;
   bool has_velocity() const { return velocity_index >= 0; }
+  bool has_anchor() const { return anchor_index >= 0; }
 };
 
 class SlamState {
@@ -185,6 +190,22 @@ class SlamState {
   // perfect pseudo-measurement v = 0), then removes the velocity states (marginalisation,
   // which for a Gaussian is dropping rows and columns). No-op without velocity states.
   void RemoveVelocityAssumingZero(int k);
+
+  // Stochastic cloning (Roumeliotis and Burdick, "Stochastic cloning: a generalized framework
+  // for processing relative state measurements", ICRA 2002): appends a copy of object k's
+  // position (same mean, the position's rows and columns of P, perfectly correlated with it),
+  // the object's stationary anchor. No-op if it has one.
+  void AddStationaryAnchor(int k);
+
+  // The object did not move since its anchor was taken: conditions the whole state on
+  // position = anchor (a perfect pseudo-measurement of the displacement, 2 dof), when the
+  // displacement's NIS d^T S^-1 d is below `gate_chi2`; then removes the anchor states
+  // (marginalisation). Returns whether it conditioned. No-op (false) without an anchor.
+  bool ConditionOnAnchorAndRemoveIt(int k, double gate_chi2);
+
+  // Removes object k's anchor states (marginalisation: the hypothesis is given up). No-op
+  // without one.
+  void RemoveAnchor(int k);
 
   // Removes the listed objects (indices into objects(), any order, duplicates ignored) and
   // their states; the other objects keep their order.
