@@ -314,20 +314,16 @@ std::vector<StaticObservation> Estimator::ManageTracks(ScanInProgress* s) {
   // are still those of the state (pruning and new objects renumber them).
   std::vector<StaticObservation> static_observations =
       StaticObservations(s->features.measurements, s->assignment, state_);
-  // 9. Re-acquisition tags, then pruning (line 11). Which measurements start objects is judged
-  // against the objects that could have produced them, while the assignment's indices are
-  // still those of the state.
-  const std::vector<double> nearest_source_nis =
-      NearestNisOfPossibleSources(s->gating.gated, options_, s->assignment);
+  // 9. Re-acquisition tags, then pruning (line 11).
   const std::vector<int64_t> continues_id =
-      TagPossibleContinuations(association, nearest_source_nis, taken_over, options_,
+      TagPossibleContinuations(association, s->gating.nearest_nis, taken_over, options_,
                                &s->predicted, state_, s->assignment);
   PruneObjects(s->utime, taken_over, options_, after_updates, s->assignment, &state_,
                s->counts, &archive_);
   // 10. New tracks outside gate dn of every object (line 13); their first sightings go to the
   // smoother too when asked (smoother_first_sightings).
   const std::vector<StaticObservation> first_sightings =
-      AddNewObjects(association, nearest_source_nis, continues_id, options_, s->assignment,
+      AddNewObjects(association, s->gating.nearest_nis, continues_id, options_, s->assignment,
                     &next_id_, &state_, s->counts);
   if (options_.smoother_first_sightings) {
     static_observations.insert(static_observations.end(), first_sightings.begin(),

@@ -1,6 +1,5 @@
 #include "estimator/new_objects.h"
 
-#include <algorithm>
 #include <limits>
 
 #include "estimator/motion_classifier.h"
@@ -9,23 +8,6 @@
 #include "estimator/track_management.h"
 
 namespace slammtt {
-
-std::vector<double> NearestNisOfPossibleSources(const std::vector<Candidate>& gated,
-                                                const EstimatorOptions& options,
-                                                const Assignment& assignment) {
-  const bool static_world = options.mode == AssociationMode::kStaticNearestNeighbour;
-  std::vector<double> nearest(static_cast<size_t>(assignment.num_measurements()),
-                              std::numeric_limits<double>::infinity());
-  for (const Candidate& c : gated) {
-    if (!static_world && !assignment.ObjectFree(c.object) &&
-        assignment.ObjectOf(c.measurement) != c.object) {
-      continue;
-    }
-    double& n = nearest[static_cast<size_t>(c.measurement)];
-    n = std::min(n, c.nis);
-  }
-  return nearest;
-}
 
 std::vector<StaticObservation> AddNewObjects(const ScanAssociation& scan,
                                              const std::vector<double>& nearest_nis,

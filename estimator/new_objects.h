@@ -22,22 +22,8 @@
 
 namespace slammtt {
 
-// Per measurement, the smallest NIS (from `gated`, scan_gating.h) to an object that could have
-// produced it: one left without a measurement by the association. An object gives at most one
-// point measurement per scan (the association's one-to-one rule), so one that took its own
-// cannot be the source of a second: a second measurement near it is another object. Two
-// landmarks 3 m apart at the 30 m edge of the range (6 degrees, three bearing sigmas) are
-// both inside the new-object gate of the first one's wide new object; counted by every object,
-// the second landmark's measurements never start an object of their own, and the first
-// object, taking one then the other, seems to move (s1-crossing, landmarks 60 and 61 at 20 s).
-// In baseline (a), the static world, every object counts (plain nearest-neighbour EKF-SLAM).
-// +infinity where no object is near.
-std::vector<double> NearestNisOfPossibleSources(const std::vector<Candidate>& gated,
-                                                const EstimatorOptions& options,
-                                                const Assignment& assignment);
-
 // Adds the new objects with ids from *next_id on (counts->new_objects, objects_refused).
-// `nearest_nis`: per measurement (NearestNisOfPossibleSources); `continues_id`: per measurement, the lost
+// `nearest_nis`: per measurement (scan_gating.h); `continues_id`: per measurement, the lost
 // track's id it may continue (0: none). Returns the sightings that started objects that may be
 // point landmarks (MayBePointLandmark, not a person feature), in measurement order, tentative
 // unless the object starts as a confirmed static landmark (the static world).

@@ -16,8 +16,6 @@ void OdometryBuffer::Store(const OdometryReading& reading, bool new_frame) {
   r.pose(2) = WrapAngle(r.pose(2));
   if (!cursor_) {
     cursor_ = Cursor{r.utime, r.pose, r.linear_mps, r.angular_radps};
-    newest_reading_utime_ = r.utime;
-    reading_interval_us_ = 0;
     return;
   }
   if (r.utime <= cursor_->utime) {
@@ -29,26 +27,17 @@ void OdometryBuffer::Store(const OdometryReading& reading, bool new_frame) {
     return;
   }
   readings_.push_back(Stored{r, new_frame});
-  reading_interval_us_ = new_frame ? 0 : r.utime - newest_reading_utime_;
-  newest_reading_utime_ = r.utime;
 }
 
-double OdometryBuffer::OverdueSeconds(int64_t from_utime, int64_t utime) const {
-  if (reading_interval_us_ <= 0) return SecondsBetween(utime, from_utime);
-  const int64_t due_utime = newest_reading_utime_ + reading_interval_us_;
-  return std::max(0.0, SecondsBetween(utime, std::max(from_utime, due_utime)));
-}
-
-void OdometryBuffer::AddExtrapolated(const Cursor& from, double tau_s, double overdue_s,
+void OdometryBuffer::AddExtrapolated(const Cursor& from, double tau_s,
                                      const OdometryNoiseOptions& noise,
                                      const ExtrapolationNoise& extrapolation,
                                      RobotMotionAccumulator* motion, OdometryIncrement* part) {
   const double tau = std::min(tau_s, extrapolation.max_s);
-  const double noisy = std::min(overdue_s, tau);
   *part = OdometryIncrement{from.linear_mps * tau, from.angular_radps * tau};
   Eigen::Matrix2d covariance = OdometryIncrementCovariance(*part, tau, noise);
-  covariance(0, 0) += extrapolation.speed_var_per_s2 * noisy * noisy;
-  covariance(1, 1) += extrapolation.turn_var_per_s2 * noisy * noisy;
+  covariance(0, 0) += extrapolation.speed_var_per_s2 * tau * tau;
+  covariance(1, 1) += extrapolation.turn_var_per_s2 * tau * tau;
   motion->Add(*part, covariance);
 }
 
@@ -63,8 +52,8 @@ bool OdometryBuffer::AddMotionTo(int64_t utime, const OdometryNoiseOptions& nois
     const OdometryReading& r = readings_.front().reading;
     if (readings_.front().new_frame) {
       // Across a jump of the odometry frame: as if there had been no reading.
-      const double tau = SecondsBetween(r.utime, previous.utime);
-      AddExtrapolated(previous, tau, tau, noise, extrapolation, motion, &part);
+      AddExtrapolated(previous, SecondsBetween(r.utime, previous.utime), noise, extrapolation,
+                      motion, &part);
     } else {
       const OdometryIncrement increment = IncrementBetweenOdometryPoses(previous.pose, r.pose);
       motion->Add(increment, OdometryIncrementCovariance(
@@ -89,8 +78,8 @@ bool OdometryBuffer::AddMotionTo(int64_t utime, const OdometryNoiseOptions& nois
   }
   // No reading at or after the scan yet (or the next one is in a new frame): extrapolate with
   // the last velocities, with noise that grows with the extrapolated time.
-  AddExtrapolated(previous, SecondsBetween(utime, previous.utime),
-                  OverdueSeconds(previous.utime, utime), noise, extrapolation, motion, &part);
+  AddExtrapolated(previous, SecondsBetween(utime, previous.utime), noise, extrapolation, motion,
+                  &part);
   cursor_ = Cursor{utime, PredictRobotPose(previous.pose, part), previous.linear_mps,
                    previous.angular_radps};
   return covered;

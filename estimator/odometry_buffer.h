@@ -9,14 +9,7 @@
 //  - a reading after utime gives the part of its increment up to the scan, interpolated in
 //    time (the cursor then sits at the scan, inside that increment);
 //  - with no reading after the scan yet, the motion is extrapolated with the last velocities
-//    over at most `max_s` seconds, with the odometry's noise model and, once the next reading
-//    is overdue (later than the last one by more than the interval between the last two
-//    readings), extra noise growing with the overdue time. Before that the reading is not
-//    missing, only not here yet: the next increment is measured from the extrapolated pose to
-//    it, so it undoes the extrapolation's error and the motion over both is the odometry's own.
-//    Extra noise there would be counted again at every scan that falls between two readings
-//    (every other scan at 8 Hz scans and 20 Hz odometry: 0.43 degrees of heading each time
-//    at 0.3 rad/s over 25 ms), and the filter would trust its odometry less than it is worth.
+//    over at most `max_s` seconds, with extra noise growing with the extrapolated time.
 // Readings arrive in time order (the estimator drops older ones before they get here).
 #pragma once
 
@@ -87,22 +80,14 @@ class OdometryBuffer {
     OdometryReading reading;
     bool new_frame = false;  // no increment from the reading before it
   };
-  // The motion extrapolated from `from` over tau seconds (at most extrapolation.max_s), with the
-  // extrapolation noise of the last `overdue_s` of them.
-  static void AddExtrapolated(const Cursor& from, double tau_s, double overdue_s,
-                              const OdometryNoiseOptions& noise,
+  // The motion extrapolated from `from` over tau seconds (at most extrapolation.max_s).
+  static void AddExtrapolated(const Cursor& from, double tau_s, const OdometryNoiseOptions& noise,
                               const ExtrapolationNoise& extrapolation,
                               RobotMotionAccumulator* motion, OdometryIncrement* part);
-  // Seconds of [from_utime, utime] after the next reading was due (all of it when the interval
-  // between readings is not known yet).
-  double OverdueSeconds(int64_t from_utime, int64_t utime) const;
   void Store(const OdometryReading& reading, bool new_frame);
 
   std::optional<Cursor> cursor_;
   std::deque<Stored> readings_;  // newer than the cursor, oldest first
-  // The newest reading stored and the interval before it (0: not known yet).
-  int64_t newest_reading_utime_ = 0;
-  int64_t reading_interval_us_ = 0;
 };
 
 }  // namespace slammtt
