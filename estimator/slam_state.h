@@ -10,7 +10,9 @@
 // paper eq. 5) also has a velocity slot (vx, vy). The
 // two slots of one object need not be adjacent: a landmark that starts to move gets its
 // velocity slot appended at the end, and removing states compacts the vector, so objects refer
-// to their slots by index. A static landmark (eq. 4) has no velocity slot.
+// to their slots by index. A static landmark (eq. 4) has no velocity slot. An object with
+// velocity states may also have an anchor slot (x, y): a stochastic clone of its position taken
+// when it got them (AddStationaryAnchor), its stationary hypothesis.
 // Line landmarks (walls, furniture sides: line_model.h) have a slot of two states (rho, alpha)
 // each, in the same vector and covariance; they are never objects (a line never moves, is
 // never tracked nor classified) and only line_landmarks.h reads and writes them.
