@@ -24,9 +24,12 @@ void ClassifyObjectWithVelocity(int j, int64_t utime, const EstimatorOptions& op
       ClassifyMover(now.position(j), PositionCovariance(now, j), now.velocity(j), velocity_cov,
                     utime, options.classifier, &state->object(j).record);
   if (change == ClassChange::kBecameMoving) {
+    state->RemoveAnchor(j);  // it moved: the stationary hypothesis is given up
     state->object(j).record.class_change_utime = utime;
     ++counts->became_moving;
   } else if (change == ClassChange::kBecameStatic) {
+    // Static since its anchor, unless the displacement says otherwise (a mover that stopped).
+    state->ConditionOnAnchorAndRemoveIt(j, options.classifier.still_anchor_chi2);
     state->RemoveVelocityAssumingZero(j);
     ObjectRecord& r = state->object(j).record;
     r.object_class = ObjectClass::kStatic;
@@ -54,6 +57,7 @@ void ClassifyLandmarkWithMeasurement(int j, const PointMeasurement& z,
   }
   const double sigma = options.new_object_velocity_sigma_mps;
   state->AddVelocity(j, Eigen::Vector2d::Zero(), sigma * sigma * Eigen::Matrix2d::Identity());
+  if (options.classifier.still_anchor_chi2 > 0.0) state->AddStationaryAnchor(j);
   ObjectRecord& r = state->object(j).record;
   r.object_class = ObjectClass::kUndecided;
   r.class_change_utime = utime;

@@ -128,6 +128,8 @@ void VisitMotionClassifierOptions(OptionVisitor* v, MotionClassifierOptions* c) 
   v->Double("still_hold_s", &c->still_hold_s, R::AtLeast(0), "shortest still window");
   v->Double("started_moving_chi2", &c->started_moving_chi2, R::Above(0),
             "significance of a landmark's mean offset that gives it velocity states");
+  v->Double("still_anchor_chi2", &c->still_anchor_chi2, R::AtLeast(0),
+            "gate of 'not moved since it got velocity states' when it becomes static (0: off)");
 }
 
 }  // namespace slammtt

@@ -53,6 +53,13 @@ struct MotionClassifierOptions {
   double still_max_speed_mps = 0.15;
   double still_hold_s = 1.5;
   double started_moving_chi2 = 23.0;      // 1e-5 false alarms per scan and landmark (2 dof)
+  // > 0: an object that gets velocity states keeps a stationary anchor (a stochastically cloned
+  // copy of its position then: SlamState::AddStationaryAnchor). When it becomes STATIC, the
+  // state is conditioned on its not having moved since, if that displacement's NIS is below
+  // this chi-square (2 dof; 13.82, 99.9 %, as moving_chi2), so that what its measurements said
+  // while it was undecided (and the robot's motion then) is not lost to its velocity states.
+  // 0: off (the conditioning on v = 0 alone).
+  double still_anchor_chi2 = 13.82;
 };
 
 // The schema of these options (common/options_schema.h; keys in EstimatorOptions' group

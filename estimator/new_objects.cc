@@ -46,6 +46,7 @@ std::vector<StaticObservation> AddNewObjects(const ScanAssociation& scan,
     if (!static_world) {
       const double sigma = options.new_object_velocity_sigma_mps;
       state->AddVelocity(k, Eigen::Vector2d::Zero(), sigma * sigma * Eigen::Matrix2d::Identity());
+      if (options.classifier.still_anchor_chi2 > 0.0) state->AddStationaryAnchor(k);
     }
     if (!z.person && MayBePointLandmark(record.object_class, record.kind)) {
       first_sightings.push_back(

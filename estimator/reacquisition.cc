@@ -150,6 +150,7 @@ std::vector<int> TakeOverLostIdentities(int64_t utime, const EstimatorOptions& o
         candidate.hits += lost.record.hits;
         candidate.confirmed = true;
         candidate.object_class = ObjectClass::kMoving;
+        state->RemoveAnchor(k);  // a MOVING object keeps no stationary hypothesis
         taken_over.push_back(j);
         ++counts->reacquired;
       }

@@ -136,6 +136,55 @@ void SlamState::RemoveVelocityAssumingZero(int k) {
   o.velocity_index = -1;
 }
 
+void SlamState::AddStationaryAnchor(int k) {
+  if (object(k).has_anchor()) return;
+  ++revision_;
+  const int p = object(k).position_index;
+  const int a = AppendStates(2);
+  mean_.segment<2>(a) = mean_.segment<2>(p);
+  cov_.block(a, 0, 2, a) = cov_.block(p, 0, 2, a);
+  cov_.block(0, a, a, 2) = cov_.block(0, p, a, 2);
+  cov_.block<2, 2>(a, a) = cov_.block<2, 2>(p, p);
+  object(k).anchor_index = a;
+}
+
+bool SlamState::ConditionOnAnchorAndRemoveIt(int k, double gate_chi2) {
+  const StateObject& o = object(k);
+  if (!o.has_anchor()) return false;
+  const int p = o.position_index;
+  const int a = o.anchor_index;
+  // The displacement d = position - anchor, H = [.. I .. -I ..]: P H^T = P_:p - P_:a and
+  // S = P_pp + P_aa - P_pa - P_ap.
+  const Eigen::MatrixXd ph_transposed_t = cov_.block(p, 0, 2, dim_) - cov_.block(a, 0, 2, dim_);
+  const Eigen::Matrix2d s = ph_transposed_t.block<2, 2>(0, p) - ph_transposed_t.block<2, 2>(0, a);
+  const Eigen::Vector2d displacement = mean_.segment<2>(p) - mean_.segment<2>(a);
+  Eigen::LLT<Eigen::Matrix2d> llt(0.5 * (s + s.transpose()));
+  bool conditioned = false;
+  if (llt.info() == Eigen::Success) {
+    const Eigen::Vector2d whitened = llt.matrixL().solve(displacement);
+    if (whitened.squaredNorm() < gate_chi2) {
+      ++revision_;
+      Eigen::MatrixXd w_transposed = ph_transposed_t;
+      llt.matrixL().solveInPlace(w_transposed);
+      mean_.head(dim_).noalias() -= w_transposed.transpose() * whitened;
+      SubtractSymmetricProduct(w_transposed);
+      conditioned = true;
+    }
+  }
+  // (A non-positive-definite S: the displacement is known exactly, nothing to condition on.)
+  RemoveAnchor(k);
+  return conditioned;
+}
+
+void SlamState::RemoveAnchor(int k) {
+  StateObject& o = object(k);
+  if (!o.has_anchor()) return;
+  ++revision_;
+  const int a = o.anchor_index;
+  o.anchor_index = -1;
+  RemoveStates({a, a + 1});
+}
+
 void SlamState::RemoveObjects(std::vector<int> object_indices) {
   std::sort(object_indices.begin(), object_indices.end());
   object_indices.erase(std::unique(object_indices.begin(), object_indices.end()),
@@ -150,6 +199,10 @@ void SlamState::RemoveObjects(std::vector<int> object_indices) {
     if (o.has_velocity()) {
       states.push_back(o.velocity_index);
       states.push_back(o.velocity_index + 1);
+    }
+    if (o.has_anchor()) {
+      states.push_back(o.anchor_index);
+      states.push_back(o.anchor_index + 1);
     }
   }
   std::vector<StateObject> kept;
@@ -196,6 +249,7 @@ void SlamState::RemoveStates(const std::vector<int>& sorted_state_indices) {
   for (StateObject& o : objects_) {
     o.position_index = new_index[static_cast<size_t>(o.position_index)];
     if (o.has_velocity()) o.velocity_index = new_index[static_cast<size_t>(o.velocity_index)];
+    if (o.has_anchor()) o.anchor_index = new_index[static_cast<size_t>(o.anchor_index)];
   }
   for (StateLine& l : lines_) l.param_index = new_index[static_cast<size_t>(l.param_index)];
 }

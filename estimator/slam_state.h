@@ -10,7 +10,9 @@
 // paper eq. 5) also has a velocity slot (vx, vy). The
 // two slots of one object need not be adjacent: a landmark that starts to move gets its
 // velocity slot appended at the end, and removing states compacts the vector, so objects refer
-// to their slots by index. A static landmark (eq. 4) has no velocity slot.
+// to their slots by index. A static landmark (eq. 4) has no velocity slot. An object with
+// velocity states may also have an anchor slot (x, y): a stochastic clone of its position taken
+// when it got them (AddStationaryAnchor), its stationary hypothesis.
 // Line landmarks (walls, furniture sides: line_model.h) have a slot of two states (rho, alpha)
 // each, in the same vector and covariance; they are never objects (a line never moves, is
 // never tracked nor classified) and only line_landmarks.h reads and writes them.
@@ -99,8 +101,13 @@ struct StateLine {
 struct StateObject {
   int position_index = -1;  // x at position_index, y at position_index + 1
   int velocity_index = -1;  // vx, vy; -1 for a static landmark
+  // The stationary hypothesis of an object with velocity states: a copy of its position taken
+  // when it got them (AddStationaryAnchor), -1 for none. No model moves it and no measurement
+  // updates it directly; it keeps, through its correlations, where the object was then.
+  int anchor_index = -1;
   ObjectRecord record;
   bool has_velocity() const { return velocity_index >= 0; }
+  bool has_anchor() const { return anchor_index >= 0; }
 };
 
 class SlamState {
@@ -191,6 +198,22 @@ class SlamState {
   // perfect pseudo-measurement v = 0), then removes the velocity states (marginalisation,
   // which for a Gaussian is dropping rows and columns). No-op without velocity states.
   void RemoveVelocityAssumingZero(int k);
+
+  // Stochastic cloning (Roumeliotis and Burdick, "Stochastic cloning: a generalized framework
+  // for processing relative state measurements", ICRA 2002): appends a copy of object k's
+  // position (same mean, the position's rows and columns of P, perfectly correlated with it),
+  // the object's stationary anchor. No-op if it has one.
+  void AddStationaryAnchor(int k);
+
+  // The object did not move since its anchor was taken: conditions the whole state on
+  // position = anchor (a perfect pseudo-measurement of the displacement, 2 dof), when the
+  // displacement's NIS d^T S^-1 d is below `gate_chi2`; then removes the anchor states
+  // (marginalisation). Returns whether it conditioned. No-op (false) without an anchor.
+  bool ConditionOnAnchorAndRemoveIt(int k, double gate_chi2);
+
+  // Removes object k's anchor states (marginalisation: the hypothesis is given up). No-op
+  // without one.
+  void RemoveAnchor(int k);
 
   // Removes the listed objects (indices into objects(), any order, duplicates ignored) and
   // their states; the other objects keep their order.

@@ -42,7 +42,8 @@ RecoveryOutcome RecoverFiniteState(const Eigen::Vector3d& last_pose,
     const StateObject& o = state->object(k);
     for (int i : bad) {
       if (i == o.position_index || i == o.position_index + 1 ||
-          (o.has_velocity() && (i == o.velocity_index || i == o.velocity_index + 1))) {
+          (o.has_velocity() && (i == o.velocity_index || i == o.velocity_index + 1)) ||
+          (o.has_anchor() && (i == o.anchor_index || i == o.anchor_index + 1))) {
         objects.push_back(k);
         break;
       }

@@ -98,14 +98,18 @@ TEST(ObservationPredictionsTest, TheEstimatorPredictsOncePerStateNotOncePerStep)
     const ScanResult result = estimator.ProcessScan(frame.scan, &rng);
     const StepCounts& c = result.counts;
     // The states a scan can pass through: predicted, after level 1, after level 2, after the
-    // manoeuvres, after level 3, after the class changes.
+    // manoeuvres, after level 3, after the class changes (a change to MOVING and a take-over
+    // of a lost identity drop the object's stationary anchor: SlamState::RemoveAnchor).
     const int states = 1 + (c.level1_updates > 0) + (c.level2_updates > 0) + (c.manoeuvres > 0) +
                        (c.level3_updates > 0) +
-                       (c.became_static + c.started_moving > 0 ? 1 : 0);
+                       (c.became_static + c.started_moving + c.became_moving + c.reacquired > 0
+                            ? 1
+                            : 0);
     EXPECT_LE(c.observation_predictions, states) << "scan " << k;
     EXPECT_GE(c.observation_predictions, 1);
     if (c.level1_updates > 0 && c.level2_updates == 0 && c.level3_updates == 0 &&
-        c.manoeuvres == 0 && c.became_static == 0 && c.started_moving == 0) {
+        c.manoeuvres == 0 && c.became_static == 0 && c.started_moving == 0 &&
+        c.became_moving == 0 && c.reacquired == 0) {
       EXPECT_EQ(c.observation_predictions, 2) << "scan " << k;
       ++level1_only_scans;
     }

@@ -138,6 +138,101 @@ TEST(SlamStateTest, RemovingVelocityConditionsOnZeroThenMarginalises) {
   EXPECT_EQ(state.covariance(), state.covariance().transpose());
 }
 
+TEST(SlamStateTest, AStationaryAnchorIsAPerfectlyCorrelatedCopyOfThePosition) {
+  SlamState state = RandomState(3);
+  const Eigen::MatrixXd p = state.covariance();
+  const int n = state.dim();
+  const int pos = state.object(3).position_index;
+  state.AddStationaryAnchor(3);
+  state.AddStationaryAnchor(3);  // no-op: it has one
+  ASSERT_TRUE(state.object(3).has_anchor());
+  const int a = state.object(3).anchor_index;
+  EXPECT_EQ(state.dim(), n + 2);
+  EXPECT_EQ(a, n);
+  EXPECT_EQ(Eigen::Vector2d(state.mean().segment<2>(a)), state.position(3));
+  EXPECT_EQ(Eigen::MatrixXd(state.covariance().block(a, 0, 2, n)),
+            Eigen::MatrixXd(p.block(pos, 0, 2, n)));
+  EXPECT_EQ(Eigen::Matrix2d(state.covariance().block<2, 2>(a, a)),
+            Eigen::Matrix2d(p.block<2, 2>(pos, pos)));
+  EXPECT_EQ(state.covariance(), state.covariance().transpose());
+  // The difference position - anchor is known exactly: zero mean, zero covariance.
+  Eigen::MatrixXd h = Eigen::MatrixXd::Zero(2, state.dim());
+  h.block<2, 2>(0, pos).setIdentity();
+  h.block<2, 2>(0, a) = -Eigen::Matrix2d::Identity();
+  EXPECT_NEAR((h * state.covariance() * h.transpose()).norm(), 0.0, 1e-12);
+  // Removing another object keeps the anchor on its own slots; removing its object removes it.
+  state.AddStationaryAnchor(4);
+  const Eigen::Vector2d anchor4 = state.mean().segment<2>(state.object(4).anchor_index);
+  state.RemoveObjects({3});
+  ASSERT_TRUE(state.object(3).has_anchor());  // old object 4
+  EXPECT_EQ(Eigen::Vector2d(state.mean().segment<2>(state.object(3).anchor_index)), anchor4);
+  EXPECT_EQ(state.dim(), n + 4 - 6);  // two anchors added, position, velocity and anchor gone
+  state.RemoveAnchor(3);
+  EXPECT_FALSE(state.object(3).has_anchor());
+  EXPECT_EQ(state.dim(), n - 4);
+}
+
+// The state after an object with an anchor moved for dt (eq. 6 with the process noise of eq. 8):
+// its position and its anchor differ.
+SlamState AnchoredAndMoved(uint64_t seed, double dt_s) {
+  SlamState state = RandomState(seed);
+  state.AddStationaryAnchor(3);
+  const int p = state.object(3).position_index;
+  const int v = state.object(3).velocity_index;
+  PredictConstantVelocityInPlace(dt_s, p, v, state.mean(), state.covariance());
+  state.MirrorRowToColumn(p);
+  state.MirrorRowToColumn(p + 1);
+  state.covariance().block<2, 2>(v, v) += 0.04 * dt_s * Eigen::Matrix2d::Identity();
+  return state;
+}
+
+TEST(SlamStateTest, ConditioningOnTheAnchorIsThePerfectDisplacementMeasurementThenDropsIt) {
+  SlamState state = AnchoredAndMoved(4, 0.5);
+  const Eigen::MatrixXd p = state.covariance();
+  const Eigen::VectorXd x = state.mean();
+  const int pos = state.object(3).position_index;
+  const int a = state.object(3).anchor_index;
+  // Reference: the dense Kalman update with the perfect measurement position - anchor = 0.
+  Eigen::MatrixXd h = Eigen::MatrixXd::Zero(2, state.dim());
+  h.block<2, 2>(0, pos).setIdentity();
+  h.block<2, 2>(0, a) = -Eigen::Matrix2d::Identity();
+  const Eigen::Matrix2d s = h * p * h.transpose();
+  const Eigen::Vector2d d = h * x;
+  ASSERT_GT(d.norm(), 0.1);
+  const double nis = d.dot(s.inverse() * d);
+  const Eigen::MatrixXd gain = p * h.transpose() * s.inverse();
+  const Eigen::VectorXd x_conditioned = x - gain * d;
+  const Eigen::MatrixXd p_conditioned = p - gain * h * p;
+  std::vector<int> keep;
+  for (int i = 0; i < state.dim(); ++i) {
+    if (i != a && i != a + 1) keep.push_back(i);
+  }
+  // A gate below the displacement's NIS: the object moved, only the anchor is dropped.
+  SlamState moved = state;
+  EXPECT_FALSE(moved.ConditionOnAnchorAndRemoveIt(3, 0.5 * nis));
+  EXPECT_FALSE(moved.object(3).has_anchor());
+  ASSERT_EQ(moved.dim(), static_cast<int>(keep.size()));
+  for (int r = 0; r < moved.dim(); ++r) {
+    EXPECT_EQ(moved.mean()(r), x(keep[static_cast<size_t>(r)]));
+  }
+  EXPECT_TRUE(state.ConditionOnAnchorAndRemoveIt(3, 2.0 * nis));
+  EXPECT_FALSE(state.object(3).has_anchor());
+  ASSERT_EQ(state.dim(), static_cast<int>(keep.size()));
+  for (int r = 0; r < state.dim(); ++r) {
+    EXPECT_NEAR(state.mean()(r), x_conditioned(keep[static_cast<size_t>(r)]), 1e-10);
+    for (int c = 0; c < state.dim(); ++c) {
+      EXPECT_NEAR(state.covariance()(r, c),
+                  p_conditioned(keep[static_cast<size_t>(r)], keep[static_cast<size_t>(c)]),
+                  1e-10);
+    }
+  }
+  EXPECT_EQ(state.covariance(), state.covariance().transpose());
+  // Without an anchor nothing happens.
+  const Eigen::VectorXd before = state.mean();
+  EXPECT_FALSE(state.ConditionOnAnchorAndRemoveIt(3, 1e9));
+  EXPECT_EQ(Eigen::VectorXd(state.mean()), before);
+}
+
 TEST(EkfPredictionTest, BlockPredictionEqualsDenseEquationNine) {
   SlamState state = RandomState(3);
   const Eigen::MatrixXd p = state.covariance();
