@@ -69,6 +69,12 @@ void VisitKeyframeSmootherOptions(OptionVisitor* v, KeyframeSmootherOptions* o) 
             "added in quadrature to each scan's odometry increment, x and y");
   v->Double("odometry_min_sigma_rad", &o->odometry_min_sigma_rad, R::Above(0),
             "the same for its heading", OptionUnit::kDegrees);
+  v->Double("odometry_variance_scale_forward", &o->odometry_variance_scale_forward, R::Above(0),
+            "factor on the variance of each scan's odometry increment along the heading");
+  v->Double("odometry_variance_scale_sideways", &o->odometry_variance_scale_sideways,
+            R::Above(0), "... sideways");
+  v->Double("odometry_variance_scale_heading", &o->odometry_variance_scale_heading, R::Above(0),
+            "... in heading");
   v->Double("prior_min_sigma_m", &o->prior_min_sigma_m, R::Above(0),
             "added in quadrature to the filter's first pose covariance, x and y");
   v->Double("prior_min_sigma_rad", &o->prior_min_sigma_rad, R::Above(0),
@@ -156,8 +162,13 @@ void KeyframeSmoother::StartProblem(const SmootherScanInput& scan) {
 }
 
 void KeyframeSmoother::AccumulateMotion(const SmootherScanInput& scan) {
+  // D C D with D = diag(sqrt(scales)): the variances scaled, the correlations kept.
+  const Eigen::Vector3d root = Eigen::Vector3d(options_.odometry_variance_scale_forward,
+                                               options_.odometry_variance_scale_sideways,
+                                               options_.odometry_variance_scale_heading)
+                                   .cwiseSqrt();
   const Eigen::Matrix3d increment_covariance =
-      scan.increment_covariance +
+      root.asDiagonal() * scan.increment_covariance * root.asDiagonal() +
       PoseFloor(options_.odometry_min_sigma_m, options_.odometry_min_sigma_rad);
   if (!scan.increment.allFinite() || !increment_covariance.allFinite()) {
     Refused(std::string("odometry increment is not finite: taken as standing still"));

@@ -55,6 +55,12 @@ struct KeyframeSmootherOptions {
   // (and to the first keyframe's prior): the motion model has no sideways noise.
   double odometry_min_sigma_m = 0.002;
   double odometry_min_sigma_rad = 0.001;
+  // Factors on the variances of the estimator's per-scan increment covariance, along the
+  // robot's heading, sideways and in heading (before the floor above is added): the motion
+  // model's noise is sized to hold the wheel-size bias as well (docs/smoother.md, "Measured").
+  double odometry_variance_scale_forward = 1.0;
+  double odometry_variance_scale_sideways = 1.0;
+  double odometry_variance_scale_heading = 1.0;
   double prior_min_sigma_m = 0.001;
   double prior_min_sigma_rad = 0.001;
   // Tentative observations held per object (the oldest are dropped beyond).

@@ -124,6 +124,33 @@ TEST(KeyframeSmootherTest, TheKeyframeRuleComposesTheOdometryBetweenKeyframes) {
   EXPECT_EQ(smoother.Keyframes().back().first, world.Scan(40).utime);
 }
 
+// With nothing but the prior and one increment, the second pose's marginal is the prior's
+// plus the increment's covariance (heading: exactly; position: up to the 0.02 rad the increment
+// turns): the scales must reach the odometry factor, each on its own component.
+TEST(KeyframeSmootherTest, TheOdometryVarianceScalesWeighTheIncrementPerComponent) {
+  const CircleWorld world;
+  KeyframeSmootherOptions scaled_options;
+  scaled_options.odometry_variance_scale_forward = 0.25;
+  scaled_options.odometry_variance_scale_sideways = 9.0;
+  scaled_options.odometry_variance_scale_heading = 0.04;
+  KeyframeSmoother plain(KeyframeSmootherOptions{});
+  KeyframeSmoother scaled(scaled_options);
+  SmoothedScan last_plain, last_scaled;
+  for (int scan = 0; scan < 2; ++scan) {
+    SmootherScanInput input = world.Scan(scan);
+    input.observations.clear();
+    last_plain = plain.AddScan(input);
+    last_scaled = scaled.AddScan(input);
+  }
+  const Eigen::Matrix3d increment = world.Scan(1).increment_covariance;
+  const Eigen::Vector3d scales(0.25, 9.0, 0.04);
+  for (int c = 0; c < 3; ++c) {
+    const double change = last_scaled.pose_covariance(c, c) - last_plain.pose_covariance(c, c);
+    const double expected = (scales(c) - 1.0) * increment(c, c);
+    EXPECT_NEAR(change, expected, (c == 2 ? 1e-9 : 0.02) * std::abs(expected)) << c;
+  }
+}
+
 TEST(KeyframeSmootherTest, TentativeSightingsJoinWhenTheObjectBecomesALandmark) {
   const CircleWorld world;
   KeyframeSmoother held(KeyframeSmootherOptions{});
@@ -228,6 +255,10 @@ TEST(KeyframeSmootherTest, UnusableOptionsAreRefusedByTheConstructor) {
   options.odometry_min_sigma_m = 0.0;
   EXPECT_THROW(KeyframeSmoother{options}, std::invalid_argument);
   EXPECT_NE(CheckKeyframeSmootherOptions(options).find("odometry_min_sigma_m"),
+            std::string::npos);
+  options = KeyframeSmootherOptions{};
+  options.odometry_variance_scale_heading = 0.0;
+  EXPECT_NE(CheckKeyframeSmootherOptions(options).find("odometry_variance_scale_heading"),
             std::string::npos);
   options = KeyframeSmootherOptions{};
   options.keyframe_distance_m = -1.0;
