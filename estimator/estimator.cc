@@ -202,6 +202,9 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
   if (!AcceptScanTime(scan.utime)) return result;
   const SubstageLaps lap{observer};
   ScanInProgress s(scan.utime, IntervalTo(scan.utime), options_.sensor, &result.counts);
+  if (options_.window.radius_m > 0.0) {
+    s.predicted.HoldBackReentriesBeyond(options_.max_range_m, FieldOfViewOf(options_));
+  }
   s.features = TakeFeatures(scan.features, s.counts);
 
   // Line 2: propagate the whole state to the scan (step 1); the walls then correct the pose

@@ -73,6 +73,7 @@ int LandmarkArchive::Restore(const LandmarkWindowOptions& options, SlamState* st
     record.unseen_observable_s = 0.0;
     record.num_offsets = 0;
     record.next_offset = 0;
+    record.reentered_unseen = true;
     state->AddObject(it->second.position_m, uncorrelated, it->second.covariance_m2, record);
     landmarks_.erase(it);
   }

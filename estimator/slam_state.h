@@ -77,6 +77,9 @@ struct ObjectRecord {
   // A tentative object that may be a lost mover seen again: that track's id (0: none;
   // track_management.h, ChooseReacquisitions).
   int64_t continues_id = 0;
+  // A landmark that re-entered the state from the local window's archive and has had no
+  // measurement since (landmark_window.h: HoldBackUnsureReentries).
+  bool reentered_unseen = false;
 };
 
 // Book-keeping of one line landmark (line_landmarks.h).

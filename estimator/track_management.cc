@@ -31,6 +31,7 @@ void RecordHit(int64_t utime, const TrackManagementOptions& options, ObjectRecor
   record->last_seen_utime = utime;
   record->unseen_in_view_s = 0.0;
   record->unseen_observable_s = 0.0;
+  record->reentered_unseen = false;
   if (record->confirmed) return;
   const int window = options.confirm_window_scans;
   const int hits_in_window = window <= 0 ? record->hits : HitsInLastScans(*record, window);

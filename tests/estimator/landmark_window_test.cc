@@ -13,8 +13,11 @@
 #include <set>
 
 #include "estimator/estimator.h"
+#include "estimator/gating.h"
 #include "estimator/landmark_window.h"
+#include "estimator/observation_predictions.h"
 #include "estimator/pruning.h"
+#include "estimator/track_management.h"
 #include "estimator/testing/point_world.h"
 #include "tests/estimator/step_scene.h"
 
@@ -113,6 +116,71 @@ TEST(LandmarkWindowTest, AnArchivedLandmarkReentersUnderItsIdUncorrelatedWhenThe
   EXPECT_EQ(Eigen::Matrix2d(scene.state.covariance().block<2, 2>(p, p)), archived.covariance_m2);
   EXPECT_TRUE(scene.state.covariance().block(p, 0, 2, p).isZero(0.0));
   EXPECT_TRUE(scene.state.covariance().block(0, p, p, 2).isZero(0.0));
+}
+
+// A re-entered landmark just beyond the laser's range must not take the measurement of a post
+// nearer than it (large-loop seed 1: a post 1.1 m nearer, at 30.0 m, moved the robot by 0.5 m):
+// until its first measurement after re-entry it is judged only where it is surely in range.
+TEST(LandmarkWindowTest, AReenteredLandmarkIsJudgedOnlyWhereItIsSurelyInRange) {
+  StepScene scene;
+  scene.AddLandmark({31, 0}, 0.5, 102);  // 2 sigma of its range: 1 m
+  scene.AddLandmark({-31, 0.5}, 0.5, 103);
+  LandmarkArchive archive;
+  scene.state.mean()(0) = 80.0;  // 49 m from 102: it leaves, and 103 (111 m) too
+  ASSERT_EQ(archive.Archive(Window(40, 33), &scene.state), 2);
+  scene.state.mean()(0) = 0.0;  // back: both within 33 m
+  ASSERT_EQ(archive.Restore(Window(40, 33), &scene.state), 2);
+  // 103 as if it had been measured since: only landmarks unseen since re-entry are held back.
+  int reentered = -1;
+  for (int j = 0; j < scene.state.num_objects(); ++j) {
+    if (scene.state.object(j).record.id == 102) reentered = j;
+    if (scene.state.object(j).record.id == 103) {
+      scene.state.object(j).record.reentered_unseen = false;
+    }
+  }
+  ASSERT_GE(reentered, 0);
+  EXPECT_TRUE(scene.state.object(reentered).record.reentered_unseen);
+
+  const FieldOfView all_around;  // the full circle
+  PointMeasurement nearer_post;  // 1 m nearer than 102, in its bearing
+  nearer_post.range_bearing << 30.0 - 0.1, 0.0;
+  nearer_post.covariance = Eigen::Vector2d(0.04, 1.2e-3).asDiagonal();
+  const std::vector<PointMeasurement> measurements{nearer_post};
+
+  // Without the hold-back the nearer post's measurement falls in the landmark's gate (the
+  // failure this rule prevents).
+  ObservationPredictions plain(scene.options.sensor);
+  bool paired = false;
+  for (const Candidate& c : GatePairs(measurements, plain.At(scene.state), 13.82)) {
+    paired = paired || c.object == reentered;
+  }
+  EXPECT_TRUE(paired);
+
+  // With it: 31 m + 1 m is beyond 30 m, no pair; 103 (never archived in this story) is judged.
+  ObservationPredictions held(scene.options.sensor);
+  held.HoldBackReentriesBeyond(30.0, all_around);
+  const std::vector<ObjectPrediction>& beyond = held.At(scene.state);
+  EXPECT_FALSE(beyond[static_cast<size_t>(reentered)].valid);
+  for (int j = 0; j < scene.state.num_objects(); ++j) {
+    if (j != reentered) {
+      EXPECT_TRUE(beyond[static_cast<size_t>(j)].valid) << j;
+    }
+  }
+  for (const Candidate& c : GatePairs(measurements, beyond, 13.82)) {
+    EXPECT_NE(c.object, reentered);
+  }
+
+  // Nearer (28 m + 1 m within 30 m): judged again.
+  scene.state.mean()(0) = 3.0;
+  EXPECT_TRUE(held.At(scene.state)[static_cast<size_t>(reentered)].valid);
+
+  // Once measured after re-entry it is an ordinary landmark again, wherever it is.
+  scene.state.mean()(0) = 0.0;
+  EXPECT_FALSE(held.At(scene.state)[static_cast<size_t>(reentered)].valid);
+  RecordHit(1, TrackManagementOptions{}, &scene.state.object(reentered).record);
+  EXPECT_FALSE(scene.state.object(reentered).record.reentered_unseen);
+  scene.state.mean()(1) = 1e-9;  // a new revision of the state: predicted again
+  EXPECT_TRUE(held.At(scene.state)[static_cast<size_t>(reentered)].valid);
 }
 
 TEST(LandmarkWindowTest, TheBudgetKeepsTheNearestAndDoesNotLetTheOthersBackIn) {
