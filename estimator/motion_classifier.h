@@ -58,8 +58,9 @@ struct MotionClassifierOptions {
   // state is conditioned on its not having moved since, if that displacement's NIS is below
   // this chi-square (2 dof; 13.82, 99.9 %, as moving_chi2), so that what its measurements said
   // while it was undecided (and the robot's motion then) is not lost to its velocity states.
-  // 0: off (the conditioning on v = 0 alone).
-  double still_anchor_chi2 = 13.82;
+  // 0: off (the conditioning on v = 0 alone), the default: with the local window it lost
+  // landmarks of the large loop (docs/estimator.md, "Stationary anchor"); 13.82 is its gate.
+  double still_anchor_chi2 = 0.0;
 };
 
 // The schema of these options (common/options_schema.h; keys in EstimatorOptions' group
