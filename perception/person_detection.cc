@@ -30,7 +30,55 @@ PersonFeature MakePerson(const Eigen::Vector2d& centre, const Eigen::Matrix2d& c
   return person;
 }
 
+// A hidden leg's centre is behind whatever hides it by at least its radius and the noise.
+constexpr double kHiddenLegMarginM = 0.09;
+// The polar grid of places of the other leg around the visible one.
+constexpr int kSeparationSteps = 13;
+constexpr int kDirectionSteps = 36;
+
+// The mean place of the other leg among the places the scan cannot see (the visible leg's
+// midpoint with it is the body's centre); the leg itself when the scan sees every place.
+Eigen::Vector2d HiddenLegMean(const Eigen::Vector2d& leg, const SightLines& sight,
+                              const PersonDetectionOptions& options) {
+  const double range = leg.norm();
+  if (!(range > 0.0)) return leg;
+  const Eigen::Vector2d along = leg / range;
+  const Eigen::Vector2d across(-along.y(), along.x());
+  const double lo = std::max(options.min_leg_separation_m, 1e-3);
+  const double step = (options.max_leg_separation_m - lo) / (kSeparationSteps - 1);
+  Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+  int hidden = 0;
+  for (int k = 0; k < kDirectionSteps; ++k) {
+    const double phi = 2.0 * M_PI * k / kDirectionSteps;
+    const Eigen::Vector2d direction = std::cos(phi) * along + std::sin(phi) * across;
+    for (int i = 0; i < kSeparationSteps; ++i) {
+      const Eigen::Vector2d offset = (lo + step * i) * direction;
+      if (!sight.Hides(leg + offset, kHiddenLegMarginM)) continue;
+      sum += offset;
+      ++hidden;
+    }
+  }
+  return hidden > 0 ? Eigen::Vector2d(leg + sum / hidden) : leg;
+}
+
 }  // namespace
+
+bool SightLines::Hides(const Eigen::Vector2d& point, double margin_m) const {
+  if (count == 0 || angle_rad == nullptr || range_m == nullptr) return true;
+  const double bearing = std::atan2(point.y(), point.x());
+  // Neighbours in angle, around the circle.
+  const double* end = angle_rad + count;
+  const double* upper = std::lower_bound(angle_rad, end, bearing);
+  const size_t after = upper == end ? 0 : static_cast<size_t>(upper - angle_rad);
+  const size_t before = after == 0 ? count - 1 : after - 1;
+  double gap = angle_rad[after] - angle_rad[before];
+  if (gap <= 0.0) gap += 2.0 * M_PI;
+  if (count == 1 || gap > max_gap_rad) return true;  // no beam there: unknown
+  double to_before = bearing - angle_rad[before];
+  if (to_before < 0.0) to_before += 2.0 * M_PI;
+  const size_t nearest = to_before <= 0.5 * gap ? before : after;
+  return range_m[nearest] < point.norm() - margin_m;
+}
 
 Eigen::Matrix2d PolarToCartesianCovariance(double range_m, double bearing_rad,
                                            const Eigen::Matrix2d& polar) {
@@ -55,7 +103,8 @@ Eigen::Matrix2d CartesianToPolarCovariance(double x_m, double y_m,
 
 void PersonDetector::Detect(const std::vector<LegCandidate>& candidates,
                             const PersonDetectionOptions& options,
-                            std::vector<PersonFeature>* people, std::vector<uint8_t>* used) {
+                            std::vector<PersonFeature>* people, std::vector<uint8_t>* used,
+                            const SightLines* sight) {
   people->clear();
   used->assign(candidates.size(), 0);
   positions_.resize(candidates.size());
@@ -106,15 +155,21 @@ void PersonDetector::Detect(const std::vector<LegCandidate>& candidates,
   const double single_var = options.single_leg_offset_sigma_m * options.single_leg_offset_sigma_m;
   for (size_t i = 0; i < candidates.size(); ++i) {
     const LegCandidate& c = candidates[i];
+    const double threshold =
+        options.single_leg_threshold + options.single_leg_open_edge_step * c.open_edges;
     if ((*used)[i] || c.provisional || !Finite(c) || c.surface_piece ||
-        c.leg_likeness < options.single_leg_threshold) {
+        c.leg_likeness < threshold) {
       continue;
     }
     (*used)[i] = 1;
     const Eigen::Matrix2d cartesian =
         PolarToCartesianCovariance(c.range_m, c.bearing_rad, c.covariance) +
         single_var * Eigen::Matrix2d::Identity();
-    PersonFeature person = MakePerson(positions_[i], cartesian);
+    const Eigen::Vector2d centre =
+        sight != nullptr && options.hidden_leg_centre
+            ? Eigen::Vector2d(0.5 * (positions_[i] + HiddenLegMean(positions_[i], *sight, options)))
+            : positions_[i];
+    PersonFeature person = MakePerson(centre, cartesian);
     person.num_legs = 1;
     person.leg_index[0] = c.feature_index;
     person.confidence = 0.5 * std::clamp(c.leg_likeness, 0.0, 1.0);

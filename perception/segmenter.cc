@@ -122,6 +122,7 @@ const std::vector<Feature>& Segmenter::FindPeople() {
     c.covariance = f.covariance;
     c.leg_likeness = f.leg_likeness;
     c.provisional = provisional;
+    c.open_edges = 2 - f.bounded_edges;
     // Flat (a leg, round, shows about 0.7: leg_features.h), with both edges unbounded.
     if (f.bounded_edges == 0 && f.leg_cluster >= 0) {
       const LegClusterRecord& r = leg_clusters_[static_cast<size_t>(f.leg_cluster)];
@@ -138,7 +139,8 @@ const std::vector<Feature>& Segmenter::FindPeople() {
   stats_.leg_candidates = static_cast<int64_t>(candidates_.size());
   // Provisional legs get the codes -2, -3, ... until they have a place among the features.
   for (size_t j = 0; j < provisional_.size(); ++j) add(provisional_[j], true, -2 - int32_t(j));
-  person_detector_.Detect(candidates_, options_.person, &people_, &candidate_used_);
+  person_detector_.Detect(candidates_, options_.person, &people_, &candidate_used_,
+                          SightLinesOfScan());
   for (const PersonFeature& p : people_) stats_.people_one_leg += p.num_legs == 1;
   stats_.people = static_cast<int64_t>(people_.size());
   // Provisional legs that joined a person become point features, in bearing order.
@@ -187,6 +189,27 @@ const std::vector<Feature>& Segmenter::FindPeople() {
   features_.swap(merged_);
   stats_.features = static_cast<int64_t>(features_.size());
   return features_;
+}
+
+const SightLines* Segmenter::SightLinesOfScan() {
+  if (!options_.person.hidden_leg_centre) return nullptr;
+  // The ring is in circular order: it starts anywhere. Copy it from its smallest angle on.
+  const size_t m = beams_.size();
+  size_t first = 0;
+  for (size_t k = 1; k < m; ++k) {
+    if (beams_[k].angle_rad < beams_[first].angle_rad) first = k;
+  }
+  sight_angle_.resize(m);
+  sight_range_.resize(m);
+  for (size_t i = 0, k = first; i < m; ++i, k = Next(k)) {
+    sight_angle_[i] = beams_[k].angle_rad;
+    sight_range_[i] = beams_[k].range_m;
+  }
+  sight_.angle_rad = sight_angle_.data();
+  sight_.range_m = sight_range_.data();
+  sight_.count = m;
+  sight_.max_gap_rad = options_.max_beam_gap_rad;
+  return &sight_;
 }
 
 void Segmenter::CollectBeams(const ScanView& scan) {

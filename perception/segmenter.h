@@ -239,6 +239,11 @@ class Segmenter {
   std::vector<int32_t> final_index_;
   std::vector<Feature> merged_;
   std::vector<PersonFeature> people_;
+  // The scan's usable beams in increasing angle, for the one-leg centre (person_detection.h).
+  const SightLines* SightLinesOfScan();
+  std::vector<double> sight_angle_;
+  std::vector<double> sight_range_;
+  SightLines sight_;
   PersonDetector person_detector_;
 };
 

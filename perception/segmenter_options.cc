@@ -130,6 +130,10 @@ void VisitSegmenterOptions(OptionVisitor* v, SegmenterOptions* o) {
             "body centre vs midpoint of the legs, in the covariance");
   v->Double("single_leg_offset_sigma_m", &o->person.single_leg_offset_sigma_m, R::Above(0),
             "centre vs the one visible leg, in the covariance");
+  v->Double("single_leg_open_edge_step", &o->person.single_leg_open_edge_step, R::Between(0, 1),
+            "one-leg person: more leg-likeness per edge beside a beam without a usable return");
+  v->Bool("hidden_leg_centre", &o->person.hidden_leg_centre,
+          "one-leg person: centre between the leg and where the scan cannot see (false: on the leg)");
   v->EndGroup();
   v->Double("depth_edge_m", &o->depth_edge_m, R::Above(0),
             "range jump of a depth edge (mixed pixels, `depth_edges`)");

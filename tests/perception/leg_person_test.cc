@@ -4,6 +4,8 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -145,6 +147,80 @@ TEST(PersonDetectorTest, PairsCloseLegsAndKeepsSingleLegs) {
   EXPECT_GT(single.covariance(0, 0), 2.0 * pair.covariance(0, 0));
   for (const PersonFeature& p : people) EXPECT_GT(p.covariance.determinant(), 0.0);
   EXPECT_EQ(used, (std::vector<uint8_t>{1, 1, 1}));
+}
+
+// A scan for SightLines: beams every 0.35 degrees all round, 10 m away except where `ranges`
+// puts something nearer (bearing interval in degrees -> range).
+struct SightScan {
+  std::vector<double> angle_rad, range_m;
+  SightLines View() const {
+    SightLines sight;
+    sight.angle_rad = angle_rad.data();
+    sight.range_m = range_m.data();
+    sight.count = angle_rad.size();
+    sight.max_gap_rad = 5.0 * kDeg;
+    return sight;
+  }
+};
+SightScan MakeSightScan(const std::vector<std::array<double, 3>>& nearer) {
+  SightScan scan;
+  for (int i = 0; i < 1024; ++i) {
+    const double a = -M_PI + (i + 0.5) * 2.0 * M_PI / 1024;
+    double r = 10.0;
+    for (const auto& [from_deg, to_deg, range] : nearer) {
+      if (a >= from_deg * kDeg && a <= to_deg * kDeg) r = std::min(r, range);
+    }
+    scan.angle_rad.push_back(a);
+    scan.range_m.push_back(r);
+  }
+  return scan;
+}
+
+TEST(PersonDetectorTest, OneLegCentreLiesWhereTheOtherLegCanHide) {
+  PersonDetector detector;
+  PersonDetectionOptions options;
+  std::vector<PersonFeature> people;
+  std::vector<uint8_t> used;
+  // A lone leg (radius 0.06 m) at 2 m, bearing 0: its shadow is the only place the scan does
+  // not see, so the other leg is behind it and the body beyond the leg along the sight line.
+  const double half_deg = std::atan(0.06 / 2.0) / kDeg;
+  const SightScan open = MakeSightScan({{-half_deg, half_deg, 1.94}});
+  const SightLines open_view = open.View();
+  detector.Detect({Leg(2.0, 0.0, 0.9, 0)}, options, &people, &used, &open_view);
+  ASSERT_EQ(people.size(), 1u);
+  EXPECT_EQ(people[0].num_legs, 1);
+  EXPECT_GT(people[0].range_m, 2.1);
+  EXPECT_LT(people[0].range_m, 2.0 + 0.5 * options.max_leg_separation_m);
+  EXPECT_NEAR(people[0].bearing_rad, 0.0, 0.01);
+  // A box to the left (bearings 4-14 degrees, 1.5 m) hides places near the leg too: the body
+  // moves towards it.
+  const SightScan boxed = MakeSightScan({{-half_deg, half_deg, 1.94}, {4.0, 14.0, 1.5}});
+  const SightLines boxed_view = boxed.View();
+  detector.Detect({Leg(2.0, 0.0, 0.9, 0)}, options, &people, &used, &boxed_view);
+  ASSERT_EQ(people.size(), 1u);
+  EXPECT_GT(people[0].bearing_rad, 0.02);
+  // A scan that sees every place around the leg (not even the leg's own shadow: a contrived
+  // scan) leaves the centre on the leg.
+  const SightScan none = MakeSightScan({});
+  const SightLines none_view = none.View();
+  detector.Detect({Leg(2.0, 0.0, 0.9, 0)}, options, &people, &used, &none_view);
+  ASSERT_EQ(people.size(), 1u);
+  EXPECT_NEAR(people[0].range_m, 2.0, 1e-9);
+  EXPECT_NEAR(people[0].bearing_rad, 0.0, 1e-9);
+  // Switched off, or without a scan: on the leg.
+  options.hidden_leg_centre = false;
+  detector.Detect({Leg(2.0, 0.0, 0.9, 0)}, options, &people, &used, &open_view);
+  ASSERT_EQ(people.size(), 1u);
+  EXPECT_NEAR(people[0].range_m, 2.0, 1e-9);
+  options.hidden_leg_centre = true;
+  detector.Detect({Leg(2.0, 0.0, 0.9, 0)}, options, &people, &used, nullptr);
+  ASSERT_EQ(people.size(), 1u);
+  EXPECT_NEAR(people[0].range_m, 2.0, 1e-9);
+  // Pairs are not moved.
+  detector.Detect({Leg(2.0, 0.125, 0.9, 0), Leg(2.0, -0.125, 0.8, 1)}, options, &people, &used,
+                  &open_view);
+  ASSERT_EQ(people.size(), 1u);
+  EXPECT_NEAR(people[0].range_m, 2.0, 1e-9);
 }
 
 TEST(PersonDetectorTest, SeparationBoundsAndGreedyPairing) {
