@@ -17,7 +17,9 @@
 // opening, a dark surface); a leg is round. In the world's office scenes (docs/perception.md,
 // "World scenarios") such clusters were 40 % of the false one-leg people and no real person.
 //
-// One-leg centre (PersonDetectionOptions::hidden_leg_centre, with the scan's SightLines): the
+// One-leg centre (PersonDetectionOptions::hidden_leg_centre, off by default: it helps the
+// detection figures but costs the estimator's office people MOTA, docs/perception.md "World
+// scenarios", item 4; with the scan's SightLines): the
 // other leg is somewhere min_leg_separation_m-max_leg_separation_m from the visible one, and
 // where the scan sees past a place it is not there. The other leg is taken at the mean of the
 // places around the visible leg (a polar grid) that the scan does not see: behind the visible
@@ -89,7 +91,7 @@ struct PersonDetectionOptions {
   double single_leg_threshold = 0.65;
   double pair_centre_sigma_m = 0.05;
   double single_leg_offset_sigma_m = 0.15;
-  bool hidden_leg_centre = true;
+  bool hidden_leg_centre = false;
   // A one-leg person needs this much more leg-likeness per open edge of its leg.
   double single_leg_open_edge_step = 0.0;
 };

@@ -179,6 +179,7 @@ SightScan MakeSightScan(const std::vector<std::array<double, 3>>& nearer) {
 TEST(PersonDetectorTest, OneLegCentreLiesWhereTheOtherLegCanHide) {
   PersonDetector detector;
   PersonDetectionOptions options;
+  options.hidden_leg_centre = true;
   std::vector<PersonFeature> people;
   std::vector<uint8_t> used;
   // A lone leg (radius 0.06 m) at 2 m, bearing 0: its shadow is the only place the scan does
