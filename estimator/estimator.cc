@@ -90,6 +90,7 @@ void Estimator::StartOver() {
   last_finite_pose_covariance_ = state_.robot_covariance();
   line_candidates_.clear();
   archive_.Clear();
+  pose_history_.Clear();
 }
 
 bool Estimator::AcceptTime(const char* what, int64_t utime, StreamClock* clock) {
@@ -234,7 +235,22 @@ ScanResult Estimator::ProcessScan(const ScanInput& scan, std::mt19937_64* rng,
   lap(Substage::kTrackManagement);
   ++counters_.scans_processed;
   ReportEstimate(scan.utime, &result);
+  pose_history_.Record(scan.utime, state_.robot_pose());
   return result;
+}
+
+FeedbackCounts Estimator::ApplySmoothedEstimate(const SmoothedEstimate& smoothed) {
+  const std::optional<Eigen::Vector3d> filter_then = pose_history_.At(smoothed.utime);
+  if (!filter_then) {
+    ++counters_.smoother_feedbacks_stale;
+    return FeedbackCounts{};
+  }
+  const Eigen::Vector3d pose_now =
+      CarryPoseForward(smoothed.pose, *filter_then, state_.robot_pose());
+  const FeedbackCounts counts = ShiftToSmoothedEstimate(smoothed, pose_now, &state_, &archive_);
+  pose_history_.KeepNewestAs(state_.robot_pose());
+  ++counters_.smoother_feedbacks;
+  return counts;
 }
 
 void Estimator::PropagateState(const ScanInput& scan, ScanInProgress* s) {

@@ -77,6 +77,7 @@
 #include "estimator/scan_alignment.h"
 #include "estimator/scan_prediction.h"
 #include "estimator/slam_state.h"
+#include "estimator/smoother_feedback.h"
 #include "estimator/static_observations.h"
 #include "estimator/step_counts.h"
 #include "estimator/time_base.h"
@@ -163,6 +164,8 @@ struct EstimatorCounters {
   int64_t updates_failed = 0;
   int64_t static_updates_skipped = 0;
   int64_t restarts = 0;                // new time bases back (time_base.h): started over
+  int64_t smoother_feedbacks = 0;      // smoothed estimates applied (smoother_feedback.h)
+  int64_t smoother_feedbacks_stale = 0;  // not applied: their scan no longer in the history
   int64_t time_jumps_rejected = 0;     // messages whose utime jumped, not (yet) a new time base
   int64_t odometry_frame_jumps = 0;    // odometry re-anchored in a new frame
   int64_t state_recoveries = 0;        // scans that ended non-finite and were recovered
@@ -191,6 +194,14 @@ class Estimator {
   // of `options` is read, and the state is kept (landmarks live in the map frame). Throws
   // std::invalid_argument with CheckEstimatorOptions()'s message for unusable options.
   void SetLaserGeometry(const EstimatorOptions& options);
+
+  // The smoother's estimate of an earlier (or the newest) scan (smoother_feedback.h): the
+  // robot's pose, carried forward along the filter's motion since that scan, and the confirmed
+  // static landmarks the smoother holds move to it; the covariance is kept. Not applied
+  // (counts.applied false) when the scan is not among the last 64 processed or precedes the
+  // last correction or a restart. Applied whatever options().smoother_feedback says: that
+  // option tells the stage whether to call it.
+  FeedbackCounts ApplySmoothedEstimate(const SmoothedEstimate& smoothed);
 
   const EstimatorCounters& counters() const { return counters_; }
   // Description of the last unusual event ("" if none yet).
@@ -283,6 +294,7 @@ class Estimator {
   Eigen::Matrix3d last_finite_pose_covariance_ = Eigen::Matrix3d::Zero();
   std::vector<LineCandidate> line_candidates_;  // straight runs not yet line landmarks
   RobotMotion last_motion_;  // of the last prediction (ScanResult::motion)
+  ScanPoseHistory pose_history_;  // the pose after each recent scan (smoother feedback)
   int64_t next_id_ = 1;
 };
 

@@ -123,6 +123,8 @@ void VisitRobustnessOptions(OptionVisitor* v, EstimatorOptions* o) {
   v->EndGroup();
   v->Bool("smoother_first_sightings", &o->smoother_first_sightings,
           "SMOOTHER_INPUT also carries the sighting that started each object (tentative)");
+  v->Bool("smoother_feedback", &o->smoother_feedback,
+          "after each SMOOTHED_MAP the pose and static landmarks move to the smoother's estimate");
   v->Int("max_features_per_scan", &o->max_features_per_scan, R::Between(1, 1000000),
          "the most features of a scan used (the nearest); the rest dropped and counted");
 }

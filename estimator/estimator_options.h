@@ -136,6 +136,10 @@ struct EstimatorOptions {
   // on 21 of 30 without them (median ratio 0.52, seed 7 0.190 m) and on 20 with them (0.85,
   // 0.428 m), while the odometry's stated covariance is too large (docs/smoother.md).
   bool smoother_first_sightings = false;
+  // The smoother's estimate fed back (smoother_feedback.h, docs/smoother.md "Feedback"): after
+  // each SMOOTHED_MAP, the robot's pose and the confirmed static landmarks the smoother holds
+  // move to its estimate (the means only; the covariance stays). Off by default (measured).
+  bool smoother_feedback = false;
   // The most features of one scan that are used: beyond, the nearest are kept (ties: input
   // order) and the others dropped and counted (features_over_cap). With max_objects this
   // bounds the pairs a scan judges (gating, levels, RANSAC). 512 is above every real scene we

@@ -305,6 +305,9 @@ EstimatorStage::EstimatorStage(const EstimatorStageOptions& options, const Chann
       map_channel_(channels.Get("map")),
       tracks_channel_(channels.Get("tracks")),
       smoother_input_channel_(channels.Get("smoother_input")),
+      smoother_feedback_(options.estimator.smoother_feedback),
+      smoothed_pose_channel_(channels.Get("smoothed_pose")),
+      smoothed_map_channel_(channels.Get("smoothed_map")),
       status_channel_(channels.Get("estimator_status")),
       timing_channel_(channels.Get("stage_timing")) {}
 
@@ -312,6 +315,10 @@ EstimatorStage::EstimatorStage(const ProcessSettings& settings)
     : EstimatorStage(ReadEstimatorOptions(settings.config.Child("estimator")), settings.channels) {}
 
 std::vector<std::string> EstimatorStage::InputChannels() const {
+  if (smoother_feedback_) {
+    return {odometry_channel_, features_channel_, laser_geometry_channel_, smoothed_pose_channel_,
+            smoothed_map_channel_};
+  }
   return {odometry_channel_, features_channel_, laser_geometry_channel_};
 }
 
@@ -327,7 +334,42 @@ void EstimatorStage::Handle(const std::string& channel, const void* data, int si
     HandleFeatures(data, size, out);
   } else if (channel == laser_geometry_channel_) {
     HandleLaserGeometry(data, size);
+  } else if (smoother_feedback_ && channel == smoothed_pose_channel_) {
+    HandleSmoothedPose(data, size);
+  } else if (smoother_feedback_ && channel == smoothed_map_channel_) {
+    HandleSmoothedMap(data, size);
   }
+}
+
+void EstimatorStage::HandleSmoothedPose(const void* data, int size) {
+  slammtt_msgs::pose_t message;
+  if (!Decode(data, size, &message)) {
+    Undecodable("undecodable pose_t message on " + smoothed_pose_channel_ + " dropped");
+    return;
+  }
+  const Eigen::Vector3d pose(message.x_m, message.y_m, message.heading_rad);
+  if (!pose.allFinite()) return;
+  smoothed_pose_ = std::make_pair(message.utime, pose);
+}
+
+void EstimatorStage::HandleSmoothedMap(const void* data, int size) {
+  slammtt_msgs::map_t message;
+  if (!Decode(data, size, &message)) {
+    Undecodable("undecodable map_t message on " + smoothed_map_channel_ + " dropped");
+    return;
+  }
+  // The smoother publishes the pose of a scan before its map: without the pose of the same
+  // scan, the map alone would move the landmarks away from the robot that sees them.
+  if (!smoothed_pose_ || smoothed_pose_->first != message.utime) return;
+  SmoothedEstimate smoothed;
+  smoothed.utime = message.utime;
+  smoothed.pose = smoothed_pose_->second;
+  smoothed.landmarks.reserve(message.landmarks.size());
+  for (const slammtt_msgs::landmark_t& l : message.landmarks) {
+    const Eigen::Vector2d position(l.x_m, l.y_m);
+    if (position.allFinite()) smoothed.landmarks.emplace_back(l.id, position);
+  }
+  estimator_.ApplySmoothedEstimate(smoothed);
 }
 
 void EstimatorStage::Undecodable(const std::string& what) {

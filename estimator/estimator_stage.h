@@ -21,6 +21,9 @@
 //    "level1", "ransac", "level2_3", "track_management"; counters "features" (received),
 //    "objects" (after the scan), "hypotheses" (RANSAC hypotheses of this scan), "updates",
 //    "updates_skipped", "lines" (line features received), "line_updates", "new_lines".
+// Per pose_t on SMOOTHED_POSE and map_t on SMOOTHED_MAP (only with the estimator's
+// smoother_feedback: then they are input channels): the smoother's estimate moves the filter's
+// pose and static landmarks (smoother_feedback.h); nothing is published.
 // Per laser_geometry_t: the parts of the laser geometry the configuration does not give are
 // taken from it, and the parts it gives are compared with it (laser_geometry.h); nothing is
 // published. Each geometry the log gives is reported once, in one line on stderr: what was
@@ -32,12 +35,14 @@
 // 1st, 10th, 100th, ... time) and nothing is published: it has no trustworthy utime.
 #pragma once
 
+#include <Eigen/Core>
 #include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "estimator/estimator.h"
@@ -116,6 +121,11 @@ class EstimatorStage : public Stage {
   void HandleOdometry(const void* data, int size, MessageSink& out);
   void HandleFeatures(const void* data, int size, MessageSink& out);
   void HandleLaserGeometry(const void* data, int size);
+  // With smoother_feedback: SMOOTHED_POSE is kept; the SMOOTHED_MAP of the same utime then
+  // moves the filter to the smoother's estimate (Estimator::ApplySmoothedEstimate). Nothing is
+  // published: the next scan's POSE and MAP carry the correction.
+  void HandleSmoothedPose(const void* data, int size);
+  void HandleSmoothedMap(const void* data, int size);
   void PublishStatus(int64_t utime, MessageSink& out);
   void PublishSmootherInput(const ScanResult& result, MessageSink& out);
   void Undecodable(const std::string& what);
@@ -135,6 +145,10 @@ class EstimatorStage : public Stage {
   std::string map_channel_;
   std::string tracks_channel_;
   std::string smoother_input_channel_;
+  bool smoother_feedback_;
+  std::string smoothed_pose_channel_;
+  std::string smoothed_map_channel_;
+  std::optional<std::pair<int64_t, Eigen::Vector3d>> smoothed_pose_;  // the last SMOOTHED_POSE
   std::string status_channel_;
   std::string timing_channel_;
   EstimatorStageCounters counters_;

@@ -101,6 +101,13 @@ int LandmarkArchive::Archive(const LandmarkWindowOptions& options, SlamState* st
   return static_cast<int>(leaving.size());
 }
 
+bool LandmarkArchive::MoveLandmark(int64_t id, const Eigen::Vector2d& position_m) {
+  const auto it = landmarks_.find(id);
+  if (it == landmarks_.end()) return false;
+  it->second.position_m = position_m;
+  return true;
+}
+
 int LandmarkArchive::Store(const SlamState& state, const std::vector<int>& indices) {
   int stored = 0;
   for (const int k : indices) {

@@ -82,6 +82,9 @@ class LandmarkArchive {
 
   // By id.
   const std::map<int64_t, ArchivedLandmark>& landmarks() const { return landmarks_; }
+  // Moves an archived landmark's mean (the smoother's feedback, smoother_feedback.h); false
+  // when the id is not in the archive.
+  bool MoveLandmark(int64_t id, const Eigen::Vector2d& position_m);
   int size() const { return static_cast<int>(landmarks_.size()); }
   void Clear() { landmarks_.clear(); }
 

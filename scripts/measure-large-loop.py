@@ -19,7 +19,7 @@ p50 / p99 / max over the run's scans. Times are wall-clock times of the replay o
 Usage:
   scripts/measure-large-loop.py OUT [--seeds 1-10] [--curve 100,500,1000,2000,5000]
       [--curve-seed 1] [--no-seeds] [--no-curve] [--smoother-yaml FILE] [--keep-logs]
-      [--bin-dir DIR]
+      [--bin-dir DIR] [--estimator-set KEY=VALUE ...]
 Prints one line per run and writes OUT/large-loop.json. Needs the venv of
 scripts/python-env.sh (the log reader) as every Python tool: run it with build/venv/bin/python
 or PYTHONPATH=python and a venv holding lcm.
@@ -72,9 +72,12 @@ def scenario_file(out, count):
     return path
 
 
-def config_file(out, smoother_yaml):
+def config_file(out, smoother_yaml, estimator_keys=()):
     with open(os.path.join(ROOT, "estimator", "config", "large-loop.yaml")) as f:
         text = f.read()
+    for key_value in estimator_keys:
+        key, _, value = key_value.partition("=")
+        text = re.sub(r"(?m)^estimator:\n", f"estimator:\n  {key}: {value}\n", text, count=1)
     if smoother_yaml:
         text = re.sub(r"(?ms)^smoother:.*", "", text)
         with open(smoother_yaml) as f:
@@ -191,11 +194,13 @@ def main():
     parser.add_argument("--smoother-yaml", default=None,
                         help="a file with a `smoother:` section replacing the configuration's")
     parser.add_argument("--keep-logs", action="store_true")
+    parser.add_argument("--estimator-set", action="append", default=[], metavar="KEY=VALUE",
+                        help="a key of the `estimator:` section (e.g. smoother_feedback=true)")
     parser.add_argument("--bin-dir", default=os.path.join(ROOT, "build", "bin"),
                         help="where slammtt-world, -replay and -eval are (default: build/bin)")
     args = parser.parse_args()
     os.makedirs(args.out, exist_ok=True)
-    config = config_file(args.out, args.smoother_yaml)
+    config = config_file(args.out, args.smoother_yaml, args.estimator_set)
     results = {"config": open(config).read(), "load_average": os.getloadavg(), "seeds": [],
                "curve": []}
     print("count seed  figures")

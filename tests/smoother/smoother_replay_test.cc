@@ -104,5 +104,50 @@ TEST(SmootherReplayTest, SmoothedTrajectoryAndMapAreDeterministicAndScored) {
   }
 }
 
+// The estimator's smoother_feedback (docs/smoother.md, "Feedback"): in replay the smoother's
+// SMOOTHED_POSE and SMOOTHED_MAP go back to the estimator before the next scan, so the output is
+// the same bytes every run, and the filter's outputs change (they follow the smoother). (About
+// 15 s: three replays.)
+TEST(SmootherReplayTest, FeedbackIsDeterministicAndMovesTheFilter) {
+  testing::TempDir dir;
+  std::string out;
+  ASSERT_EQ(Shell(Bin("slammtt-world") + " --scenario s1-crossing --seed 1 --log " +
+                      dir.File("world.lcm"),
+                  &out),
+            0)
+      << out;
+  {
+    std::string config = testing::FileBytes(Config());
+    const std::string section = "estimator:\n";
+    const size_t at = config.find(section);
+    ASSERT_NE(at, std::string::npos);
+    config.insert(at + section.size(), "  smoother_feedback: true\n");
+    std::ofstream(dir.File("feedback.yaml")) << config << "smoother: {}\n";
+  }
+  for (const char* name : {"a.lcm", "b.lcm"}) {
+    ASSERT_EQ(Shell(Bin("slammtt-replay") + " " + dir.File("world.lcm") + " -o " +
+                        dir.File(name) + " --no-timing --config " + dir.File("feedback.yaml"),
+                    &out),
+              0)
+        << out;
+  }
+  EXPECT_EQ(testing::FileBytes(dir.File("a.lcm")), testing::FileBytes(dir.File("b.lcm")));
+  ASSERT_EQ(Shell(Bin("slammtt-replay") + " " + dir.File("world.lcm") + " -o " +
+                      dir.File("without.lcm") + " --no-timing --stage estimator --config " +
+                      dir.File("feedback.yaml"),
+                  &out),
+            0)
+      << out;
+  auto with = Channels(dir.File("a.lcm"));
+  auto without = Channels(dir.File("without.lcm"));
+  EXPECT_EQ(with["POSE"].size(), without["POSE"].size());
+  EXPECT_EQ(with["SMOOTHED_POSE"].size(), 961u);
+  // Without the smoother's stage nothing comes back: the filter of a replay without feedback.
+  EXPECT_EQ(without.count("SMOOTHED_POSE"), 0u);
+  EXPECT_FALSE(with["POSE"] == without["POSE"]);
+  // Before the first SMOOTHED_MAP (the 8th keyframe) nothing has been fed back.
+  for (size_t k = 0; k < 8; ++k) EXPECT_EQ(with["POSE"][k], without["POSE"][k]) << k;
+}
+
 }  // namespace
 }  // namespace slammtt
