@@ -139,7 +139,7 @@ SmoothedScan KeyframeSmoother::AddScan(const SmootherScanInput& scan) {
       // every metre at 1 m/s and 8 Hz); without them the map's rotation about the first pose
       // rests on a few keyframes' bearings (docs/smoother.md, "Large loop").
       const SensorMount mount = MountSinceKeyframe(scan.mount);
-      AddObservations(scan, mount, MotionCovarianceOfObservations(scan, mount));
+      FuseObservations(scan, mount, MotionCovarianceOfObservations(scan, mount));
     }
   }
   FillPose(&out);
@@ -151,6 +151,7 @@ void KeyframeSmoother::StartProblem(const SmootherScanInput& scan) {
   smoother_ = std::make_unique<Smoother>(options_.solver);
   keyframe_utimes_.clear();
   held_.clear();
+  fused_.clear();
   keyframes_since_batch_ = 0;
   motion_.setZero();
   motion_covariance_.setZero();
@@ -212,6 +213,7 @@ bool KeyframeSmoother::IsKeyframe(int64_t utime) const {
 }
 
 void KeyframeSmoother::AddKeyframe(const SmootherScanInput& scan, SmoothedScan* out) {
+  FlushFused();
   const PoseId id = LastKeyframe() + 1;
   const Eigen::LLT<Eigen::Matrix3d> llt(motion_covariance_);
   if (llt.info() != Eigen::Success || !motion_covariance_.allFinite()) {
@@ -302,6 +304,57 @@ void KeyframeSmoother::AddObservations(const SmootherScanInput& scan, const Sens
   }
 }
 
+void KeyframeSmoother::FuseObservations(const SmootherScanInput& scan, const SensorMount& mount,
+                                        const std::vector<Eigen::Matrix2d>& extra_covariance) {
+  SmootherScanInput rest = scan;
+  rest.observations.clear();
+  std::vector<Eigen::Matrix2d> rest_extra;
+  for (size_t k = 0; k < scan.observations.size(); ++k) {
+    StaticObservation o = scan.observations[k];
+    if (k < extra_covariance.size() && extra_covariance[k].allFinite()) {
+      o.covariance += extra_covariance[k];
+    }
+    if (ObservationProblem(o) || !smoother_->LandmarkEstimate(o.landmark_id)) {
+      // Refused, held or a new landmark: one by one.
+      rest.observations.push_back(scan.observations[k]);
+      rest_extra.push_back(k < extra_covariance.size() ? extra_covariance[k]
+                                                       : Eigen::Matrix2d::Zero());
+      continue;
+    }
+    // The point in the keyframe's frame and its covariance J C J^T, J = d point / d (range,
+    // bearing) = [u, r n] (u the ray's direction, n its left normal).
+    const Eigen::Vector2d point =
+        PointFromRangeBearing(Eigen::Vector3d::Zero(), o.range_bearing, mount);
+    const double angle = mount.yaw_rad + o.range_bearing(1);
+    Eigen::Matrix2d jacobian;
+    jacobian << std::cos(angle), -o.range_bearing(0) * std::sin(angle), std::sin(angle),
+        o.range_bearing(0) * std::cos(angle);
+    const Eigen::Matrix2d covariance = jacobian * o.covariance * jacobian.transpose();
+    const Eigen::LLT<Eigen::Matrix2d> llt(0.5 * (covariance + covariance.transpose()));
+    if (llt.info() != Eigen::Success) {
+      Refused("landmark " + std::to_string(o.landmark_id) +
+              ": observation's position covariance is not positive definite");
+      continue;
+    }
+    const Eigen::Matrix2d information = llt.solve(Eigen::Matrix2d::Identity());
+    Fused& fused = fused_[o.landmark_id];
+    fused.information += information;
+    fused.information_vector += information * point;
+    ++counters_.observations_used;
+  }
+  AddObservations(rest, mount, rest_extra);
+}
+
+void KeyframeSmoother::FlushFused() {
+  for (const auto& [id, fused] : fused_) {
+    if (!smoother_->LandmarkEstimate(id)) continue;  // removed meanwhile
+    const Eigen::Matrix2d information = 0.5 * (fused.information + fused.information.transpose());
+    const Eigen::Vector2d position = information.ldlt().solve(fused.information_vector);
+    Refused(smoother_->AddRelativePosition(LastKeyframe(), id, position, information));
+  }
+  fused_.clear();
+}
+
 void KeyframeSmoother::Hold(const StaticObservation& observation, const SensorMount& mount) {
   std::deque<Held>& held = held_[observation.landmark_id];
   held.push_back(Held{LastKeyframe(), observation, mount});
@@ -347,6 +400,7 @@ void KeyframeSmoother::AddRangeBearing(PoseId pose, const StaticObservation& o,
 
 void KeyframeSmoother::RemoveLandmarks(const std::vector<int64_t>& ids) {
   for (const int64_t id : ids) {
+    fused_.erase(id);
     const auto held = held_.find(id);
     if (held != held_.end()) {
       counters_.held_observations_dropped += static_cast<int64_t>(held->second.size());

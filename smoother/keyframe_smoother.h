@@ -149,6 +149,14 @@ class KeyframeSmoother {
   void AddObservations(const SmootherScanInput& scan, const SensorMount& mount,
                        const std::vector<Eigen::Matrix2d>& extra_covariance);
   void AddObservations(const SmootherScanInput& scan) { AddObservations(scan, scan.mount, {}); }
+  // The observations of a scan between keyframes: those of landmarks in the problem are fused
+  // per landmark into one position in the last keyframe's frame (information-weighted, each
+  // converted with its covariance), added as one relative-position factor per landmark when
+  // the next keyframe comes (FlushFused): one factor per landmark and keyframe instead of one
+  // per scan, so that the cost per keyframe stays what it was; the others as AddObservations.
+  void FuseObservations(const SmootherScanInput& scan, const SensorMount& mount,
+                        const std::vector<Eigen::Matrix2d>& extra_covariance);
+  void FlushFused();
   // The laser of a scan between keyframes in the last keyframe's frame, and what the motion's
   // covariance adds to each observation's (range, bearing) covariance.
   SensorMount MountSinceKeyframe(const SensorMount& mount) const;
@@ -185,6 +193,11 @@ class KeyframeSmoother {
     SensorMount mount;  // the laser in the keyframe's frame
   };
   std::map<int64_t, std::deque<Held>> held_;  // by object id
+  struct Fused {
+    Eigen::Matrix2d information = Eigen::Matrix2d::Zero();   // sum of C^-1
+    Eigen::Vector2d information_vector = Eigen::Vector2d::Zero();  // sum of C^-1 p
+  };
+  std::map<int64_t, Fused> fused_;  // by landmark id, in the last keyframe's frame
 };
 
 }  // namespace slammtt
