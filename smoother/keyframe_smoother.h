@@ -18,8 +18,12 @@
 //     object that is not in the problem yet is held with its keyframe (at most
 //     max_held_observations per object) until the object's first confirmed static observation,
 //     which adds the landmark and every held observation; a removal drops what is held.
-//     Observations of other scans are not used (counted). Then one incremental Update, and a
-//     batch Optimize every optimize_every_keyframes keyframes.
+//     The observations of a scan between keyframes (between_keyframe_observations) are
+//     converted into positions in the last keyframe's frame through the motion since it (the
+//     mount composed with it, the motion's covariance added to R) and fused per landmark; at
+//     the next keyframe each landmark's fused position is one relative-position factor on the
+//     last keyframe. Then one incremental Update, and a batch Optimize every
+//     optimize_every_keyframes keyframes.
 //  5. The robot's smoothed pose at the scan: the last keyframe's estimate composed with the
 //     motion since.
 // Bad input (a non-finite number, a covariance that is not positive definite, a range <= 0) is
