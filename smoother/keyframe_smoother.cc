@@ -2,6 +2,7 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <utility>
@@ -83,6 +84,12 @@ void VisitKeyframeSmootherOptions(OptionVisitor* v, KeyframeSmootherOptions* o) 
           "publish the marginal covariances of the pose and the landmarks");
   v->Int("max_held_observations", &o->max_held_observations, R::Between(0, 1e9),
          "tentative observations held per object until it is a static landmark");
+  v->Bool("between_keyframe_observations", &o->between_keyframe_observations,
+          "the observations of scans between keyframes: factors on the last keyframe through "
+          "the motion since it (false: left out)");
+  v->Double("between_keyframe_variance_scale", &o->between_keyframe_variance_scale,
+            R::AtLeast(0),
+            "factor on the motion's covariance added to those observations' covariance");
   v->Int("map_every_keyframes", &o->map_every_keyframes, R::Between(1, 1e9),
          "SMOOTHED_MAP at every this many keyframes (its covariances cost the most)");
   v->BeginGroup("solver");
@@ -127,6 +134,13 @@ SmoothedScan KeyframeSmoother::AddScan(const SmootherScanInput& scan) {
     Solve(&out);
   } else {
     counters_.observations_between_keyframes += static_cast<int64_t>(scan.observations.size());
+    if (options_.between_keyframe_observations) {
+      // The scan's sightings are the larger part of what the scans say (7 of 8 with a keyframe
+      // every metre at 1 m/s and 8 Hz); without them the map's rotation about the first pose
+      // rests on a few keyframes' bearings (docs/smoother.md, "Large loop").
+      const SensorMount mount = MountSinceKeyframe(scan.mount);
+      FuseObservations(scan, mount, MotionCovarianceOfObservations(scan, mount));
+    }
   }
   FillPose(&out);
   return out;
@@ -137,6 +151,7 @@ void KeyframeSmoother::StartProblem(const SmootherScanInput& scan) {
   smoother_ = std::make_unique<Smoother>(options_.solver);
   keyframe_utimes_.clear();
   held_.clear();
+  fused_.clear();
   keyframes_since_batch_ = 0;
   motion_.setZero();
   motion_covariance_.setZero();
@@ -198,6 +213,7 @@ bool KeyframeSmoother::IsKeyframe(int64_t utime) const {
 }
 
 void KeyframeSmoother::AddKeyframe(const SmootherScanInput& scan, SmoothedScan* out) {
+  FlushFused();
   const PoseId id = LastKeyframe() + 1;
   const Eigen::LLT<Eigen::Matrix3d> llt(motion_covariance_);
   if (llt.info() != Eigen::Success || !motion_covariance_.allFinite()) {
@@ -227,8 +243,49 @@ void KeyframeSmoother::AddKeyframe(const SmootherScanInput& scan, SmoothedScan* 
   AddObservations(scan);
 }
 
-void KeyframeSmoother::AddObservations(const SmootherScanInput& scan) {
+SensorMount KeyframeSmoother::MountSinceKeyframe(const SensorMount& mount) const {
+  const Eigen::Vector3d laser =
+      ComposePoses(motion_, Eigen::Vector3d(mount.forward_m, mount.left_m, mount.yaw_rad));
+  SensorMount since;
+  since.forward_m = laser(0);
+  since.left_m = laser(1);
+  since.yaw_rad = WrapAngle(laser(2));
+  return since;
+}
+
+std::vector<Eigen::Matrix2d> KeyframeSmoother::MotionCovarianceOfObservations(
+    const SmootherScanInput& scan, const SensorMount& mount) const {
+  // The landmark fixed in the keyframe's frame, (range, bearing) as a function of the motion
+  // m = (x, y, theta) since the keyframe: the laser at t = (x, y) + R(theta) (a, b), heading
+  // theta + yaw; dr = -u . dt, dbearing = (n . dt) / r... with u the ray's direction, n its
+  // left normal: dbearing = -(n . dt) / r - dtheta (paper eq. 10 differentiated).
+  const Eigen::Vector2d lever(-std::sin(motion_(2)) * scan.mount.forward_m -
+                                  std::cos(motion_(2)) * scan.mount.left_m,
+                              std::cos(motion_(2)) * scan.mount.forward_m -
+                                  std::sin(motion_(2)) * scan.mount.left_m);
+  std::vector<Eigen::Matrix2d> added;
+  added.reserve(scan.observations.size());
   for (const StaticObservation& o : scan.observations) {
+    const double range = std::max(o.range_bearing(0), 1e-3);
+    const double angle = mount.yaw_rad + o.range_bearing(1);
+    const Eigen::Vector2d u(std::cos(angle), std::sin(angle));
+    const Eigen::Vector2d n(-u(1), u(0));
+    Eigen::Matrix<double, 2, 3> jacobian;
+    jacobian << -u(0), -u(1), -u.dot(lever), -n(0) / range, -n(1) / range,
+        -n.dot(lever) / range - 1.0;
+    const Eigen::Matrix2d c = jacobian * motion_covariance_ * jacobian.transpose();
+    added.push_back(options_.between_keyframe_variance_scale * 0.5 * (c + c.transpose()));
+  }
+  return added;
+}
+
+void KeyframeSmoother::AddObservations(const SmootherScanInput& scan, const SensorMount& mount,
+                                       const std::vector<Eigen::Matrix2d>& extra_covariance) {
+  for (size_t k = 0; k < scan.observations.size(); ++k) {
+    StaticObservation o = scan.observations[k];
+    if (k < extra_covariance.size() && extra_covariance[k].allFinite()) {
+      o.covariance += extra_covariance[k];
+    }
     // Checked before a new landmark is added: a landmark without its factor would leave the
     // problem unconstrained.
     const std::optional<std::string> problem = ObservationProblem(o);
@@ -238,18 +295,69 @@ void KeyframeSmoother::AddObservations(const SmootherScanInput& scan) {
     }
     if (!smoother_->LandmarkEstimate(o.landmark_id)) {
       if (o.tentative) {
-        Hold(o);
+        Hold(o, mount);
         continue;
       }
-      if (!AddLandmarkWithHeld(o, scan.mount)) continue;
+      if (!AddLandmarkWithHeld(o, mount)) continue;
     }
-    AddRangeBearing(LastKeyframe(), o, scan.mount);
+    AddRangeBearing(LastKeyframe(), o, mount);
   }
 }
 
-void KeyframeSmoother::Hold(const StaticObservation& observation) {
+void KeyframeSmoother::FuseObservations(const SmootherScanInput& scan, const SensorMount& mount,
+                                        const std::vector<Eigen::Matrix2d>& extra_covariance) {
+  SmootherScanInput rest = scan;
+  rest.observations.clear();
+  std::vector<Eigen::Matrix2d> rest_extra;
+  for (size_t k = 0; k < scan.observations.size(); ++k) {
+    StaticObservation o = scan.observations[k];
+    if (k < extra_covariance.size() && extra_covariance[k].allFinite()) {
+      o.covariance += extra_covariance[k];
+    }
+    if (ObservationProblem(o) || !smoother_->LandmarkEstimate(o.landmark_id)) {
+      // Refused, held or a new landmark: one by one.
+      rest.observations.push_back(scan.observations[k]);
+      rest_extra.push_back(k < extra_covariance.size() ? extra_covariance[k]
+                                                       : Eigen::Matrix2d::Zero());
+      continue;
+    }
+    // The point in the keyframe's frame and its covariance J C J^T, J = d point / d (range,
+    // bearing) = [u, r n] (u the ray's direction, n its left normal).
+    const Eigen::Vector2d point =
+        PointFromRangeBearing(Eigen::Vector3d::Zero(), o.range_bearing, mount);
+    const double angle = mount.yaw_rad + o.range_bearing(1);
+    Eigen::Matrix2d jacobian;
+    jacobian << std::cos(angle), -o.range_bearing(0) * std::sin(angle), std::sin(angle),
+        o.range_bearing(0) * std::cos(angle);
+    const Eigen::Matrix2d covariance = jacobian * o.covariance * jacobian.transpose();
+    const Eigen::LLT<Eigen::Matrix2d> llt(0.5 * (covariance + covariance.transpose()));
+    if (llt.info() != Eigen::Success) {
+      Refused("landmark " + std::to_string(o.landmark_id) +
+              ": observation's position covariance is not positive definite");
+      continue;
+    }
+    const Eigen::Matrix2d information = llt.solve(Eigen::Matrix2d::Identity());
+    Fused& fused = fused_[o.landmark_id];
+    fused.information += information;
+    fused.information_vector += information * point;
+    ++counters_.observations_used;
+  }
+  AddObservations(rest, mount, rest_extra);
+}
+
+void KeyframeSmoother::FlushFused() {
+  for (const auto& [id, fused] : fused_) {
+    if (!smoother_->LandmarkEstimate(id)) continue;  // removed meanwhile
+    const Eigen::Matrix2d information = 0.5 * (fused.information + fused.information.transpose());
+    const Eigen::Vector2d position = information.ldlt().solve(fused.information_vector);
+    Refused(smoother_->AddRelativePosition(LastKeyframe(), id, position, information));
+  }
+  fused_.clear();
+}
+
+void KeyframeSmoother::Hold(const StaticObservation& observation, const SensorMount& mount) {
   std::deque<Held>& held = held_[observation.landmark_id];
-  held.push_back(Held{LastKeyframe(), observation});
+  held.push_back(Held{LastKeyframe(), observation, mount});
   ++counters_.observations_held;
   if (static_cast<int>(held.size()) > options_.max_held_observations) {
     held.pop_front();
@@ -264,15 +372,16 @@ bool KeyframeSmoother::AddLandmarkWithHeld(const StaticObservation& observation,
   const PoseId first_pose = has_held ? held->second.front().keyframe : LastKeyframe();
   const Eigen::Vector2d first_range_bearing =
       has_held ? held->second.front().observation.range_bearing : observation.range_bearing;
+  const SensorMount first_mount = has_held ? held->second.front().mount : mount;
   const std::optional<std::string> error = smoother_->AddLandmark(
-      observation.landmark_id,
-      PointFromRangeBearing(*smoother_->PoseEstimate(first_pose), first_range_bearing, mount));
+      observation.landmark_id, PointFromRangeBearing(*smoother_->PoseEstimate(first_pose),
+                                                     first_range_bearing, first_mount));
   if (error) {
     Refused(error);
     return false;
   }
   if (has_held) {
-    for (const Held& h : held->second) AddRangeBearing(h.keyframe, h.observation, mount);
+    for (const Held& h : held->second) AddRangeBearing(h.keyframe, h.observation, h.mount);
     held_.erase(held);
   }
   return true;
@@ -291,6 +400,7 @@ void KeyframeSmoother::AddRangeBearing(PoseId pose, const StaticObservation& o,
 
 void KeyframeSmoother::RemoveLandmarks(const std::vector<int64_t>& ids) {
   for (const int64_t id : ids) {
+    fused_.erase(id);
     const auto held = held_.find(id);
     if (held != held_.end()) {
       counters_.held_observations_dropped += static_cast<int64_t>(held->second.size());

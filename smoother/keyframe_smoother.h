@@ -18,8 +18,12 @@
 //     object that is not in the problem yet is held with its keyframe (at most
 //     max_held_observations per object) until the object's first confirmed static observation,
 //     which adds the landmark and every held observation; a removal drops what is held.
-//     Observations of other scans are not used (counted). Then one incremental Update, and a
-//     batch Optimize every optimize_every_keyframes keyframes.
+//     The observations of a scan between keyframes (between_keyframe_observations) are
+//     converted into positions in the last keyframe's frame through the motion since it (the
+//     mount composed with it, the motion's covariance added to R) and fused per landmark; at
+//     the next keyframe each landmark's fused position is one relative-position factor on the
+//     last keyframe. Then one incremental Update, and a batch Optimize every
+//     optimize_every_keyframes keyframes.
 //  5. The robot's smoothed pose at the scan: the last keyframe's estimate composed with the
 //     motion since.
 // Bad input (a non-finite number, a covariance that is not positive definite, a range <= 0) is
@@ -65,6 +69,12 @@ struct KeyframeSmootherOptions {
   double prior_min_sigma_rad = 0.001;
   // Tentative observations held per object (the oldest are dropped beyond).
   int max_held_observations = 400;
+  // Observations of the scans between keyframes: used as range-bearing factors on the last
+  // keyframe through the motion since it (the laser's mount composed with that motion), their
+  // covariance R plus the motion's uncertainty seen in range and bearing, times
+  // between_keyframe_variance_scale on that added part (false: left out, as before).
+  bool between_keyframe_observations = true;
+  double between_keyframe_variance_scale = 1.0;
   // Marginal covariances of the last pose and of every landmark (solves through the factor).
   bool covariances = true;
   // The stage publishes the map (with the landmarks' covariances, the costly part) at every
@@ -86,7 +96,9 @@ struct KeyframeSmootherCounters {
   int64_t restarts = 0;                // new problems after the first
   int64_t scans_out_of_order = 0;      // not newer than the last scan: dropped
   int64_t observations_used = 0;
-  int64_t observations_between_keyframes = 0;  // of scans that were no keyframe: not used
+  // Of scans that were no keyframe: attached to the last keyframe through the motion since
+  // (between_keyframe_observations), else not used.
+  int64_t observations_between_keyframes = 0;
   int64_t observations_held = 0;       // tentative ones held for a possible landmark
   int64_t held_observations_dropped = 0;  // held ones of objects removed, or beyond the cap
   int64_t landmarks_removed = 0;
@@ -135,8 +147,26 @@ class KeyframeSmoother {
   void AccumulateMotion(const SmootherScanInput& scan);
   bool IsKeyframe(int64_t utime) const;
   void AddKeyframe(const SmootherScanInput& scan, SmoothedScan* out);
-  void AddObservations(const SmootherScanInput& scan);
-  void Hold(const StaticObservation& observation);
+  // Every observation of the scan as a factor on the last keyframe, the laser at `mount` in
+  // that keyframe's frame, each covariance plus `extra_covariance` (over range, bearing) of
+  // the observation (the motion since the keyframe; empty: none).
+  void AddObservations(const SmootherScanInput& scan, const SensorMount& mount,
+                       const std::vector<Eigen::Matrix2d>& extra_covariance);
+  void AddObservations(const SmootherScanInput& scan) { AddObservations(scan, scan.mount, {}); }
+  // The observations of a scan between keyframes: those of landmarks in the problem are fused
+  // per landmark into one position in the last keyframe's frame (information-weighted, each
+  // converted with its covariance), added as one relative-position factor per landmark when
+  // the next keyframe comes (FlushFused): one factor per landmark and keyframe instead of one
+  // per scan, so that the cost per keyframe stays what it was; the others as AddObservations.
+  void FuseObservations(const SmootherScanInput& scan, const SensorMount& mount,
+                        const std::vector<Eigen::Matrix2d>& extra_covariance);
+  void FlushFused();
+  // The laser of a scan between keyframes in the last keyframe's frame, and what the motion's
+  // covariance adds to each observation's (range, bearing) covariance.
+  SensorMount MountSinceKeyframe(const SensorMount& mount) const;
+  std::vector<Eigen::Matrix2d> MotionCovarianceOfObservations(const SmootherScanInput& scan,
+                                                              const SensorMount& mount) const;
+  void Hold(const StaticObservation& observation, const SensorMount& mount);
   // Adds the landmark (where its first held, else this, observation puts it) and its held
   // observations; false when it cannot be added.
   bool AddLandmarkWithHeld(const StaticObservation& observation, const SensorMount& mount);
@@ -164,8 +194,14 @@ class KeyframeSmoother {
   struct Held {
     PoseId keyframe = 0;
     StaticObservation observation;
+    SensorMount mount;  // the laser in the keyframe's frame
   };
   std::map<int64_t, std::deque<Held>> held_;  // by object id
+  struct Fused {
+    Eigen::Matrix2d information = Eigen::Matrix2d::Zero();   // sum of C^-1
+    Eigen::Vector2d information_vector = Eigen::Vector2d::Zero();  // sum of C^-1 p
+  };
+  std::map<int64_t, Fused> fused_;  // by landmark id, in the last keyframe's frame
 };
 
 }  // namespace slammtt

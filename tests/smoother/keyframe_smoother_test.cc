@@ -124,6 +124,37 @@ TEST(KeyframeSmootherTest, TheKeyframeRuleComposesTheOdometryBetweenKeyframes) {
   EXPECT_EQ(smoother.Keyframes().back().first, world.Scan(40).utime);
 }
 
+// The scans between keyframes (between_keyframe_observations): their sightings, fused per
+// landmark through the motion since the keyframe (the laser's mount composed with it), are
+// consistent with exact input (a wrong composition would bend the solution), add to what the
+// solver uses, and shrink the landmarks' marginal covariances.
+TEST(KeyframeSmootherTest, TheScansBetweenKeyframesAddTheirSightings) {
+  const CircleWorld world;
+  KeyframeSmootherOptions with;
+  with.keyframe_distance_m = 0.45;  // every 5th scan
+  KeyframeSmootherOptions without = with;
+  without.between_keyframe_observations = false;
+  KeyframeSmoother used(with);
+  KeyframeSmoother left_out(without);
+  for (int scan = 0; scan < 41; ++scan) {
+    const SmoothedScan s = used.AddScan(world.Scan(scan));
+    left_out.AddScan(world.Scan(scan));
+    ASSERT_TRUE(s.processed);
+    EXPECT_LT(PositionError(s, scan), 1e-6) << scan;
+  }
+  EXPECT_EQ(used.counters().inputs_refused, 0) << used.last_error();
+  EXPECT_GT(used.counters().observations_used, 3 * left_out.counters().observations_used);
+  const std::vector<SmoothedLandmark> a = used.Landmarks();
+  const std::vector<SmoothedLandmark> b = left_out.Landmarks();
+  ASSERT_EQ(a.size(), b.size());
+  ASSERT_FALSE(a.empty());
+  for (size_t k = 0; k < a.size(); ++k) {
+    ASSERT_EQ(a[k].id, b[k].id);
+    EXPECT_LT((a[k].position - world.posts[static_cast<size_t>(a[k].id - 100)]).norm(), 1e-6);
+    EXPECT_LT(a[k].covariance.trace(), b[k].covariance.trace()) << a[k].id;
+  }
+}
+
 // With nothing but the prior and one increment, the second pose's marginal is the prior's
 // plus the increment's covariance (heading: exactly; position: up to the 0.02 rad the increment
 // turns): the scales must reach the odometry factor, each on its own component.
