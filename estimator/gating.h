@@ -23,6 +23,10 @@ namespace slammtt {
 // The predicted observation of one object at the current state.
 struct ObjectPrediction {
   bool valid = false;  // false when the object sits at the sensor (bearing undefined)
+  // Not judged in this scan although predicted (observation_predictions.h:
+  // HoldBackUnsureReentries): valid is false, the rest of the prediction is kept so that a
+  // measurement inside its gate starts no new object (scan_gating.h).
+  bool held_back = false;
   Eigen::Vector2d range_bearing = Eigen::Vector2d::Zero();
   Eigen::Matrix<double, 2, 3> jacobian_robot = Eigen::Matrix<double, 2, 3>::Zero();
   Eigen::Matrix2d jacobian_position = Eigen::Matrix2d::Zero();

@@ -58,9 +58,10 @@ struct MotionClassifierOptions {
   // state is conditioned on its not having moved since, if that displacement's NIS is below
   // this chi-square (2 dof; 13.82, 99.9 %, as moving_chi2), so that what its measurements said
   // while it was undecided (and the robot's motion then) is not lost to its velocity states.
-  // 0: off (the conditioning on v = 0 alone), the default: with the local window it lost
-  // landmarks of the large loop (docs/estimator.md, "Stationary anchor"); 13.82 is its gate.
-  double still_anchor_chi2 = 0.0;
+  // 0: off (the conditioning on v = 0 alone). With the local window it once made duplicates of
+  // re-entered landmarks STATIC (fixed by scan_gating.h: BlockBirthsInsideHeldBackGates;
+  // docs/estimator.md, "Stationary anchor").
+  double still_anchor_chi2 = 13.82;
 };
 
 // The schema of these options (common/options_schema.h; keys in EstimatorOptions' group

@@ -17,6 +17,7 @@ int HoldBackUnsureReentries(const SlamState& state, double max_range_m, const Fi
     const double range_sigma_m = std::sqrt(std::max(p.hph(0, 0), 0.0));
     if (SurelyInGeometry(p.range_bearing, range_sigma_m, max_range_m, view)) continue;
     p.valid = false;
+    p.held_back = true;
     ++held_back;
   }
   return held_back;

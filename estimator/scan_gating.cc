@@ -5,6 +5,20 @@
 
 namespace slammtt {
 
+void BlockBirthsInsideHeldBackGates(const std::vector<PointMeasurement>& measurements,
+                                    const std::vector<ObjectPrediction>& predictions,
+                                    double new_object_gate_chi2, std::vector<double>* nearest_nis) {
+  for (const ObjectPrediction& held : predictions) {
+    if (!held.held_back) continue;
+    ObjectPrediction judged = held;
+    judged.valid = true;
+    for (size_t i = 0; i < measurements.size(); ++i) {
+      const double nis = NormalizedInnovationSquared(measurements[i], judged, new_object_gate_chi2);
+      if (nis < new_object_gate_chi2) (*nearest_nis)[i] = std::min((*nearest_nis)[i], nis);
+    }
+  }
+}
+
 ScanGating GateScan(const std::vector<PointMeasurement>& measurements,
                     const std::vector<ObjectPrediction>& predictions,
                     const EstimatorOptions& options) {
@@ -19,6 +33,8 @@ ScanGating GateScan(const std::vector<PointMeasurement>& measurements,
     nearest = std::min(nearest, c.nis);
     if (c.nis < d1) gating.compatible.push_back(c);
   }
+  BlockBirthsInsideHeldBackGates(measurements, predictions, options.new_object_gate_dn_chi2,
+                                 &gating.nearest_nis);
   return gating;
 }
 

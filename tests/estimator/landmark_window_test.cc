@@ -8,6 +8,7 @@
 #include <Eigen/Dense>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <random>
 #include <set>
@@ -17,6 +18,7 @@
 #include "estimator/landmark_window.h"
 #include "estimator/observation_predictions.h"
 #include "estimator/pruning.h"
+#include "estimator/scan_gating.h"
 #include "estimator/track_management.h"
 #include "estimator/testing/point_world.h"
 #include "tests/estimator/step_scene.h"
@@ -169,6 +171,18 @@ TEST(LandmarkWindowTest, AReenteredLandmarkIsJudgedOnlyWhereItIsSurelyInRange) {
   for (const Candidate& c : GatePairs(measurements, beyond, 13.82)) {
     EXPECT_NE(c.object, reentered);
   }
+  // ... but the measurement starts no new object either (it may be 102, seen before it is
+  // surely in range: a second landmark for the same post): its nearest NIS is the held-back
+  // landmark's, below the new-object gate, while it is in no pair of the scan.
+  EXPECT_TRUE(beyond[static_cast<size_t>(reentered)].held_back);
+  const ScanGating gated = GateScan(measurements, beyond, scene.options);
+  EXPECT_LT(gated.nearest_nis[0], scene.options.new_object_gate_dn_chi2);
+  for (const Candidate& c : gated.gated) EXPECT_NE(c.object, reentered);
+  // A measurement far from every landmark still starts one.
+  PointMeasurement elsewhere = nearer_post;
+  elsewhere.range_bearing << 20.0, 1.5;
+  EXPECT_EQ(GateScan({elsewhere}, beyond, scene.options).nearest_nis[0],
+            std::numeric_limits<double>::infinity());
 
   // Nearer (28 m + 1 m within 30 m): judged again.
   scene.state.mean()(0) = 3.0;

@@ -34,7 +34,9 @@ TEST(NoOdometryTest, WithoutTheAlignmentTheRobotIsLost) {
   const nlohmann::json people = runner.Rescore(run, "--match-threshold-m 0.75");
   testing::Print("office seed 4 without odometry, alignment off", run);
   EXPECT_GE(Number(run.report, "ate_rmse_m"), 1.0);
-  EXPECT_GE(Number(people, "non_person_movers_per_minute"), 8.0);
+  // 7.5 with the stationary anchor on (branch wt-s1; 8 or more before it): the anchor keeps some
+  // scenery static that the lost robot would otherwise call moving; still far above the <= 1 target.
+  EXPECT_GE(Number(people, "non_person_movers_per_minute"), 7.0);
 }
 
 }  // namespace
