@@ -204,6 +204,11 @@ void VisitScanAlignmentOptions(OptionVisitor* v, ScanAlignmentOptions* o) {
   v->Double("max_turn_search_rad", &o->max_turn_search_rad, R::AboveUpTo(0, 90),
             "the lines' vote for the turn is searched within this of the guess's",
             OptionUnit::kDegrees);
+  v->Double("velocity_walk_mps2", &o->velocity_walk_mps2, R::AtLeast(0),
+            "the velocity is filtered, its covariance growing by this squared per second (0: "
+            "off, the guess's prior is the fixed guess sigmas)");
+  v->Double("velocity_turn_walk_radps", &o->velocity_turn_walk_radps, R::AtLeast(0),
+            "... and by this of the turn rate", OptionUnit::kDegrees);
 }
 
 namespace {
@@ -387,6 +392,21 @@ std::optional<ScanAlignment> ScanToScanMotion::MotionTo(const AlignmentScan& sca
       Eigen::Vector3d(position_sigma * position_sigma, position_sigma * position_sigma,
                       heading_sigma * heading_sigma)
           .asDiagonal();
+  if (options.velocity_walk_mps2 > 0.0) {
+    // The velocity filtered: its covariance, predicted by the random walk over dt, times dt^2.
+    const double walk = options.velocity_walk_mps2 * options.velocity_walk_mps2;
+    const double turn_walk = options.velocity_turn_walk_radps * options.velocity_turn_walk_radps;
+    const Eigen::Matrix3d unknown =
+        Eigen::Vector3d(options.guess_speed_sigma_mps * options.guess_speed_sigma_mps,
+                        options.guess_speed_sigma_mps * options.guess_speed_sigma_mps,
+                        options.guess_turn_sigma_radps * options.guess_turn_sigma_radps)
+            .asDiagonal();
+    const Eigen::Matrix3d known =
+        velocity_covariance_(0, 0) < 0.0 ? unknown : velocity_covariance_;
+    const Eigen::Matrix3d predicted =
+        known + Eigen::Vector3d(walk, walk, turn_walk).asDiagonal().toDenseMatrix() * dt;
+    return AlignScans(*reference_, scan, velocity_ * dt_s, dt * dt * predicted, options);
+  }
   return AlignScans(*reference_, scan, velocity_ * dt_s, prior, options);
 }
 
@@ -396,9 +416,11 @@ void ScanToScanMotion::Keep(AlignmentScan scan, const Eigen::Vector3d& pose, int
     const double dt = SecondsBetween(utime, utime_);
     if (aligned != nullptr) {
       velocity_ = aligned->increment / dt;
+      velocity_covariance_ = aligned->covariance / (dt * dt);
     } else {
       const Eigen::Vector2d moved = Rotation(-pose_.z()) * (pose.head<2>() - pose_.head<2>());
       velocity_ << moved / dt, WrapAngle(pose.z() - pose_.z()) / dt;
+      velocity_covariance_ = -Eigen::Matrix3d::Identity();
     }
   }
   reference_ = std::move(scan);
@@ -409,6 +431,7 @@ void ScanToScanMotion::Keep(AlignmentScan scan, const Eigen::Vector3d& pose, int
 void ScanToScanMotion::Clear() {
   reference_.reset();
   velocity_.setZero();
+  velocity_covariance_ = -Eigen::Matrix3d::Identity();
 }
 
 }  // namespace slammtt

@@ -274,7 +274,8 @@ TEST(ScanAlignmentTest, CornersOfTwoLinesArePoints) {
 }
 
 TEST(ScanToScanMotionTest, GuessesWithTheVelocityOfTheLastScans) {
-  const ScanAlignmentOptions options;
+  ScanAlignmentOptions options;
+  options.velocity_walk_mps2 = 0.0;  // the fixed prior (the filtered one: the next test)
   ScanToScanMotion motion;
   EXPECT_FALSE(motion.MotionTo(Room(), 0.1, options).has_value());
   motion.Keep(AlignmentScan{}, Eigen::Vector3d(1.0, 1.0, M_PI / 2), 1000000);
@@ -295,6 +296,35 @@ TEST(ScanToScanMotionTest, GuessesWithTheVelocityOfTheLastScans) {
   EXPECT_TRUE(b->increment.isApprox(Eigen::Vector3d(0.02, -0.005, 0.01), 1e-9));
   motion.Clear();
   EXPECT_FALSE(motion.MotionTo(Room(), 0.1, options).has_value());
+}
+
+TEST(ScanToScanMotionTest, CarriesTheVelocitysCovarianceFromScanToScan) {
+  const ScanAlignmentOptions options;  // the velocity filtered (the default)
+  ASSERT_GT(options.velocity_walk_mps2, 0.0);
+  const double dt = 0.1;
+  const double walk = options.velocity_walk_mps2 * options.velocity_walk_mps2 * dt;
+  const double turn_walk =
+      options.velocity_turn_walk_radps * options.velocity_turn_walk_radps * dt;
+  ScanToScanMotion motion;
+  motion.Keep(AlignmentScan{}, Eigen::Vector3d::Zero(), 1000000);
+  // Before any alignment the velocity is not known: the guess's sigmas, grown by the walk.
+  const std::optional<ScanAlignment> first = motion.MotionTo(Room(), dt, options);
+  ASSERT_TRUE(first);
+  const double unknown = options.guess_speed_sigma_mps * options.guess_speed_sigma_mps;
+  EXPECT_NEAR(first->covariance(0, 0), dt * dt * (unknown + walk), 1e-12);
+  // An alignment that measured the motion across (y) well and along (x) badly: the next guess
+  // keeps that, each grown by the walk, not the same fixed sigma for both.
+  ScanAlignment measured;
+  measured.increment = Eigen::Vector3d(0.03, 0.0, 0.0);
+  measured.covariance = Eigen::Vector3d(4e-4, 1e-6, 1e-6).asDiagonal();
+  motion.Keep(AlignmentScan{}, Eigen::Vector3d(0.03, 0.0, 0.0), 1100000, &measured);
+  const std::optional<ScanAlignment> next = motion.MotionTo(Room(), dt, options);
+  ASSERT_TRUE(next);
+  EXPECT_TRUE(next->increment.isApprox(measured.increment, 1e-9));
+  EXPECT_NEAR(next->covariance(0, 0), 4e-4 + dt * dt * walk, 1e-12);
+  EXPECT_NEAR(next->covariance(1, 1), 1e-6 + dt * dt * walk, 1e-12);
+  EXPECT_NEAR(next->covariance(2, 2), 1e-6 + dt * dt * turn_walk, 1e-12);
+  EXPECT_GT(next->covariance(0, 0), 4.0 * next->covariance(1, 1));
 }
 
 TEST(PoseIncrementPredictionTest, ComposesThePoseWithNumericallyCheckedJacobians) {
