@@ -54,6 +54,85 @@ TEST(ChooseReacquisitionsTest, OneToOneInIncreasingShareOfTheReach) {
   EXPECT_EQ(chosen[1].object, 9);
 }
 
+TEST(ChooseReacquisitionsTest, AStandingPersonReachesAtLeastItsMinimumReach) {
+  // A standing person last measured one scan (0.1 s) ago: walking reach 0.2 m, but its minimum
+  // reach of 1 m (tracks_reacquire_standing_m) takes the birth 0.8 m away, not one 1.1 m away.
+  const std::vector<LostTrack> lost = {{3, Eigen::Vector2d(0.0, 0.0), 0.1, 1.0}};
+  const std::vector<Reacquisition> chosen =
+      ChooseReacquisitions(lost, {{0, Eigen::Vector2d(1.1, 0.0)}, {1, Eigen::Vector2d(0.0, 0.8)}},
+                           2.0);
+  ASSERT_EQ(chosen.size(), 1u);
+  EXPECT_EQ(chosen[0].measurement, 1);
+  EXPECT_EQ(chosen[0].object, 3);
+}
+
+TEST(IsLostStandingPersonTest, AConfirmedStandingPersonNotMeasuredThisScan) {
+  testing::StepScene scene;
+  const int person = scene.AddLandmark({2.0, 0.0}, 0.02, 5);
+  scene.state.object(person).record.kind = ObjectKind::kPerson;
+  const TrackManagementOptions& options = scene.options.tracks;
+  EXPECT_TRUE(IsLostStandingPerson(scene.state.object(person), true, options));
+  EXPECT_FALSE(IsLostStandingPerson(scene.state.object(person), false, options)) << "measured";
+  TrackManagementOptions off = options;
+  off.reacquire_standing_m = 0.0;
+  EXPECT_FALSE(IsLostStandingPerson(scene.state.object(person), true, off)) << "0: off";
+  scene.state.object(person).record.confirmed = false;
+  EXPECT_FALSE(IsLostStandingPerson(scene.state.object(person), true, options)) << "tentative";
+  const int post = scene.AddLandmark({4.0, 0.0}, 0.02, 6);  // a landmark of kind other
+  EXPECT_FALSE(IsLostStandingPerson(scene.state.object(post), true, options));
+  const int walker =
+      scene.AddMover({0.0, 3.0}, 0.2, {1.0, 0.0}, 0.3, ObjectClass::kMoving, 8);
+  scene.state.object(walker).record.kind = ObjectKind::kPerson;
+  EXPECT_FALSE(IsLostStandingPerson(scene.state.object(walker), true, options))
+      << "a MOVING person is a lost mover (IsLostMover) once no longer reported";
+}
+
+TEST(TakeOverLostIdentitiesTest, APersonWhoWalkedOffKeepsTheIdentityNotAMovingLabel) {
+  // A standing person (STATIC, kind person, id 5) not measured this scan; a new object born
+  // beside it at the previous scan, tagged as its continuation, measured again now.
+  testing::StepScene scene;
+  const int person = scene.AddLandmark({2.0, 0.0}, 0.02, 5);
+  ObjectRecord& p = scene.state.object(person).record;
+  p.kind = ObjectKind::kPerson;
+  p.first_seen_utime = 1;
+  p.hits = 30;
+  p.person_hits = 30;
+  const int candidate =
+      scene.AddMover({2.6, 0.2}, 0.2, {0.0, 0.0}, 1.0, ObjectClass::kUndecided, 20);
+  ObjectRecord& c = scene.state.object(candidate).record;
+  c.confirmed = false;
+  c.continues_id = 5;
+  c.hits = 2;
+  c.person_hits = 2;
+  Assignment assignment(1, 2);
+  assignment.Set(0, candidate);
+  StepCounts counts;
+  const std::vector<int> taken_over = TakeOverLostIdentities(
+      2 * testing::kSecond, scene.options, assignment, &scene.state, &counts);
+  EXPECT_EQ(taken_over, std::vector<int>{person});
+  const ObjectRecord& after = scene.state.object(candidate).record;
+  EXPECT_EQ(after.id, 5);
+  EXPECT_EQ(after.first_seen_utime, 1);
+  EXPECT_TRUE(after.confirmed);
+  EXPECT_EQ(after.object_class, ObjectClass::kUndecided) << "the classifier decides";
+  EXPECT_EQ(after.person_hits, 32);
+  // Measured this scan, the standing person is not lost: the new object keeps its own identity.
+  testing::StepScene again;
+  const int standing = again.AddLandmark({2.0, 0.0}, 0.02, 5);
+  again.state.object(standing).record.kind = ObjectKind::kPerson;
+  const int other = again.AddMover({2.6, 0.2}, 0.2, {0.0, 0.0}, 1.0, ObjectClass::kUndecided, 20);
+  again.state.object(other).record.confirmed = false;
+  again.state.object(other).record.continues_id = 5;
+  again.state.object(other).record.hits = 2;
+  Assignment both(2, 2);
+  both.Set(0, other);
+  both.Set(1, standing);
+  EXPECT_TRUE(TakeOverLostIdentities(2 * testing::kSecond, again.options, both, &again.state,
+                                     &counts)
+                  .empty());
+  EXPECT_EQ(again.state.object(other).record.id, 20);
+}
+
 // A lost mover (id 7: confirmed MOVING, last seen at (1, 1) 2 s ago, so reachable within 4 m;
 // its estimate coasted to (6, 6)), a static landmark and a tentative object born at the
 // previous scan as its possible continuation (id 20, continues_id 7, one hit).
