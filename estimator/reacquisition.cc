@@ -19,13 +19,11 @@ std::vector<LostTrack> LostTracks(int64_t utime, const std::vector<int>& taken_o
   std::vector<LostTrack> lost;
   for (int j = 0; j < assignment.num_objects(); ++j) {
     const StateObject& object = state.object(j);
-    if (Contains(taken_over, j)) continue;
-    const bool unmeasured = assignment.ObjectFree(j);
-    const bool mover = IsLostMover(object, unmeasured, utime, options);
-    if (!mover && !IsLostStandingPerson(object, unmeasured, options)) continue;
+    if (!IsLostMover(object, assignment.ObjectFree(j), utime, options) || Contains(taken_over, j)) {
+      continue;
+    }
     lost.push_back({j, object.record.last_seen_m,
-                    SecondsBetween(utime, object.record.last_seen_utime),
-                    mover ? 0.0 : options.reacquire_standing_m});
+                    SecondsBetween(utime, object.record.last_seen_utime)});
   }
   return lost;
 }
@@ -73,13 +71,6 @@ bool IsLostMover(const StateObject& object, bool unmeasured, int64_t utime,
          !ReportedConfirmed(record, true, utime, options);
 }
 
-bool IsLostStandingPerson(const StateObject& object, bool unmeasured,
-                          const TrackManagementOptions& options) {
-  const ObjectRecord& record = object.record;
-  return unmeasured && options.reacquire_standing_m > 0.0 && record.confirmed &&
-         record.kind == ObjectKind::kPerson && record.object_class != ObjectClass::kMoving;
-}
-
 std::vector<Reacquisition> ChooseReacquisitions(const std::vector<LostTrack>& lost,
                                                 const std::vector<BirthPoint>& births,
                                                 double reacquire_speed_mps) {
@@ -91,7 +82,7 @@ std::vector<Reacquisition> ChooseReacquisitions(const std::vector<LostTrack>& lo
   if (reacquire_speed_mps <= 0.0) return {};
   for (const BirthPoint& b : births) {
     for (const LostTrack& t : lost) {
-      const double reach = std::max(reacquire_speed_mps * t.unseen_s, t.min_reach_m);
+      const double reach = reacquire_speed_mps * t.unseen_s;
       const double distance = (b.point_m - t.last_seen_m).norm();
       if (reach > 0.0 && distance <= reach) {
         pairs.push_back({distance / reach, {b.measurement, t.object}});
@@ -152,19 +143,14 @@ std::vector<int> TakeOverLostIdentities(int64_t utime, const EstimatorOptions& o
     for (int j = 0; j < assignment.num_objects(); ++j) {
       const StateObject& lost = state->object(j);
       if (lost.record.id != lost_id) continue;
-      const bool unmeasured = assignment.ObjectFree(j);
-      const bool mover = IsLostMover(lost, unmeasured, utime, options.tracks);
-      if ((mover || IsLostStandingPerson(lost, unmeasured, options.tracks)) &&
+      if (IsLostMover(lost, assignment.ObjectFree(j), utime, options.tracks) &&
           !Contains(taken_over, j)) {
         candidate.id = lost.record.id;
         candidate.first_seen_utime = lost.record.first_seen_utime;
         candidate.hits += lost.record.hits;
-        candidate.person_hits += lost.record.person_hits;
         candidate.confirmed = true;
-        if (mover) {
-          candidate.object_class = ObjectClass::kMoving;
-          state->RemoveAnchor(k);  // a MOVING object keeps no stationary hypothesis
-        }
+        candidate.object_class = ObjectClass::kMoving;
+        state->RemoveAnchor(k);  // a MOVING object keeps no stationary hypothesis
         taken_over.push_back(j);
         ++counts->reacquired;
       }

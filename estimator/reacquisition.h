@@ -21,19 +21,6 @@
 //     walk.
 // Otherwise the new object lives on as any new object. Off with reacquire_speed_mps 0 and in
 // baseline (a).
-//
-// A standing person who walks off is lost the same way: its confirmed STATIC (or UNDECIDED)
-// track of kind PERSON gets no measurement, and the person's next measurement lies outside its
-// gate (a landmark's position is known to centimetres, so one step leaves the gate) and starts a
-// new object, which was then tentative for 2 scans and a new identity while the standing track
-// stayed behind until pruned (issue 13's office decomposition: 13 missed person-scans beside a
-// STATIC person track, 23 false ones of a left-behind track on seed 5). Such a track is a lost
-// person too (IsLostStandingPerson) from the first scan it is not measured, and its reach is
-// at least tracks_reacquire_standing_m (one or two steps: the birth lies just outside its gate)
-// or the walking reach. Its new object takes over its identity, first sighting and
-// confirmation at its second measurement, but not a MOVING label (the classifier decides from
-// the new object's own velocity): a person whose legs split into two features for a scan keeps
-// being tracked as the person it was, under its identity.
 #pragma once
 
 #include <Eigen/Core>
@@ -49,7 +36,6 @@ struct LostTrack {
   int object = -1;
   Eigen::Vector2d last_seen_m = Eigen::Vector2d::Zero();
   double unseen_s = 0.0;
-  double min_reach_m = 0.0;  // the reach is at least this (a standing person: see above)
 };
 struct BirthPoint {
   int measurement = -1;
@@ -65,14 +51,7 @@ struct Reacquisition {
 bool IsLostMover(const StateObject& object, bool unmeasured, int64_t utime,
                  const TrackManagementOptions& options);
 
-// Whether object `object` is a standing person lost at this scan: a confirmed object of kind
-// PERSON that is not MOVING and not measured this scan (`unmeasured`), with
-// reacquire_standing_m > 0.
-bool IsLostStandingPerson(const StateObject& object, bool unmeasured,
-                          const TrackManagementOptions& options);
-
-// Step 1's pairing of births with lost tracks: a birth within a track's reach,
-// max(reacquire_speed_mps * unseen_s, min_reach_m), of its last sighting.
+// Step 1's pairing of births with lost tracks.
 std::vector<Reacquisition> ChooseReacquisitions(const std::vector<LostTrack>& lost,
                                                 const std::vector<BirthPoint>& births,
                                                 double reacquire_speed_mps);

@@ -187,8 +187,6 @@ void VisitTrackManagementOptions(OptionVisitor* v, TrackManagementOptions* t) {
             "a MOVING object out of view goes when its position sigma exceeds this");
   v->Double("reacquire_speed_mps", &t->reacquire_speed_mps, R::AtLeast(0),
             "walking speed bound of re-acquisition of lost movers (0: off)");
-  v->Double("reacquire_standing_m", &t->reacquire_standing_m, R::AtLeast(0),
-            "reach of re-acquisition of a standing person who walked off (0: off)");
 }
 
 }  // namespace slammtt

@@ -89,10 +89,6 @@ struct TrackManagementOptions {
   // Re-acquisition of lost movers (reacquisition.h): the largest speed at which a person is
   // assumed to have walked while unseen. 0 disables re-acquisition.
   double reacquire_speed_mps = 2.0;
-  // The reach of a standing person (a confirmed STATIC or UNDECIDED object of kind PERSON) lost
-  // at this scan (reacquisition.h, IsLostStandingPerson): a new object this close to where it
-  // was last seen may be the person walking off. 0: standing people are not re-acquired.
-  double reacquire_standing_m = 1.0;
 };
 
 // The schema of these options (common/options_schema.h; keys in EstimatorOptions' group
