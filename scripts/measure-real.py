@@ -18,6 +18,8 @@ For each recording:
     slammtt-import REC -o OUTDIR/NAME.lcm                 # writes NAME.lcm.mount.yaml
     slammtt-replay OUTDIR/NAME.lcm -o OUTDIR/NAME-mount.lcm --config OUTDIR/NAME.lcm.mount.yaml
     slammtt-replay OUTDIR/NAME.lcm -o OUTDIR/NAME-sensor.lcm --config OUTDIR/NAME.sensor.yaml
+--set KEY=VALUE (repeatable) adds `KEY: VALUE` to the `estimator:` section of both
+configurations (as scripts/measure-estimator.py's --set), to measure what an option costs here.
 
 Two configurations, no parameter chosen for a recording: `mount` is the import's file as it is
 (the README's command: the estimator's defaults, a 360-degree view of 30 m); `sensor` is that
@@ -64,12 +66,34 @@ def run(command):
         sys.exit(f"measure-real: {' '.join(map(str, command))}: {last}")
 
 
-def write_sensor_config(mount_yaml, scan, path):
+def apply_settings(config, settings):
+    """`KEY=VALUE` settings into the configuration's `estimator:` section (values as YAML)."""
+    from ruamel.yaml import YAML
+    yaml = YAML(typ="safe", pure=True)
+    estimator = config.setdefault("estimator", {})
+    for setting in settings:
+        key, _, value = setting.partition("=")
+        estimator[key] = yaml.load(value)
+
+
+def write_set_config(mount_yaml, settings, path):
+    """The import's mount file with --set's settings."""
+    from ruamel.yaml import YAML
+    with open(mount_yaml, encoding="utf-8") as f:
+        config = YAML(typ="safe", pure=True).load(f)
+    apply_settings(config, settings)
+    with open(path, "w", encoding="utf-8") as f:
+        f.write(f"# {os.path.basename(mount_yaml)} with --set (scripts/measure-real.py).\n")
+        YAML().dump(config, f)
+
+
+def write_sensor_config(mount_yaml, scan, path, settings=()):
     """The import's mount file plus the scanner's field of view and range (module docstring)."""
     from ruamel.yaml import YAML
     yaml = YAML(typ="safe", pure=True)
     with open(mount_yaml, encoding="utf-8") as f:
         config = yaml.load(f)
+    apply_settings(config, settings)
     angles = [math.degrees(a) for a in scan.angle_rad]
     estimator = config.setdefault("estimator", {})
     estimator["field_of_view_start_deg"] = round(min(angles), 6)
@@ -109,14 +133,17 @@ def sharpness_figures(log, config_path):
     return result
 
 
-def measure(bin_dir, real_dir, outdir, name, relative, kind):
+def measure(bin_dir, real_dir, outdir, name, relative, kind, settings=()):
     stem = os.path.join(outdir, name)
     imported = stem + ".lcm"
     run([os.path.join(bin_dir, "slammtt-import"), "-q", os.path.join(real_dir, relative),
          "-o", imported])
     first_scan = next(iter(figures.read_channels(imported)["LASER_SCAN"]))
     config_paths = {"mount": imported + ".mount.yaml", "sensor": stem + ".sensor.yaml"}
-    write_sensor_config(config_paths["mount"], first_scan, config_paths["sensor"])
+    write_sensor_config(config_paths["mount"], first_scan, config_paths["sensor"], settings)
+    if settings:
+        config_paths["mount"] = stem + ".mount-set.yaml"
+        write_set_config(imported + ".mount.yaml", settings, config_paths["mount"])
     result = {}
     for config in CONFIGS:
         out = f"{stem}-{config}.lcm"
@@ -161,11 +188,14 @@ def main():
     parser.add_argument("--real", default=os.path.join(ROOT, "..", "shared", "data", "real"),
                         help="the real recordings (default ../shared/data/real)")
     parser.add_argument("--json", default=None, help="default OUTDIR/real.json")
+    parser.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                        help="an estimator option for both configurations (repeatable)")
     args = parser.parse_args()
     if not os.path.isdir(args.real):
         sys.exit(f"measure-real: {args.real}: no such folder (the real recordings)")
     os.makedirs(args.outdir, exist_ok=True)
-    results = {name: measure(args.bin, args.real, args.outdir, name, relative, kind)
+    results = {name: measure(args.bin, args.real, args.outdir, name, relative, kind,
+                             args.set)
                for name, relative, kind in RECORDINGS}
     print_tables(results)
     path = args.json or os.path.join(args.outdir, "real.json")

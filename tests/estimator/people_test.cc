@@ -178,12 +178,12 @@ TEST(TrackManagementTest, HitsAndMissesKeepTheirHistories) {
   EXPECT_EQ(VisibleMissesInLastScans(r, 5), 1);
 }
 
-// With confirm_person_hits 2, two scans of person features in the window confirm a person;
-// anything else needs three (the default asks three of a person too).
+// With confirm_person_hits 2 (the default), two scans of person features in the window confirm
+// a person; anything else needs three.
 TEST(TrackManagementTest, APersonIsConfirmedByConfirmPersonHitsOfTheLastFiveScans) {
   TrackManagementOptions options;
-  EXPECT_EQ(options.confirm_person_hits, 3);
-  options.confirm_person_hits = 2;
+  EXPECT_EQ(options.confirm_person_hits, 2);
+  EXPECT_EQ(options.confirm_hits, 3);
   ObjectRecord person = NewObjectRecord(1, 0, ObjectClass::kUndecided);
   person.kind = ObjectKind::kPerson;
   ObjectRecord other = NewObjectRecord(2, 0, ObjectClass::kUndecided);
