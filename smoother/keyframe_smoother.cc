@@ -279,13 +279,8 @@ std::vector<Eigen::Matrix2d> KeyframeSmoother::MotionCovarianceOfObservations(
   return added;
 }
 
-void KeyframeSmoother::AddObservations(const SmootherScanInput& scan, const SensorMount& mount,
-                                       const std::vector<Eigen::Matrix2d>& extra_covariance) {
-  for (size_t k = 0; k < scan.observations.size(); ++k) {
-    StaticObservation o = scan.observations[k];
-    if (k < extra_covariance.size() && extra_covariance[k].allFinite()) {
-      o.covariance += extra_covariance[k];
-    }
+void KeyframeSmoother::AddObservations(const SmootherScanInput& scan, const SensorMount& mount) {
+  for (const StaticObservation& o : scan.observations) {
     // Checked before a new landmark is added: a landmark without its factor would leave the
     // problem unconstrained.
     const std::optional<std::string> problem = ObservationProblem(o);
@@ -308,17 +303,13 @@ void KeyframeSmoother::FuseObservations(const SmootherScanInput& scan, const Sen
                                         const std::vector<Eigen::Matrix2d>& extra_covariance) {
   SmootherScanInput rest = scan;
   rest.observations.clear();
-  std::vector<Eigen::Matrix2d> rest_extra;
   for (size_t k = 0; k < scan.observations.size(); ++k) {
     StaticObservation o = scan.observations[k];
     if (k < extra_covariance.size() && extra_covariance[k].allFinite()) {
       o.covariance += extra_covariance[k];
     }
     if (ObservationProblem(o) || !smoother_->LandmarkEstimate(o.landmark_id)) {
-      // Refused, held or a new landmark: one by one.
-      rest.observations.push_back(scan.observations[k]);
-      rest_extra.push_back(k < extra_covariance.size() ? extra_covariance[k]
-                                                       : Eigen::Matrix2d::Zero());
+      rest.observations.push_back(o);  // refused, held or a new landmark: one by one
       continue;
     }
     // The point in the keyframe's frame and its covariance J C J^T, J = d point / d (range,
@@ -342,7 +333,7 @@ void KeyframeSmoother::FuseObservations(const SmootherScanInput& scan, const Sen
     fused.information_vector += information * point;
     ++counters_.observations_used;
   }
-  AddObservations(rest, mount, rest_extra);
+  AddObservations(rest, mount);
 }
 
 void KeyframeSmoother::FlushFused() {

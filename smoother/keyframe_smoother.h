@@ -148,16 +148,16 @@ class KeyframeSmoother {
   bool IsKeyframe(int64_t utime) const;
   void AddKeyframe(const SmootherScanInput& scan, SmoothedScan* out);
   // Every observation of the scan as a factor on the last keyframe, the laser at `mount` in
-  // that keyframe's frame, each covariance plus `extra_covariance` (over range, bearing) of
-  // the observation (the motion since the keyframe; empty: none).
-  void AddObservations(const SmootherScanInput& scan, const SensorMount& mount,
-                       const std::vector<Eigen::Matrix2d>& extra_covariance);
-  void AddObservations(const SmootherScanInput& scan) { AddObservations(scan, scan.mount, {}); }
+  // that keyframe's frame.
+  void AddObservations(const SmootherScanInput& scan, const SensorMount& mount);
+  void AddObservations(const SmootherScanInput& scan) { AddObservations(scan, scan.mount); }
   // The observations of a scan between keyframes: those of landmarks in the problem are fused
   // per landmark into one position in the last keyframe's frame (information-weighted, each
   // converted with its covariance), added as one relative-position factor per landmark when
   // the next keyframe comes (FlushFused): one factor per landmark and keyframe instead of one
   // per scan, so that the cost per keyframe stays what it was; the others as AddObservations.
+  // Each observation's covariance first gets `extra_covariance` (over range, bearing: the
+  // motion's since the keyframe).
   void FuseObservations(const SmootherScanInput& scan, const SensorMount& mount,
                         const std::vector<Eigen::Matrix2d>& extra_covariance);
   void FlushFused();
