@@ -33,14 +33,15 @@ std::map<std::string, std::vector<std::string>> Channels(const std::string& path
   return channels;
 }
 
+// s1-crossing seed 1's world log at `path`; slammtt-world's exit status, its output in `out`.
+int WriteWorldLog(const std::string& path, std::string* out) {
+  return Shell(Bin("slammtt-world") + " --scenario s1-crossing --seed 1 --log " + path, out);
+}
+
 TEST(SmootherReplayTest, SmoothedTrajectoryAndMapAreDeterministicAndScored) {
   testing::TempDir dir;
   std::string out;
-  ASSERT_EQ(Shell(Bin("slammtt-world") + " --scenario s1-crossing --seed 1 --log " +
-                      dir.File("world.lcm"),
-                  &out),
-            0)
-      << out;
+  ASSERT_EQ(WriteWorldLog(dir.File("world.lcm"), &out), 0) << out;
   {
     std::ofstream config(dir.File("smoother.yaml"));
     config << testing::FileBytes(Config()) << "smoother:\n  keyframe_interval_s: 0\n";
@@ -111,11 +112,7 @@ TEST(SmootherReplayTest, SmoothedTrajectoryAndMapAreDeterministicAndScored) {
 TEST(SmootherReplayTest, FeedbackIsDeterministicAndMovesTheFilter) {
   testing::TempDir dir;
   std::string out;
-  ASSERT_EQ(Shell(Bin("slammtt-world") + " --scenario s1-crossing --seed 1 --log " +
-                      dir.File("world.lcm"),
-                  &out),
-            0)
-      << out;
+  ASSERT_EQ(WriteWorldLog(dir.File("world.lcm"), &out), 0) << out;
   {
     std::string config = testing::FileBytes(Config());
     const std::string section = "estimator:\n";
