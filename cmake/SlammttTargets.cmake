@@ -96,15 +96,19 @@ function(slammtt_executable name)
   set_property(GLOBAL APPEND PROPERTY SLAMMTT_PROGRAMS ${name})
 endfunction()
 
-# slammtt_test(<name> SOURCES ... [LIBS ...] [LABELS ...] [NETNS] [TIMEOUT s])
+# slammtt_test(<name> SOURCES ... [LIBS ...] [LABELS ...] [NETNS] [ONE_PROCESS] [TIMEOUT s])
 # A GoogleTest program; each TEST becomes one ctest test. NETNS runs it in a network namespace
 # of its own (tests/support/netns-run), so LCM traffic never leaves it and concurrent tests never
-# hear each other. Labels: "unit" (default), "integration", "soak", "fuzz", "target".
+# hear each other. ONE_PROCESS makes the whole program one ctest test instead, for TESTs that
+# share expensive runs made once per process (the target tests' replays of 20 seeds).
+# Labels: "unit" (default), "integration", "soak", "fuzz", "target", "target_open" (left out
+# of the default run), "long" (minutes each; left out of the default run, which runs a short
+# version).
 function(slammtt_test name)
   if(NOT SLAMMTT_BUILD_TESTS)
     return()
   endif()
-  cmake_parse_arguments(ARG "NETNS" "TIMEOUT" "SOURCES;LIBS;LABELS" ${ARGN})
+  cmake_parse_arguments(ARG "NETNS;ONE_PROCESS" "TIMEOUT" "SOURCES;LIBS;LABELS" ${ARGN})
   if(NOT ARG_LABELS)
     set(ARG_LABELS unit)
   endif()
@@ -124,6 +128,15 @@ function(slammtt_test name)
     # CROSSCOMPILING_EMULATOR, read when it is called, for listing and for running the tests.
     set_property(TARGET ${name} PROPERTY CROSSCOMPILING_EMULATOR
       ${PROJECT_SOURCE_DIR}/tests/support/netns-run)
+  endif()
+  if(ARG_ONE_PROCESS)
+    if(ARG_NETNS)
+      message(FATAL_ERROR "slammtt_test(${name}): ONE_PROCESS with NETNS is not supported")
+    endif()
+    add_test(NAME ${name} COMMAND ${name})
+    # No SKIP_REGULAR_EXPRESSION here: one skipped TEST would hide the others' failures.
+    set_tests_properties(${name} PROPERTIES LABELS "${ARG_LABELS}" TIMEOUT ${ARG_TIMEOUT})
+    return()
   endif()
   gtest_discover_tests(${name}
     DISCOVERY_MODE PRE_TEST

@@ -1,9 +1,10 @@
 // The targets of the walls as line landmarks (issue 13, item 1) on the scenarios with walls,
 // seeds 1-20, scored by slammtt-eval (docs/evaluation.md, "Line landmarks"; docs/targets.md).
 // Each TEST is one target; a run (world -> replay with the segmenter -> eval) is made once per
-// scenario and seed and shared by the TESTs. Built twice: without LINE_TARGETS_OPEN the targets
-// the estimator meets (label `target`), with it the ones it does not meet yet (label
-// `target_open`), asserted just as the issue states them.
+// scenario and seed and shared by the TESTs, which run in one process (ONE_PROCESS in
+// CMakeLists.txt). Built twice: without LINE_TARGETS_OPEN the targets the estimator meets (label
+// `target`), with it the ones it does not meet yet (label `target_open`), asserted just as the
+// issue states them.
 #include <algorithm>
 #include <cmath>
 #include <fstream>

@@ -1,15 +1,14 @@
 // The leg classifier on the leg_tracker recordings it never saw in training (positive_4, the
 // second half of negative_2, the demo bag), with floors at the figures measured on the commit
-// that trained the model (docs/perception.md, "Learned leg classifier"), and the model
-// retrained from the recordings, byte for byte. The recordings are read from ../shared (or
-// $SLAMMTT_SHARED_DIR) through slammtt-import, which needs the Python venv
-// (scripts/python-env.sh); without either every test here is skipped with the reason.
+// that trained the model (docs/perception.md, "Learned leg classifier"). The recordings are read
+// from ../shared (or $SLAMMTT_SHARED_DIR) through slammtt-import, which needs the Python venv
+// (scripts/python-env.sh); without either every test here is skipped with the reason. The
+// model's retraining from the recordings is leg_model_retraining_test.cc (label long).
 #include <gtest/gtest.h>
 
-#include <cstdlib>
 #include <string>
-#include <sys/stat.h>
 
+#include "tests/legs/shared_recordings.h"
 #include "tests/support/child_process.h"
 #include "tools/legs/leg_training.h"
 #include "tools/legs/recording_log.h"
@@ -31,38 +30,15 @@ constexpr double kP4LegsInPeopleFloor = 0.79;
 constexpr double kNegative2PeoplePerScanCeiling = 2.91;
 constexpr double kDemoOneToThreeFloor = 0.95;
 
+using testing::LegRecordingsUnavailable;
 using testing::RunProcess;
+using testing::SharedReal;
 using testing::TempDir;
-
-std::string SharedReal() {
-  const char* env = std::getenv("SLAMMTT_SHARED_DIR");
-  const std::string shared = env != nullptr && *env != '\0'
-                                 ? std::string(env)
-                                 : std::string(SLAMMTT_SOURCE_DIR) + "/../shared";
-  return shared + "/data/real";
-}
-
-bool Exists(const std::string& path) {
-  struct stat st {};
-  return stat(path.c_str(), &st) == 0;
-}
-
-// Why the tests cannot run here, or "" when they can.
-std::string Unavailable() {
-  if (!Exists(SharedReal() + "/leg_tracker_training/positive_4_extracted.bag")) {
-    return "the leg_tracker recordings are absent (" + SharedReal() +
-           "; SLAMMTT_SHARED_DIR points elsewhere)";
-  }
-  if (!Exists(std::string(SLAMMTT_BIN_DIR) + "/../venv/bin/slammtt-import")) {
-    return "no Python venv for slammtt-import (scripts/python-env.sh)";
-  }
-  return "";
-}
 
 class RealLegsTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    const std::string why = Unavailable();
+    const std::string why = LegRecordingsUnavailable();
     if (!why.empty()) GTEST_SKIP() << why;
   }
   Recording Import(const std::string& bag, const std::string& name,
@@ -112,20 +88,6 @@ TEST_F(RealLegsTest, DemoPeoplePerScan) {
   std::cout << "demo: " << s.people_per_scan() << " people per scan; 1-3 people in "
             << one_to_three << " of the scans\n";
   EXPECT_GE(one_to_three, kDemoOneToThreeFloor);
-}
-
-TEST(LegModelTest, RetrainingWritesTheCommittedModel) {
-  const std::string why = Unavailable();
-  if (!why.empty()) GTEST_SKIP() << why;
-  TempDir dir("slammtt-leg-model");
-  const testing::ProcessResult r = RunProcess(
-      {std::string(SLAMMTT_SOURCE_DIR) + "/scripts/train-leg-model.sh", "--shared",
-       SharedReal() + "/../..", "--out", dir.File("leg_model.cc"), "--work", dir.path()},
-      dir.path(), 2400000);  // 3-4 min of CPU; 15 min and more on a loaded machine
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(testing::ReadWholeFile(dir.File("leg_model.cc")),
-            testing::ReadWholeFile(std::string(SLAMMTT_SOURCE_DIR) + "/perception/leg_model.cc"))
-      << "perception/leg_model.cc is not what scripts/train-leg-model.sh writes";
 }
 
 }  // namespace
