@@ -62,6 +62,8 @@ void ClassifyLandmarkWithMeasurement(int j, const PointMeasurement& z,
   r.object_class = ObjectClass::kUndecided;
   r.class_change_utime = utime;
   r.moving_evidence_scans = 0;
+  // This scan's measurement counts when it was the landmark's own (RecordHit came first).
+  r.hits_with_velocity = r.last_seen_utime == utime ? 1 : 0;
   RestartStillWindow(now.position(j), LargestEigenvalue(PositionCovariance(now, j)), utime, &r);
   ++counts->started_moving;
 }

@@ -13,6 +13,10 @@ double LargestEigenvalue(const Eigen::Matrix2d& m) {
   return half_trace + std::sqrt(std::max(0.0, half_trace * half_trace - det));
 }
 
+bool HasEnoughHitsToMove(const ObjectRecord& record, const MotionClassifierOptions& options) {
+  return record.hits_with_velocity >= options.moving_evidence_min_hits;
+}
+
 ClassChange ClassifyMover(const Eigen::Vector2d& position, const Eigen::Matrix2d& position_cov,
                           const Eigen::Vector2d& velocity, const Eigen::Matrix2d& velocity_cov,
                           int64_t utime, const MotionClassifierOptions& options,
@@ -36,7 +40,8 @@ ClassChange ClassifyMover(const Eigen::Vector2d& position, const Eigen::Matrix2d
     record->moving_evidence_scans = 0;
   }
   if (record->object_class == ObjectClass::kUndecided &&
-      record->moving_evidence_scans >= options.moving_confirm_scans) {
+      record->moving_evidence_scans >= options.moving_confirm_scans &&
+      HasEnoughHitsToMove(*record, options)) {
     record->object_class = ObjectClass::kMoving;
     return ClassChange::kBecameMoving;
   }
@@ -123,6 +128,8 @@ void VisitMotionClassifierOptions(OptionVisitor* v, MotionClassifierOptions* c) 
             "the still window reopens below this share of its largest variance (0: off)");
   v->Int("moving_confirm_scans", &c->moving_confirm_scans, R::Between(1, 1000),
          "consecutive scans of moving evidence that make an object MOVING");
+  v->Int("moving_evidence_min_hits", &c->moving_evidence_min_hits, R::Between(0, 1000),
+         "measured scans since it got velocity states before an object can become MOVING");
   v->Double("still_max_speed_mps", &c->still_max_speed_mps, R::AtLeast(0),
             "largest mean speed over the still window of still evidence");
   v->Double("still_hold_s", &c->still_hold_s, R::AtLeast(0), "shortest still window");

@@ -15,7 +15,8 @@
 // velocity estimate: with the process noise movers need (sigma_Q), a static object's velocity
 // estimate keeps a standard deviation of about 0.2 m/s at the paper's sensor noise, while the
 // mean velocity over T seconds is known to about sigma_position * sqrt(2) / T.
-// UNDECIDED -> MOVING after moving_confirm_scans consecutive "moving" scans.
+// UNDECIDED -> MOVING after moving_confirm_scans consecutive "moving" scans, once the object
+// has had moving_evidence_min_hits measured scans since it got its velocity states.
 // UNDECIDED or MOVING -> STATIC on "still" evidence; the estimator then conditions the state on
 // v = 0 and removes the velocity states (SlamState::RemoveVelocityAssumingZero).
 // A STATIC landmark has no velocity to judge; it is judged on its measurements instead. Each
@@ -50,6 +51,13 @@ struct MotionClassifierOptions {
   // fallen below this fraction of the largest it has been since the window opened.
   double still_restart_variance_ratio = 0.5;
   int moving_confirm_scans = 2;
+  // An UNDECIDED object becomes MOVING only after at least this many scans with a measurement
+  // since it got its velocity states (ObjectRecord::hits_with_velocity). A velocity estimated
+  // from two sightings of a cluster that comes and goes (a wall edge seen through dropouts, a
+  // chair leg at the edge of detection, a mixed pixel) is the difference of two noisy points
+  // taken a few scans apart, not evidence of motion: with a third measurement the estimate has
+  // to predict where the object is, which a flickering cluster's does not. 0 or 1: no minimum.
+  int moving_evidence_min_hits = 3;
   double still_max_speed_mps = 0.15;
   double still_hold_s = 1.5;
   double started_moving_chi2 = 23.0;      // 1e-5 false alarms per scan and landmark (2 dof)
@@ -76,6 +84,10 @@ enum class ClassChange {
   kBecameStatic,       // remove the velocity states assuming v = 0
   kStartedMoving,      // STATIC -> UNDECIDED: add velocity states
 };
+
+// Whether the object has had moving_evidence_min_hits measured scans since it got its velocity
+// states (it may become MOVING).
+bool HasEnoughHitsToMove(const ObjectRecord& record, const MotionClassifierOptions& options);
 
 // Judges an object with velocity states at utime and updates its evidence. Returns the class
 // change to apply (the record's object_class is updated for kBecameMoving; the caller updates

@@ -61,6 +61,9 @@ struct ObjectRecord {
   double unseen_observable_s = 0.0;  // time without a measurement inside the sensor's geometry
   // Classification evidence (motion_classifier.h).
   int moving_evidence_scans = 0;   // consecutive scans whose velocity says "moving"
+  // Scans with a measurement since the object got its velocity states, that scan included
+  // (MotionClassifierOptions::moving_evidence_min_hits).
+  int hits_with_velocity = 0;
   // Where the object's estimate was when the current "still" window opened (at creation, when
   // it gained velocity states and at every scan of moving evidence).
   Eigen::Vector2d still_anchor_m = Eigen::Vector2d::Zero();

@@ -18,13 +18,22 @@ ObjectRecord NewObjectRecord(int64_t id, int64_t utime, ObjectClass object_class
   record.last_update_utime = utime;
   record.class_change_utime = utime;
   record.hits = 1;
+  record.hits_with_velocity = 1;
   record.recent_hits = 1;
   record.recent_scans = 1;
   return record;
 }
 
+namespace {
+// The kind of the scans so far decides (a new object's: of its first measurement).
+int HitsNeededToConfirm(const ObjectRecord& record, const TrackManagementOptions& options) {
+  return record.kind == ObjectKind::kPerson ? options.confirm_person_hits : options.confirm_hits;
+}
+}  // namespace
+
 void RecordHit(int64_t utime, const TrackManagementOptions& options, ObjectRecord* record) {
   ++record->hits;
+  ++record->hits_with_velocity;
   record->recent_hits = (record->recent_hits << 1) | 1u;
   record->recent_scans = (record->recent_scans << 1) | 1u;
   record->recent_visible_misses <<= 1;
@@ -35,9 +44,7 @@ void RecordHit(int64_t utime, const TrackManagementOptions& options, ObjectRecor
   if (record->confirmed) return;
   const int window = options.confirm_window_scans;
   const int hits_in_window = window <= 0 ? record->hits : HitsInLastScans(*record, window);
-  // The kind of the scans before this one (a new object's: of its first measurement).
-  const int needed =
-      record->kind == ObjectKind::kPerson ? options.confirm_person_hits : options.confirm_hits;
+  const int needed = HitsNeededToConfirm(*record, options);
   if (hits_in_window >= needed) record->confirmed = true;
 }
 
@@ -76,10 +83,25 @@ void RecordMiss(double dt_s, bool in_geometry, bool expected_visible, ObjectReco
   if (in_geometry) record->unseen_observable_s += miss_s;
 }
 
+bool CanStillConfirm(const ObjectRecord& record, const TrackManagementOptions& options) {
+  const int window = options.confirm_window_scans;
+  const int needed = HitsNeededToConfirm(record, options);
+  if (window <= 0 || needed <= 1) return true;  // (one hit confirms: nothing to lose)
+  // k coming scans measured, with the window's other window - k scans from the past; k < needed,
+  // or the coming hits alone would do it (a new object's confirmation).
+  for (int k = 1; k < std::min(needed, window); ++k) {
+    if (HitsInLastScans(record, window - k) + k >= needed) return true;
+  }
+  return false;
+}
+
 bool ShouldPrune(const ObjectRecord& record, bool has_velocity, int64_t utime, bool out_of_view,
                  double position_sigma_m, const TrackManagementOptions& options) {
   const double unseen_s = SecondsBetween(utime, record.last_seen_utime);
-  if (!record.confirmed) return unseen_s > options.tentative_prune_unseen_s;
+  if (!record.confirmed) {
+    if (options.tentative_prune_unconfirmable && !CanStillConfirm(record, options)) return true;
+    return unseen_s > options.tentative_prune_unseen_s;
+  }
   if (has_velocity) {
     if (options.prune_unseen_visible_s > 0.0 &&
         record.unseen_in_view_s > options.prune_unseen_visible_s) {
@@ -163,6 +185,8 @@ void VisitTrackManagementOptions(OptionVisitor* v, TrackManagementOptions* t) {
             "an object with velocity unseen this long goes (paper 5.1: 3.5 s)");
   v->Double("tentative_prune_unseen_s", &t->tentative_prune_unseen_s, R::AtLeast(0),
             "a tentative object unseen this long goes");
+  v->Bool("tentative_prune_unconfirmable", &t->tentative_prune_unconfirmable,
+          "a tentative object that can no longer be confirmed goes at once");
   v->Double("static_prune_unseen_in_view_s", &t->static_prune_unseen_in_view_s, R::AtLeast(0),
             "a landmark missed this long where it should be seen goes (0: never)");
   v->Double("prune_unseen_visible_s", &t->prune_unseen_visible_s, R::AtLeast(0),

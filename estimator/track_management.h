@@ -4,7 +4,8 @@
 //
 // Pruning rules:
 //   - a tentative object is dropped after tentative_prune_unseen_s without a measurement
-//     (a false alarm must not live 3.5 s);
+//     (a false alarm must not live 3.5 s), and at once when it can no longer be confirmed by
+//     the hits it has (tentative_prune_unconfirmable);
 //   - a confirmed object with velocity states (moving or undecided) is dropped after
 //     prune_unseen_s without a measurement, as in the paper; for a confirmed MOVING object only
 //     the time its prediction spent inside the field of view and range counts: out of view it
@@ -60,6 +61,15 @@ struct TrackManagementOptions {
   int confirm_person_hits = 2;
   double prune_unseen_s = 3.5;                // paper section 5.1
   double tentative_prune_unseen_s = 1.0;
+  // A tentative object that can no longer reach its confirmation (confirm_hits, or
+  // confirm_person_hits for a person, of a window of confirm_window_scans scans) with the hits
+  // it has, even if every coming scan measures it, is pruned at once instead of after
+  // tentative_prune_unseen_s: it has missed too many scans of its window. Kept, it would only
+  // hold a measurement's place (take the measurement of whatever is there now, so that no new
+  // object starts from it) or start a duplicate beside that new object; a new object born of
+  // the same measurements is confirmed as soon as it could have been. No effect with
+  // confirm_window_scans 0.
+  bool tentative_prune_unconfirmable = true;
   double static_prune_unseen_in_view_s = 3.5;
   double prune_unseen_visible_s = 1.0;
   double shadow_radius_m = 0.4;  // angular half-width of what a point feature hides, at its range
@@ -127,6 +137,13 @@ void RecordHit(int64_t utime, const TrackManagementOptions& options, ObjectRecor
 // kMaxMissPerScan_s (the period of a 5 Hz sensor).
 inline constexpr double kMaxMissPerScan_s = 0.2;
 void RecordMiss(double dt_s, bool in_geometry, bool expected_visible, ObjectRecord* record);
+
+// Whether a tentative object can still be confirmed by a window (confirm_window_scans) that
+// holds one of its past hits: some k of the coming scans, all measured, and the hits among its
+// last confirm_window_scans - k scans make the hits needed (confirm_hits, or
+// confirm_person_hits for a person). Any object could be confirmed by hits still to come alone;
+// it would then be a new object. True when confirm_window_scans is 0.
+bool CanStillConfirm(const ObjectRecord& record, const TrackManagementOptions& options);
 
 // Whether the object should be removed at utime. `out_of_view`: its prediction lies outside the
 // field of view or the sensor's range; `position_sigma_m`: the largest standard deviation of its

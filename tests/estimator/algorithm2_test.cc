@@ -243,6 +243,63 @@ TEST(PruningTest, ATentativeObjectIsPrunedAfterTentativePruneUnseenS) {
   EXPECT_TRUE(ShouldPrune(tentative, true, Utime(2.1), false, 0.1, slower));
 }
 
+// confirm_hits 3 of confirm_window_scans 5: one hit and three misses leave no window with
+// three hits that holds the hit; it is pruned at once, not 1 s after its hit.
+TEST(PruningTest, ATentativeObjectThatCanNoLongerBeConfirmedIsPrunedAtOnce) {
+  const TrackManagementOptions options;
+  ASSERT_TRUE(options.tentative_prune_unconfirmable);
+  ASSERT_EQ(options.confirm_hits, 3);
+  ASSERT_EQ(options.confirm_window_scans, 5);
+  ObjectRecord tentative = NewObjectRecord(1, 0, ObjectClass::kUndecided);
+  for (int miss = 1; miss <= 2; ++miss) {
+    RecordMiss(0.1, true, true, &tentative);
+    EXPECT_TRUE(CanStillConfirm(tentative, options)) << miss << " misses: hit, hit, hit next";
+    EXPECT_FALSE(ShouldPrune(tentative, true, miss * kScan, false, 0.1, options));
+  }
+  RecordMiss(0.1, true, true, &tentative);
+  EXPECT_FALSE(CanStillConfirm(tentative, options));
+  EXPECT_TRUE(ShouldPrune(tentative, true, 3 * kScan, false, 0.1, options));
+  // Off: the old rule, after tentative_prune_unseen_s.
+  TrackManagementOptions off = options;
+  off.tentative_prune_unconfirmable = false;
+  EXPECT_FALSE(ShouldPrune(tentative, true, 3 * kScan, false, 0.1, off));
+  EXPECT_TRUE(ShouldPrune(tentative, true, Utime(1.1), false, 0.1, off));
+  // Without a window (confirm_hits at any time) nothing is unconfirmable.
+  TrackManagementOptions any_time = options;
+  any_time.confirm_window_scans = 0;
+  EXPECT_FALSE(ShouldPrune(tentative, true, 3 * kScan, false, 0.1, any_time));
+  // Two hits, then misses: after two, the window ending next scan holds both hits and a third;
+  // after three, every window that holds one of its hits holds three misses.
+  ObjectRecord twice = NewObjectRecord(2, 0, ObjectClass::kUndecided);
+  RecordHit(kScan, options, &twice);
+  RecordMiss(0.1, true, true, &twice);
+  RecordMiss(0.1, true, true, &twice);
+  EXPECT_FALSE(ShouldPrune(twice, true, 3 * kScan, false, 0.1, options)) << "hit, hit, one more";
+  RecordMiss(0.1, true, true, &twice);
+  EXPECT_TRUE(ShouldPrune(twice, true, 4 * kScan, false, 0.1, options));
+  // A hit this scan always leaves a way to confirmation.
+  RecordHit(5 * kScan, options, &twice);
+  EXPECT_TRUE(CanStillConfirm(twice, options));
+}
+
+TEST(PruningTest, APersonNeedsFewerHitsSoItMayMissMore) {
+  const TrackManagementOptions options;
+  ASSERT_EQ(options.confirm_person_hits, 2);
+  ObjectRecord person = NewObjectRecord(1, 0, ObjectClass::kUndecided);
+  person.person_hits = 1;
+  person.kind = ObjectKind::kPerson;
+  ObjectRecord other = NewObjectRecord(2, 0, ObjectClass::kUndecided);
+  for (int miss = 1; miss <= 3; ++miss) {
+    RecordMiss(0.1, true, true, &person);
+    RecordMiss(0.1, true, true, &other);
+  }
+  EXPECT_TRUE(CanStillConfirm(person, options)) << "its hit and one more in the window";
+  EXPECT_FALSE(ShouldPrune(person, true, 3 * kScan, false, 0.1, options));
+  EXPECT_TRUE(ShouldPrune(other, true, 3 * kScan, false, 0.1, options));
+  RecordMiss(0.1, true, true, &person);
+  EXPECT_TRUE(ShouldPrune(person, true, 4 * kScan, false, 0.1, options));
+}
+
 FeatureReading Feature(double range_m, double bearing_rad) {
   FeatureReading f;
   f.range_m = range_m;

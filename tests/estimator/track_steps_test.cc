@@ -9,9 +9,11 @@
 
 #include "estimator/classification.h"
 #include "estimator/hits_and_misses.h"
+#include "estimator/motion_classifier.h"
 #include "estimator/new_objects.h"
 #include "estimator/pruning.h"
 #include "estimator/scan_gating.h"
+#include "estimator/track_management.h"
 #include "tests/estimator/step_scene.h"
 
 namespace slammtt {
@@ -96,6 +98,8 @@ TEST(ClassificationTest, AFastObjectBecomesMovingAStillOneStaticAMovedLandmarkUn
   StepScene scene;
   scene.options.classifier.moving_confirm_scans = 1;
   const int fast = scene.AddMover({4.0, 2.0}, 0.05, {1.0, 0.0}, 0.05, ObjectClass::kUndecided);
+  scene.state.object(fast).record.hits_with_velocity =
+      scene.options.classifier.moving_evidence_min_hits;  // measured often enough
   const int still = scene.AddMover({4.0, -2.0}, 0.05, {0.0, 0.0}, 0.02, ObjectClass::kMoving);
   ObjectRecord& r = scene.state.object(still).record;
   r.still_anchor_m = scene.state.position(still);
@@ -130,6 +134,74 @@ TEST(ClassificationTest, AFastObjectBecomesMovingAStillOneStaticAMovedLandmarkUn
   EXPECT_EQ(started, 1);
   EXPECT_EQ(scene.state.object(landmark).record.object_class, ObjectClass::kUndecided);
   EXPECT_TRUE(scene.state.object(landmark).has_velocity());
+}
+
+// A cluster that comes and goes (a wall edge seen through dropouts, a chair leg): two
+// sightings 0.5 m apart give its velocity estimate a significant 1 m/s, scan after scan while it
+// coasts unseen. Two hits since it got its velocity states are no evidence of motion.
+struct FlickeringCluster {
+  ObjectRecord record = NewObjectRecord(1, 0, ObjectClass::kUndecided);
+  MotionClassifierOptions options;
+  FlickeringCluster() { RecordHit(kSecond / 2, TrackManagementOptions(), &record); }
+  // Judged at the scans after its second hit, unmeasured; returns the first class change.
+  ClassChange JudgeCoasting(int scans) {
+    for (int k = 1; k <= scans; ++k) {
+      const int64_t utime = kSecond / 2 + k * kSecond / 10;
+      const ClassChange change = ClassifyMover(
+          Eigen::Vector2d(0.5 + 0.1 * k, 0.0), 0.01 * Eigen::Matrix2d::Identity(),
+          Eigen::Vector2d(1.0, 0.0), 0.04 * Eigen::Matrix2d::Identity(), utime, options, &record);
+      if (change != ClassChange::kNone) return change;
+    }
+    return ClassChange::kNone;
+  }
+};
+
+TEST(ClassificationTest, AFlickeringClusterWithTwoHitsNeverBecomesMoving) {
+  FlickeringCluster cluster;
+  ASSERT_EQ(cluster.options.moving_evidence_min_hits, 3);
+  ASSERT_EQ(cluster.record.hits_with_velocity, 2) << "its first measurement and one more";
+  EXPECT_EQ(cluster.JudgeCoasting(20), ClassChange::kNone);
+  EXPECT_EQ(cluster.record.object_class, ObjectClass::kUndecided);
+  EXPECT_GE(cluster.record.moving_evidence_scans, 20) << "the velocity alone says moving";
+  // A third measurement (its estimate predicted where it is) lets the evidence count.
+  RecordHit(3 * kSecond, TrackManagementOptions(), &cluster.record);
+  EXPECT_EQ(cluster.JudgeCoasting(1), ClassChange::kBecameMoving);
+}
+
+TEST(ClassificationTest, WithoutAMinimumOfHitsTwoSightingsMakeAMover) {
+  for (int min_hits : {0, 1, 2}) {
+    FlickeringCluster cluster;
+    cluster.options.moving_evidence_min_hits = min_hits;
+    EXPECT_EQ(cluster.JudgeCoasting(20), ClassChange::kBecameMoving) << min_hits;
+    EXPECT_EQ(cluster.record.object_class, ObjectClass::kMoving);
+  }
+}
+
+TEST(ClassificationTest, ALandmarkThatStartsMovingCountsItsHitsAfresh) {
+  StepScene scene;
+  const int landmark = scene.AddLandmark({-4.0, 0.0}, 0.02);
+  ObjectRecord& r = scene.state.object(landmark).record;
+  r.hits = 50;
+  r.hits_with_velocity = 50;
+  r.last_seen_utime = 5 * kSecond;  // its own measurement this scan (RecordHit came first)
+  const std::vector<uint8_t> may_update = {1};
+  int started = 0;
+  for (int scan_index = 0; scan_index < 4 && started == 0; ++scan_index) {
+    scene.measurements.clear();
+    scene.Measure({-4.0, 0.12});
+    ObservationPredictions predicted(scene.options.sensor);
+    const ScanGating gating =
+        GateScan(scene.measurements, predicted.At(scene.state), scene.options);
+    const ScanAssociation scan{scene.measurements, may_update, 5 * kSecond};
+    Assignment assignment(1, 1);
+    assignment.Set(0, landmark);
+    StepCounts counts;
+    ClassifyObjects(scan, gating.gated, scene.options, scene.Predictions(), assignment,
+                    &scene.state, &counts);
+    started += counts.started_moving;
+  }
+  ASSERT_EQ(started, 1);
+  EXPECT_EQ(scene.state.object(landmark).record.hits_with_velocity, 1);
 }
 
 TEST(ClassificationTest, TheStaticWorldClassifiesNothing) {
