@@ -152,6 +152,16 @@ struct EstimatorOptions {
   bool level3 = true;
   double gate_d2_chi2 = 13.82;                   // 99.9 %
   double new_object_gate_dn_chi2 = 20.0;
+  // A measurement that no level took, inside gate dn of an object that already took its own
+  // measurement in this scan, is a second thing beside that object, not that object again: on
+  // (default) such an object does not keep it from starting a new object. Off: every object's
+  // gate dn blocks births. Two far landmarks a few metres apart at the edge of the range have
+  // gates dn that overlap: one landmark's object takes a measurement, the other landmark's
+  // measurement falls in that object's gate, so the second landmark is never mapped and its
+  // measurements pull the first one's object between the two, which then gains a velocity and
+  // becomes a false mover (s1-crossing). The object beside such a birth, when UNDECIDED, has
+  // its moving evidence restarted (scan_gating.h: RestartObjectsBesideBirths).
+  bool new_object_gate_skips_claimed_objects = true;
   RansacOptions ransac;
   int update_group_size = 32;                    // observations per batch update (ekf_update.h)
   // Per-scan budget of static-landmark updates (0: no limit). Every measurement is still gated

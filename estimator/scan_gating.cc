@@ -33,9 +33,42 @@ ScanGating GateScan(const std::vector<PointMeasurement>& measurements,
     nearest = std::min(nearest, c.nis);
     if (c.nis < d1) gating.compatible.push_back(c);
   }
+  gating.held_back_nis.assign(measurements.size(), std::numeric_limits<double>::infinity());
   BlockBirthsInsideHeldBackGates(measurements, predictions, options.new_object_gate_dn_chi2,
-                                 &gating.nearest_nis);
+                                 &gating.held_back_nis);
+  for (size_t i = 0; i < measurements.size(); ++i) {
+    gating.nearest_nis[i] = std::min(gating.nearest_nis[i], gating.held_back_nis[i]);
+  }
   return gating;
+}
+
+std::vector<double> NearestNisForBirths(const ScanGating& gating, const Assignment& assignment,
+                                        const EstimatorOptions& options) {
+  if (!options.new_object_gate_skips_claimed_objects) return gating.nearest_nis;
+  std::vector<double> nearest = gating.held_back_nis;
+  for (const Candidate& c : gating.gated) {
+    if (!assignment.ObjectFree(c.object)) continue;
+    double& n = nearest[static_cast<size_t>(c.measurement)];
+    n = std::min(n, c.nis);
+  }
+  return nearest;
+}
+
+std::vector<int> ClaimedObjectsBesideBirths(const ScanGating& gating,
+                                            const std::vector<double>& birth_nis,
+                                            const Assignment& assignment, double dn_chi2) {
+  std::vector<int> beside;
+  for (const Candidate& c : gating.gated) {
+    const auto i = static_cast<size_t>(c.measurement);
+    if (!assignment.MeasurementFree(c.measurement) || assignment.ObjectFree(c.object) ||
+        c.nis >= dn_chi2 || birth_nis[i] < dn_chi2 || gating.nearest_nis[i] >= dn_chi2) {
+      continue;
+    }
+    beside.push_back(c.object);
+  }
+  std::sort(beside.begin(), beside.end());
+  beside.erase(std::unique(beside.begin(), beside.end()), beside.end());
+  return beside;
 }
 
 }  // namespace slammtt

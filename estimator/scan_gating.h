@@ -10,6 +10,7 @@
 
 #include <vector>
 
+#include "estimator/association.h"
 #include "estimator/estimator_options.h"
 #include "estimator/gating.h"
 #include "estimator/point_measurement.h"
@@ -20,6 +21,9 @@ struct ScanGating {
   std::vector<Candidate> gated;       // NIS < max(d1, d2 if level 3, dn), by measurement, object
   std::vector<Candidate> compatible;  // J: the pairs of `gated` with NIS < d1, same order
   std::vector<double> nearest_nis;    // per measurement (+infinity: no object within the gates)
+  // Per measurement, its smallest NIS to a held-back landmark within gate dn (+infinity: none);
+  // already in nearest_nis (BlockBirthsInsideHeldBackGates).
+  std::vector<double> held_back_nis;
 };
 
 // A re-entered landmark held back from association (observation_predictions.h:
@@ -38,5 +42,24 @@ void BlockBirthsInsideHeldBackGates(const std::vector<PointMeasurement>& measure
 ScanGating GateScan(const std::vector<PointMeasurement>& measurements,
                     const std::vector<ObjectPrediction>& predictions,
                     const EstimatorOptions& options);
+
+// Per measurement, the smallest NIS that decides whether it may start a new object (at least
+// gate dn: it may), once the levels have associated: nearest_nis, or with
+// new_object_gate_skips_claimed_objects the smallest NIS to the objects that took no
+// measurement of their own in this scan, and to held-back landmarks. An object that took its
+// own measurement is accounted for; another measurement inside its gate dn is a second thing
+// beside it (two far landmarks a few metres apart have gates dn that overlap at the edge of the
+// range), and kept from starting an object it would have no object at all: its measurements
+// would pull the nearby object towards it instead (s1-crossing's false movers).
+std::vector<double> NearestNisForBirths(const ScanGating& gating, const Assignment& assignment,
+                                        const EstimatorOptions& options);
+
+// The objects (indices at the assignment's state) that took their own measurement in this scan
+// and have inside their gate dn a measurement that starts a new object by `birth_nis`
+// (NearestNisForBirths) though it would not by nearest_nis: the objects a new object is born
+// beside. Ascending, each once.
+std::vector<int> ClaimedObjectsBesideBirths(const ScanGating& gating,
+                                            const std::vector<double>& birth_nis,
+                                            const Assignment& assignment, double dn_chi2);
 
 }  // namespace slammtt
