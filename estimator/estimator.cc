@@ -331,11 +331,11 @@ std::vector<StaticObservation> Estimator::ManageTracks(ScanInProgress* s) {
   // block a second thing beside it (new_object_gate_skips_claimed_objects); the UNDECIDED
   // objects such a birth is beside forget the moving evidence the two things' measurements gave,
   // before they are judged.
-  const std::vector<double> birth_nis = NearestNisForBirths(s->gating, s->assignment, options_);
-  RestartObjectsBesideBirths(
-      ClaimedObjectsBesideBirths(s->gating, birth_nis, s->assignment,
-                                 options_.new_object_gate_dn_chi2),
-      &state_);
+  const std::vector<double> birth_nis = NearestNisForBirths(
+      s->features.measurements, s->gating, s->assignment, state_, options_);
+  const std::vector<int> beside_births = ClaimedObjectsBesideBirths(
+      s->gating, birth_nis, s->assignment, options_.new_object_gate_dn_chi2);
+  RestartObjectsBesideBirths(beside_births, &state_);
   // 8. Static or dynamic (line 12).
   ClassifyObjects(association, s->gating.gated, options_, after_updates, s->assignment,
                   &state_, s->counts);

@@ -140,8 +140,8 @@ void VisitAssociationOptions(OptionVisitor* v, EstimatorOptions* o) {
   v->Double("new_object_gate_dn_chi2", &o->new_object_gate_dn_chi2, R::Above(0),
             "gate dn: a measurement outside it for every object starts a new one");
   v->Bool("new_object_gate_skips_claimed_objects", &o->new_object_gate_skips_claimed_objects,
-          "an object that took its own measurement this scan does not block a birth in its "
-          "gate dn");
+          "a non-person, non-MOVING object that took its own measurement this scan does not "
+          "block a birth in its gate dn");
   v->BeginGroup("ransac");
   VisitRansacOptions(v, &o->ransac);
   v->EndGroup();

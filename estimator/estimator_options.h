@@ -159,8 +159,10 @@ struct EstimatorOptions {
   // gates dn that overlap: one landmark's object takes a measurement, the other landmark's
   // measurement falls in that object's gate, so the second landmark is never mapped and its
   // measurements pull the first one's object between the two, which then gains a velocity and
-  // becomes a false mover (s1-crossing). The object beside such a birth, when UNDECIDED, has
-  // its moving evidence restarted (scan_gating.h: RestartObjectsBesideBirths).
+  // becomes a false mover (s1-crossing). People and MOVING objects still block (their second
+  // point is most likely the same walker; scan_gating.h: NearestNisForBirths). The object beside
+  // such a birth, when UNDECIDED, has its moving evidence restarted (new_objects.h:
+  // RestartObjectsBesideBirths).
   bool new_object_gate_skips_claimed_objects = true;
   RansacOptions ransac;
   int update_group_size = 32;                    // observations per batch update (ekf_update.h)

@@ -42,12 +42,18 @@ ScanGating GateScan(const std::vector<PointMeasurement>& measurements,
   return gating;
 }
 
-std::vector<double> NearestNisForBirths(const ScanGating& gating, const Assignment& assignment,
-                                        const EstimatorOptions& options) {
+std::vector<double> NearestNisForBirths(const std::vector<PointMeasurement>& measurements,
+                                        const ScanGating& gating, const Assignment& assignment,
+                                        const SlamState& state, const EstimatorOptions& options) {
   if (!options.new_object_gate_skips_claimed_objects) return gating.nearest_nis;
   std::vector<double> nearest = gating.held_back_nis;
   for (const Candidate& c : gating.gated) {
-    if (!assignment.ObjectFree(c.object)) continue;
+    const int own = assignment.MeasurementOf(c.object);
+    const ObjectRecord& record = state.object(c.object).record;
+    const bool still_blocks = record.kind == ObjectKind::kPerson ||
+                              record.object_class == ObjectClass::kMoving ||
+                              (own >= 0 && measurements[static_cast<size_t>(own)].person);
+    if (own >= 0 && !still_blocks) continue;
     double& n = nearest[static_cast<size_t>(c.measurement)];
     n = std::min(n, c.nis);
   }

@@ -51,8 +51,14 @@ ScanGating GateScan(const std::vector<PointMeasurement>& measurements,
 // beside it (two far landmarks a few metres apart have gates dn that overlap at the edge of the
 // range), and kept from starting an object it would have no object at all: its measurements
 // would pull the nearby object towards it instead (s1-crossing's false movers).
-std::vector<double> NearestNisForBirths(const ScanGating& gating, const Assignment& assignment,
-                                        const EstimatorOptions& options);
+// A person (an object of kind PERSON, or one that took a person feature) and a MOVING object
+// still block: the second leg of a person, taken alone as a point beside the paired person
+// (people.h), is the same person, and so most likely is a second point inside a walker's gate
+// (s1-crossing seed 15: two identity switches when MOVING objects did not block, none when
+// they do). The two things this is for are landmarks, STATIC or not yet decided.
+std::vector<double> NearestNisForBirths(const std::vector<PointMeasurement>& measurements,
+                                        const ScanGating& gating, const Assignment& assignment,
+                                        const SlamState& state, const EstimatorOptions& options);
 
 // The objects (indices at the assignment's state) that took their own measurement in this scan
 // and have inside their gate dn a measurement that starts a new object by `birth_nis`
