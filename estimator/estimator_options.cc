@@ -142,6 +142,9 @@ void VisitAssociationOptions(OptionVisitor* v, EstimatorOptions* o) {
   v->Bool("new_object_gate_skips_claimed_objects", &o->new_object_gate_skips_claimed_objects,
           "a non-person, non-MOVING object that took its own measurement this scan does not "
           "block a birth in its gate dn");
+  v->Double("new_object_beside_claimed_min_separation_m",
+            &o->new_object_beside_claimed_min_separation_m, R::AtLeast(0),
+            "... when the two measured points are at least this far apart");
   v->BeginGroup("ransac");
   VisitRansacOptions(v, &o->ransac);
   v->EndGroup();

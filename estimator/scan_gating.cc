@@ -1,6 +1,7 @@
 #include "estimator/scan_gating.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 namespace slammtt {
@@ -42,6 +43,19 @@ ScanGating GateScan(const std::vector<PointMeasurement>& measurements,
   return gating;
 }
 
+namespace {
+
+// The distance between two measured points of one scan (both in the sensor's frame).
+double SeparationM(const PointMeasurement& a, const PointMeasurement& b) {
+  const auto point = [](const PointMeasurement& z) {
+    return Eigen::Vector2d(z.range_bearing(0) * std::cos(z.range_bearing(1)),
+                           z.range_bearing(0) * std::sin(z.range_bearing(1)));
+  };
+  return (point(a) - point(b)).norm();
+}
+
+}  // namespace
+
 std::vector<double> NearestNisForBirths(const std::vector<PointMeasurement>& measurements,
                                         const ScanGating& gating, const Assignment& assignment,
                                         const SlamState& state, const EstimatorOptions& options) {
@@ -53,7 +67,12 @@ std::vector<double> NearestNisForBirths(const std::vector<PointMeasurement>& mea
     const bool still_blocks = record.kind == ObjectKind::kPerson ||
                               record.object_class == ObjectClass::kMoving ||
                               (own >= 0 && measurements[static_cast<size_t>(own)].person);
-    if (own >= 0 && !still_blocks) continue;
+    if (own >= 0 && !still_blocks &&
+        SeparationM(measurements[static_cast<size_t>(own)],
+                    measurements[static_cast<size_t>(c.measurement)]) >=
+            options.new_object_beside_claimed_min_separation_m) {
+      continue;
+    }
     double& n = nearest[static_cast<size_t>(c.measurement)];
     n = std::min(n, c.nis);
   }

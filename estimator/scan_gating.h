@@ -55,7 +55,9 @@ ScanGating GateScan(const std::vector<PointMeasurement>& measurements,
 // still block: the second leg of a person, taken alone as a point beside the paired person
 // (people.h), is the same person, and so most likely is a second point inside a walker's gate
 // (s1-crossing seed 15: two identity switches when MOVING objects did not block, none when
-// they do). The two things this is for are landmarks, STATIC or not yet decided.
+// they do), and so does any object whose own measured point is closer to the measurement than
+// new_object_beside_claimed_min_separation_m. The two things this is for are landmarks, STATIC
+// or not yet decided, metres apart.
 std::vector<double> NearestNisForBirths(const std::vector<PointMeasurement>& measurements,
                                         const ScanGating& gating, const Assignment& assignment,
                                         const SlamState& state, const EstimatorOptions& options);

@@ -387,14 +387,16 @@ TEST(NewObjectTest, OnlyOutsideGateDnOfEveryObject) {
 }
 
 // Two posts side by side, the second's feature inside gate dn of the first's object (NIS 16)
-// from the scan it appears in. The first post's object takes its own feature; on
-// (new_object_gate_skips_claimed_objects, the default) the second post starts its own object at
+// from the scan it appears in, about 1.1 m behind it. The first post's object takes its own
+// feature; on (new_object_gate_skips_claimed_objects, with the separation below the posts') the
+// second post starts its own object at
 // once, and over 3 s of a robot standing still both become confirmed STATIC landmarks with no
 // MOVING object on the way. Off, the first post's gate keeps the second from being mapped then.
 TEST(NewObjectTest, ASecondPostInsideTheGateOfAMeasuredOneStartsItsOwnObject) {
   for (const bool skips : {true, false}) {
     EstimatorOptions options;
     options.new_object_gate_skips_claimed_objects = skips;
+    options.new_object_beside_claimed_min_separation_m = 0.5;
     KnownObjectScene scene(options);
     const double range_offset = std::sqrt(16.0 / scene.innovation_covariance.inverse()(0, 0));
     const Eigen::Vector2d second(scene.predicted(0) + range_offset, scene.predicted(1));

@@ -256,8 +256,7 @@ TEST(NewObjectsTest, AClaimedObjectDoesNotBlockABirthBesideIt) {
   EXPECT_TRUE(ClaimedObjectsBesideBirths(gating, blocked, assignment, dn).empty());
 
   scene.options.new_object_gate_skips_claimed_objects = true;
-  ASSERT_TRUE(scene.options.new_object_gate_skips_claimed_objects ==
-              EstimatorOptions().new_object_gate_skips_claimed_objects);
+  scene.options.new_object_beside_claimed_min_separation_m = 0.1;  // the points are 0.2 m apart
   const std::vector<double> births = NearestNisForBirths(scene.measurements, gating, assignment, scene.state, scene.options);
   ASSERT_EQ(births.size(), 6u);
   EXPECT_GE(births[1], dn);
@@ -279,6 +278,12 @@ TEST(NewObjectsTest, AClaimedObjectDoesNotBlockABirthBesideIt) {
                                 scene.options)[1],
             dn);
   scene.state.object(undecided).record.kind = ObjectKind::kOther;
+  // Nor does a point nearer to the object's own than the separation.
+  scene.options.new_object_beside_claimed_min_separation_m = 0.3;
+  EXPECT_LT(NearestNisForBirths(scene.measurements, gating, assignment, scene.state,
+                                scene.options)[1],
+            dn);
+  scene.options.new_object_beside_claimed_min_separation_m = 0.1;
 
   const std::vector<uint8_t> may_update = scene.AllMayUpdate();
   const ScanAssociation scan{scene.measurements, may_update, 4 * kSecond};
