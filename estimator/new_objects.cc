@@ -57,4 +57,15 @@ std::vector<StaticObservation> AddNewObjects(const ScanAssociation& scan,
   return first_sightings;
 }
 
+int RestartObjectsBesideBirths(const std::vector<int>& objects, SlamState* state) {
+  int restarted = 0;
+  for (const int k : objects) {
+    ObjectRecord& record = state->object(k).record;
+    if (record.object_class != ObjectClass::kUndecided) continue;
+    record.moving_evidence_scans = 0;
+    ++restarted;
+  }
+  return restarted;
+}
+
 }  // namespace slammtt

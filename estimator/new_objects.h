@@ -34,4 +34,12 @@ std::vector<StaticObservation> AddNewObjects(const ScanAssociation& scan,
                                              const Assignment& assignment, int64_t* next_id,
                                              SlamState* state, StepCounts* counts);
 
+// An UNDECIDED object beside which a new object is born in this scan (scan_gating.h:
+// ClaimedObjectsBesideBirths; `objects`: their indices) has its moving evidence restarted: until
+// now the measurements of the thing beside it, with no object of their own, pulled it between
+// the two, so the velocity it gained says nothing of its own motion and would make a still
+// landmark a false MOVING track. From now on each of the two has its own measurements.
+// Returns how many were restarted.
+int RestartObjectsBesideBirths(const std::vector<int>& objects, SlamState* state);
+
 }  // namespace slammtt

@@ -223,6 +223,76 @@ TEST(NewObjectsTest, FreeMeasurementsOutsideDnOfEveryObjectStartUndecidedTentati
   EXPECT_EQ(scene.state.object(2).record.continues_id, 42);
 }
 
+// Two things side by side: an object that took its own measurement does not keep a second
+// measurement inside its gate dn from starting an object (new_object_gate_skips_claimed_objects);
+// one that took none still does, and so does a MOVING one (most likely the same walker). The
+// UNDECIDED object beside such a birth forgets its moving evidence.
+TEST(NewObjectsTest, AClaimedObjectDoesNotBlockABirthBesideIt) {
+  StepScene scene;
+  const int undecided = scene.AddMover({8.0, 0.0}, 0.05, {0.0, 0.0}, 0.5, ObjectClass::kUndecided);
+  const int unclaimed = scene.AddLandmark({0.0, 8.0}, 0.05);
+  const int moving = scene.AddMover({8.0, -3.0}, 0.05, {0.0, 0.0}, 0.5, ObjectClass::kMoving);
+  scene.state.object(undecided).record.moving_evidence_scans = 1;
+  scene.state.object(moving).record.moving_evidence_scans = 3;
+  scene.Measure({8.0, 0.0});    // 0: the undecided object's own
+  scene.Measure({8.2, 0.0});    // 1: beside it
+  scene.Measure({0.0, 8.2});    // 2: beside the landmark, which took nothing
+  scene.Measure({8.0, -3.0});   // 3: the moving object's own
+  scene.Measure({8.2, -3.0});   // 4: beside it
+  scene.Measure({4.0, 4.0});    // 5: far from everything
+  const double dn = scene.options.new_object_gate_dn_chi2;
+  ASSERT_LT(scene.Nis(1, undecided), dn);
+  ASSERT_LT(scene.Nis(2, unclaimed), dn);
+  ASSERT_LT(scene.Nis(4, moving), dn);
+  ObservationPredictions predicted(scene.options.sensor);
+  const ScanGating gating = GateScan(scene.measurements, predicted.At(scene.state), scene.options);
+  Assignment assignment(6, 3);
+  assignment.Set(0, undecided);
+  assignment.Set(3, moving);
+
+  scene.options.new_object_gate_skips_claimed_objects = false;
+  const std::vector<double> blocked = NearestNisForBirths(scene.measurements, gating, assignment, scene.state, scene.options);
+  EXPECT_EQ(blocked, gating.nearest_nis);
+  EXPECT_TRUE(ClaimedObjectsBesideBirths(gating, blocked, assignment, dn).empty());
+
+  scene.options.new_object_gate_skips_claimed_objects = true;
+  scene.options.new_object_beside_claimed_min_separation_m = 0.1;  // the points are 0.2 m apart
+  const std::vector<double> births = NearestNisForBirths(scene.measurements, gating, assignment, scene.state, scene.options);
+  ASSERT_EQ(births.size(), 6u);
+  EXPECT_GE(births[1], dn);
+  EXPECT_EQ(births[2], gating.nearest_nis[2]);
+  EXPECT_LT(births[2], dn);
+  EXPECT_EQ(births[4], gating.nearest_nis[4]);
+  EXPECT_LT(births[4], dn);
+  EXPECT_EQ(births[5], gating.nearest_nis[5]);
+  const std::vector<int> beside = ClaimedObjectsBesideBirths(gating, births, assignment, dn);
+  EXPECT_EQ(beside, (std::vector<int>{undecided}));
+  EXPECT_EQ(RestartObjectsBesideBirths(beside, &scene.state), 1);
+  EXPECT_EQ(scene.state.object(undecided).record.moving_evidence_scans, 0);
+  // Only an UNDECIDED object is restarted.
+  EXPECT_EQ(RestartObjectsBesideBirths({moving}, &scene.state), 0);
+  EXPECT_EQ(scene.state.object(moving).record.moving_evidence_scans, 3);
+  // A person still blocks the point beside it (its other leg).
+  scene.state.object(undecided).record.kind = ObjectKind::kPerson;
+  EXPECT_LT(NearestNisForBirths(scene.measurements, gating, assignment, scene.state,
+                                scene.options)[1],
+            dn);
+  scene.state.object(undecided).record.kind = ObjectKind::kOther;
+  // Nor does a point nearer to the object's own than the separation.
+  scene.options.new_object_beside_claimed_min_separation_m = 0.3;
+  EXPECT_LT(NearestNisForBirths(scene.measurements, gating, assignment, scene.state,
+                                scene.options)[1],
+            dn);
+  scene.options.new_object_beside_claimed_min_separation_m = 0.1;
+
+  const std::vector<uint8_t> may_update = scene.AllMayUpdate();
+  const ScanAssociation scan{scene.measurements, may_update, 4 * kSecond};
+  int64_t next_id = 10;
+  AddNewObjects(scan, births, std::vector<int64_t>(6, 0), scene.options, assignment, &next_id,
+                &scene.state, &scene.counts);
+  EXPECT_EQ(scene.counts.new_objects, 2);  // measurements 1 and 5
+}
+
 TEST(NewObjectsTest, TheCapRefusesAndTheStaticWorldMapsConfirmedLandmarks) {
   StepScene scene;
   scene.options.mode = AssociationMode::kStaticNearestNeighbour;
