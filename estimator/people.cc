@@ -1,5 +1,7 @@
 #include "estimator/people.h"
 
+#include "common/utime.h"
+
 namespace slammtt {
 
 void VisitPeopleOptions(OptionVisitor* v, PeopleOptions* o) {
@@ -14,6 +16,8 @@ void VisitPeopleOptions(OptionVisitor* v, PeopleOptions* o) {
             "no person track is born closer than this to another (0: off)");
   v->Double("taken_over_within_m", &o->taken_over_within_m, R::AtLeast(0),
             "an unmeasured STATIC person this near a measured MOVING one goes (0: off)");
+  v->Double("taken_over_born_within_s", &o->taken_over_born_within_s, R::AtLeast(0),
+            "... born at most this long before the STATIC one's last measurement");
 }
 
 ObjectKind KindOfRecord(const ObjectRecord& record) {
@@ -69,6 +73,10 @@ std::vector<int> PersonTracksTakenOver(const std::vector<uint8_t>& measured,
           !state.object(m).record.confirmed) {
         continue;
       }
+      // Born where the standing track's measurements ended, not an old mover passing by.
+      const double born_before_s = SecondsBetween(state.object(j).record.last_seen_utime,
+                                                  state.object(m).record.first_seen_utime);
+      if (born_before_s > options.taken_over_born_within_s) continue;
       if ((state.position(m) - state.position(j)).norm() <= options.taken_over_within_m) {
         taken_over.push_back(j);
         break;
