@@ -317,5 +317,43 @@ TEST(NewObjectsTest, TheCapRefusesAndTheStaticWorldMapsConfirmedLandmarks) {
   EXPECT_FALSE(scene.state.object(0).has_velocity());
 }
 
+// Two person features 0.3 m apart (a person's legs split into two people) start one track; a
+// third 0.3 m from an existing person track starts none; a point feature as near starts its
+// object as before, and so does everything with people_min_separation_m 0.
+TEST(NewObjectsTest, NoPersonTrackIsBornCloserThanTheMinimumSeparationToAnother) {
+  for (const double min_separation_m : {0.4, 0.0}) {
+    StepScene scene;
+    scene.options.people.min_separation_m = min_separation_m;
+    const int standing = scene.AddLandmark({0.0, -4.0}, 0.01);
+    scene.state.object(standing).record.kind = ObjectKind::kPerson;
+    scene.Measure({3.0, 0.0});    // 0: a person
+    scene.Measure({3.0, 0.3});    // 1: a second person 0.3 m from the first
+    scene.Measure({0.3, -4.0});   // 2: a person 0.3 m from the standing person's track
+    scene.Measure({3.0, -0.3});   // 3: a point feature 0.3 m from the first person
+    for (int i : {0, 1, 2}) scene.measurements[static_cast<size_t>(i)].person = true;
+    ObservationPredictions predicted(scene.options.sensor);
+    const ScanGating gating =
+        GateScan(scene.measurements, predicted.At(scene.state), scene.options);
+    ASSERT_GE(gating.nearest_nis[2], scene.options.new_object_gate_dn_chi2)
+        << "outside gate dn of the standing track: a birth without the rule";
+    const std::vector<uint8_t> may_update = {1};
+    const ScanAssociation scan{scene.measurements, may_update, kSecond};
+    int64_t next_id = 10;
+    AddNewObjects(scan, gating.nearest_nis, {0, 0, 0, 0}, scene.options, Assignment(4, 1),
+                  &next_id, &scene.state, &scene.counts);
+    if (min_separation_m > 0.0) {
+      EXPECT_EQ(scene.counts.new_objects, 2);
+      EXPECT_EQ(scene.counts.person_births_joined, 2);
+      ASSERT_EQ(scene.state.num_objects(), 3);
+      EXPECT_EQ(scene.state.object(1).record.kind, ObjectKind::kPerson);
+      EXPECT_NEAR((scene.state.position(1) - Eigen::Vector2d(3.0, 0.0)).norm(), 0.0, 1e-9);
+      EXPECT_EQ(scene.state.object(2).record.kind, ObjectKind::kOther);
+    } else {
+      EXPECT_EQ(scene.counts.new_objects, 4);
+      EXPECT_EQ(scene.counts.person_births_joined, 0);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace slammtt
