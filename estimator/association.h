@@ -35,6 +35,12 @@ class Assignment {
   }
   int ObjectOf(int i) const { return object_of_measurement_[static_cast<size_t>(i)]; }
   int MeasurementOf(int j) const { return measurement_of_object_[static_cast<size_t>(j)]; }
+  // Per object, 1 when it got a measurement.
+  std::vector<uint8_t> ObjectsMeasured() const {
+    std::vector<uint8_t> measured(measurement_of_object_.size());
+    for (size_t j = 0; j < measured.size(); ++j) measured[j] = measurement_of_object_[j] >= 0;
+    return measured;
+  }
   void Set(int i, int j);
 
  private:

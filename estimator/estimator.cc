@@ -327,24 +327,36 @@ std::vector<StaticObservation> Estimator::ManageTracks(ScanInProgress* s) {
                       after_updates, s->assignment, &state_);
   const std::vector<int> taken_over =
       TakeOverLostIdentities(s->utime, options_, s->assignment, &state_, s->counts);
-  // 8. Static or dynamic (line 12).
+  // Which measurements may start objects: an object that took its own measurement need not
+  // block a second thing beside it (new_object_gate_skips_claimed_objects); the UNDECIDED
+  // objects such a birth is beside forget the moving evidence the two things' measurements gave,
+  // before they are judged.
+  const std::vector<double> birth_nis = NearestNisForBirths(
+      s->features.measurements, s->gating, s->assignment, state_, options_);
+  const std::vector<int> beside_births = ClaimedObjectsBesideBirths(
+      s->gating, birth_nis, s->assignment, options_.new_object_gate_dn_chi2);
+  RestartObjectsBesideBirths(beside_births, &state_);
+  // 8. Static or dynamic (line 12); then the standing people a walker took over (people.h).
   ClassifyObjects(association, s->gating.gated, options_, after_updates, s->assignment,
                   &state_, s->counts);
+  std::vector<int> removed = PersonTracksTakenOver(s->assignment.ObjectsMeasured(),
+                                                   options_.people, state_);
+  s->counts->person_tracks_taken_over = static_cast<int>(removed.size());
+  removed.insert(removed.end(), taken_over.begin(), taken_over.end());
   // The measurements of confirmed static landmarks, taken while the assignment's object indices
   // are still those of the state (pruning and new objects renumber them).
   std::vector<StaticObservation> static_observations =
       StaticObservations(s->features.measurements, s->assignment, state_);
   // 9. Re-acquisition tags, then pruning (line 11).
-  const std::vector<int64_t> continues_id =
-      TagPossibleContinuations(association, s->gating.nearest_nis, taken_over, options_,
-                               &s->predicted, state_, s->assignment);
-  PruneObjects(s->utime, taken_over, options_, after_updates, s->assignment, &state_,
+  const std::vector<int64_t> continues_id = TagPossibleContinuations(
+      association, birth_nis, taken_over, options_, &s->predicted, state_, s->assignment);
+  PruneObjects(s->utime, removed, options_, after_updates, s->assignment, &state_,
                s->counts, &archive_);
   // 10. New tracks outside gate dn of every object (line 13); their first sightings go to the
   // smoother too when asked (smoother_first_sightings).
   const std::vector<StaticObservation> first_sightings =
-      AddNewObjects(association, s->gating.nearest_nis, continues_id, options_, s->assignment,
-                    &next_id_, &state_, s->counts);
+      AddNewObjects(association, birth_nis, continues_id, options_, s->assignment, &next_id_,
+                    &state_, s->counts);
   if (options_.smoother_first_sightings) {
     static_observations.insert(static_observations.end(), first_sightings.begin(),
                                first_sightings.end());

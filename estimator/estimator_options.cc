@@ -139,6 +139,12 @@ void VisitAssociationOptions(OptionVisitor* v, EstimatorOptions* o) {
             "gate d2 of level 3 (> gate_d1_chi2; 13.82: 99.9 %)");
   v->Double("new_object_gate_dn_chi2", &o->new_object_gate_dn_chi2, R::Above(0),
             "gate dn: a measurement outside it for every object starts a new one");
+  v->Bool("new_object_gate_skips_claimed_objects", &o->new_object_gate_skips_claimed_objects,
+          "a non-person, non-MOVING object that took its own measurement this scan does not "
+          "block a birth in its gate dn");
+  v->Double("new_object_beside_claimed_min_separation_m",
+            &o->new_object_beside_claimed_min_separation_m, R::AtLeast(0),
+            "... when the two measured points are at least this far apart");
   v->BeginGroup("ransac");
   VisitRansacOptions(v, &o->ransac);
   v->EndGroup();

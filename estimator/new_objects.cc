@@ -32,6 +32,11 @@ std::vector<StaticObservation> AddNewObjects(const ScanAssociation& scan,
     const Eigen::Vector2d position = PointFromRangeBearing(
         state->robot_pose(), z.range_bearing, options.sensor, &jacobian_robot,
         &jacobian_measurement);
+    // A person feature this close to a person track is that person (people.h).
+    if (!static_world && z.person && TooCloseToAPerson(position, options.people, *state)) {
+      ++counts->person_births_joined;
+      continue;
+    }
     ObjectRecord record = NewObjectRecord(
         (*next_id)++, scan.utime, static_world ? ObjectClass::kStatic : ObjectClass::kUndecided);
     RestartStillWindow(position, std::numeric_limits<double>::infinity(), scan.utime, &record);
@@ -55,6 +60,17 @@ std::vector<StaticObservation> AddNewObjects(const ScanAssociation& scan,
     ++counts->new_objects;
   }
   return first_sightings;
+}
+
+int RestartObjectsBesideBirths(const std::vector<int>& objects, SlamState* state) {
+  int restarted = 0;
+  for (const int k : objects) {
+    ObjectRecord& record = state->object(k).record;
+    if (record.object_class != ObjectClass::kUndecided) continue;
+    record.moving_evidence_scans = 0;
+    ++restarted;
+  }
+  return restarted;
 }
 
 }  // namespace slammtt

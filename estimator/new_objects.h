@@ -6,7 +6,8 @@
 // new_object_velocity_sigma_mps^2 I, its "still" window open, and the lost track it may continue
 // (reacquisition.h). In baseline (a), the static world, it is a STATIC landmark without
 // velocity states, confirmed at once (plain EKF-SLAM maps a landmark at its first sighting).
-// At most max_objects objects: the measurements beyond are refused and counted.
+// At most max_objects objects: the measurements beyond are refused and counted. A person
+// feature closer than people_min_separation_m to an object of kind PERSON starts none (people.h).
 //
 // The measurement that starts an object is its first sighting: the filter placed the object
 // there from the robot's pose of this scan, so the smoother needs it as well (smoother_input.h).
@@ -22,7 +23,8 @@
 
 namespace slammtt {
 
-// Adds the new objects with ids from *next_id on (counts->new_objects, objects_refused).
+// Adds the new objects with ids from *next_id on (counts->new_objects, objects_refused,
+// person_births_joined).
 // `nearest_nis`: per measurement (scan_gating.h); `continues_id`: per measurement, the lost
 // track's id it may continue (0: none). Returns the sightings that started objects that may be
 // point landmarks (MayBePointLandmark, not a person feature), in measurement order, tentative
@@ -33,5 +35,13 @@ std::vector<StaticObservation> AddNewObjects(const ScanAssociation& scan,
                                              const EstimatorOptions& options,
                                              const Assignment& assignment, int64_t* next_id,
                                              SlamState* state, StepCounts* counts);
+
+// An UNDECIDED object beside which a new object is born in this scan (scan_gating.h:
+// ClaimedObjectsBesideBirths; `objects`: their indices) has its moving evidence restarted: until
+// now the measurements of the thing beside it, with no object of their own, pulled it between
+// the two, so the velocity it gained says nothing of its own motion and would make a still
+// landmark a false MOVING track. From now on each of the two has its own measurements.
+// Returns how many were restarted.
+int RestartObjectsBesideBirths(const std::vector<int>& objects, SlamState* state);
 
 }  // namespace slammtt

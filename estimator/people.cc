@@ -1,5 +1,7 @@
 #include "estimator/people.h"
 
+#include "common/utime.h"
+
 namespace slammtt {
 
 void VisitPeopleOptions(OptionVisitor* v, PeopleOptions* o) {
@@ -10,6 +12,12 @@ void VisitPeopleOptions(OptionVisitor* v, PeopleOptions* o) {
             "speed gate of people: faster estimates are limited (0: off)");
   v->Double("other_max_speed_mps", &o->other_max_speed_mps, R::AtLeast(0),
             "speed gate of every other mover (0: off)");
+  v->Double("min_separation_m", &o->min_separation_m, R::AtLeast(0),
+            "no person track is born closer than this to another (0: off)");
+  v->Double("taken_over_within_m", &o->taken_over_within_m, R::AtLeast(0),
+            "an unmeasured STATIC person this near a measured MOVING one goes (0: off)");
+  v->Double("taken_over_born_within_s", &o->taken_over_born_within_s, R::AtLeast(0),
+            "... born at most this long before the STATIC one's last measurement");
 }
 
 ObjectKind KindOfRecord(const ObjectRecord& record) {
@@ -38,6 +46,44 @@ int LimitSpeedsToTheirKind(const PeopleOptions& options, SlamState* state) {
     ++limited;
   }
   return limited;
+}
+
+bool TooCloseToAPerson(const Eigen::Vector2d& point_m, const PeopleOptions& options,
+                       const SlamState& state) {
+  if (!(options.min_separation_m > 0.0)) return false;
+  for (int k = 0; k < state.num_objects(); ++k) {
+    if (state.object(k).record.kind != ObjectKind::kPerson) continue;
+    if ((state.position(k) - point_m).norm() < options.min_separation_m) return true;
+  }
+  return false;
+}
+
+std::vector<int> PersonTracksTakenOver(const std::vector<uint8_t>& measured,
+                                       const PeopleOptions& options, const SlamState& state) {
+  std::vector<int> taken_over;
+  if (!(options.taken_over_within_m > 0.0)) return taken_over;
+  const auto is_person = [&](int k, ObjectClass object_class) {
+    const ObjectRecord& r = state.object(k).record;
+    return r.kind == ObjectKind::kPerson && r.object_class == object_class;
+  };
+  for (int j = 0; j < state.num_objects(); ++j) {
+    if (measured[static_cast<size_t>(j)] || !is_person(j, ObjectClass::kStatic)) continue;
+    for (int m = 0; m < state.num_objects(); ++m) {
+      if (!measured[static_cast<size_t>(m)] || !is_person(m, ObjectClass::kMoving) ||
+          !state.object(m).record.confirmed) {
+        continue;
+      }
+      // Born where the standing track's measurements ended, not an old mover passing by.
+      const double born_before_s = SecondsBetween(state.object(j).record.last_seen_utime,
+                                                  state.object(m).record.first_seen_utime);
+      if (born_before_s > options.taken_over_born_within_s) continue;
+      if ((state.position(m) - state.position(j)).norm() <= options.taken_over_within_m) {
+        taken_over.push_back(j);
+        break;
+      }
+    }
+  }
+  return taken_over;
 }
 
 }  // namespace slammtt

@@ -10,6 +10,7 @@
 
 #include <vector>
 
+#include "estimator/association.h"
 #include "estimator/estimator_options.h"
 #include "estimator/gating.h"
 #include "estimator/point_measurement.h"
@@ -20,6 +21,9 @@ struct ScanGating {
   std::vector<Candidate> gated;       // NIS < max(d1, d2 if level 3, dn), by measurement, object
   std::vector<Candidate> compatible;  // J: the pairs of `gated` with NIS < d1, same order
   std::vector<double> nearest_nis;    // per measurement (+infinity: no object within the gates)
+  // Per measurement, its smallest NIS to a held-back landmark within gate dn (+infinity: none);
+  // already in nearest_nis (BlockBirthsInsideHeldBackGates).
+  std::vector<double> held_back_nis;
 };
 
 // A re-entered landmark held back from association (observation_predictions.h:
@@ -38,5 +42,32 @@ void BlockBirthsInsideHeldBackGates(const std::vector<PointMeasurement>& measure
 ScanGating GateScan(const std::vector<PointMeasurement>& measurements,
                     const std::vector<ObjectPrediction>& predictions,
                     const EstimatorOptions& options);
+
+// Per measurement, the smallest NIS that decides whether it may start a new object (at least
+// gate dn: it may), once the levels have associated: nearest_nis, or with
+// new_object_gate_skips_claimed_objects the smallest NIS to the objects that took no
+// measurement of their own in this scan, and to held-back landmarks. An object that took its
+// own measurement is accounted for; another measurement inside its gate dn is a second thing
+// beside it (two far landmarks a few metres apart have gates dn that overlap at the edge of the
+// range), and kept from starting an object it would have no object at all: its measurements
+// would pull the nearby object towards it instead (s1-crossing's false movers).
+// A person (an object of kind PERSON, or one that took a person feature) and a MOVING object
+// still block: the second leg of a person, taken alone as a point beside the paired person
+// (people.h), is the same person, and so most likely is a second point inside a walker's gate
+// (s1-crossing seed 15: two identity switches when MOVING objects did not block, none when
+// they do), and so does any object whose own measured point is closer to the measurement than
+// new_object_beside_claimed_min_separation_m. The two things this is for are landmarks, STATIC
+// or not yet decided, metres apart.
+std::vector<double> NearestNisForBirths(const std::vector<PointMeasurement>& measurements,
+                                        const ScanGating& gating, const Assignment& assignment,
+                                        const SlamState& state, const EstimatorOptions& options);
+
+// The objects (indices at the assignment's state) that took their own measurement in this scan
+// and have inside their gate dn a measurement that starts a new object by `birth_nis`
+// (NearestNisForBirths) though it would not by nearest_nis: the objects a new object is born
+// beside. Ascending, each once.
+std::vector<int> ClaimedObjectsBesideBirths(const ScanGating& gating,
+                                            const std::vector<double>& birth_nis,
+                                            const Assignment& assignment, double dn_chi2);
 
 }  // namespace slammtt

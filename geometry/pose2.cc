@@ -66,4 +66,35 @@ Eigen::Vector3d RetractPose(const Eigen::Vector3d& pose, const Eigen::Vector3d& 
   return Eigen::Vector3d(pose(0) + delta(0), pose(1) + delta(1), WrapAngle(pose(2) + delta(2)));
 }
 
+Eigen::Vector3d PoseExponential(const Eigen::Vector3d& twist) {
+  const double omega = twist(2);
+  double s;  // sin(omega) / omega
+  double c;  // (1 - cos(omega)) / omega
+  if (std::abs(omega) < 1e-3) {
+    // Series to the omega^4 terms: exact to rounding where the closed forms cancel.
+    const double omega2 = omega * omega;
+    s = 1.0 - omega2 / 6.0 + omega2 * omega2 / 120.0;
+    c = omega / 2.0 - omega2 * omega / 24.0;
+  } else {
+    s = std::sin(omega) / omega;
+    c = (1.0 - std::cos(omega)) / omega;
+  }
+  return Eigen::Vector3d(s * twist(0) - c * twist(1), c * twist(0) + s * twist(1),
+                         WrapAngle(omega));
+}
+
+Eigen::Vector3d RetractPoseExponential(const Eigen::Vector3d& pose, const Eigen::Vector3d& delta) {
+  return ComposePoses(pose, PoseExponential(delta));
+}
+
+Eigen::Matrix3d RetractionJacobianAtZero(double theta) {
+  const double c = std::cos(theta);
+  const double s = std::sin(theta);
+  Eigen::Matrix3d jacobian;
+  jacobian << c, -s, 0.0,  //
+      s, c, 0.0,           //
+      0.0, 0.0, 1.0;
+  return jacobian;
+}
+
 }  // namespace slammtt

@@ -30,7 +30,21 @@ Eigen::Vector3d PoseLogarithm(const Eigen::Vector3d& motion,
                               Eigen::Matrix3d* jacobian = nullptr);
 
 // The pose moved by the update `delta` (x + dx, y + dy, wrapped theta + dtheta): the smoother's
-// retraction.
+// retraction by default.
 Eigen::Vector3d RetractPose(const Eigen::Vector3d& pose, const Eigen::Vector3d& delta);
+
+// The SE(2) exponential of the twist (v_x, v_y, omega), the inverse of PoseLogarithm: theta =
+// omega, (x, y) = V(omega) v with V(omega) = [s, -c; c, s], s = sin(omega) / omega,
+// c = (1 - cos(omega)) / omega (V = I at 0). The result's theta is wrapped.
+Eigen::Vector3d PoseExponential(const Eigen::Vector3d& twist);
+
+// pose * exp(delta): the update taken in the pose's own frame, GTSAM's Pose2 retraction
+// (Pose2::retract through Pose2::Expmap in gtsam 4.3.0 from PyPI:
+// Pose2(1, 2, 0.5).retract((0.1, 0.2, 0.3)) = (0.958726, 2.21891, 0.8)). Its Jacobian with
+// respect to delta at delta = 0 is RetractionJacobianAtZero(pose(2)).
+Eigen::Vector3d RetractPoseExponential(const Eigen::Vector3d& pose, const Eigen::Vector3d& delta);
+
+// d(pose * exp(delta)) / d(delta) at delta = 0 in (x, y, theta): [R(theta), 0; 0, 1].
+Eigen::Matrix3d RetractionJacobianAtZero(double theta);
 
 }  // namespace slammtt

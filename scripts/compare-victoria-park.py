@@ -2,6 +2,7 @@
 """Victoria Park: our smoother against GTSAM 4.3 on the same file, same machine, same run.
 
     scripts/compare-victoria-park.py [--build build] [--shared ../shared] [--venv DIR]
+        [--pose-update exponential|additive]
 
 Opt-in: needs ../shared/data/real/victoria_park (or --shared) and, the first time, network for
 PyPI (a venv with scripts/requirements-gtsam.txt is created under the build directory). Needs
@@ -13,7 +14,10 @@ Each solve runs in a process of its own (its peak memory is that process's ru_ma
   GTSAM  batch        load2D + LevenbergMarquardtOptimizer from load2D's initial values
   GTSAM  incremental  load2D's factors fed keyframe by keyframe to ISAM2 (default parameters)
 Both sides add the same prior on pose 0 (origin, sigma 1e-3) and stop LM at a relative decrease
-of chi^2 below 1e-10. chi^2 is the sum of squared whitened residuals (2 x GTSAM's error).
+of chi^2 below 1e-10. Our poses move by GTSAM's Pose2 retraction (pose * exp(step),
+--pose-update exponential, the default here) so that both LMs damp the same steps; with
+--pose-update additive (the smoother's default) they take different paths from the odometry
+chain and end in different local minima (docs/smoother.md, "Victoria Park"). chi^2 is the sum of squared whitened residuals (2 x GTSAM's error).
 After the incremental runs, both sides polish with their batch LM. Then each side's LM starts
 from the other side's solutions: a solution the other LM does not move is an optimum both
 agree on (this problem has several local minima from the odometry chain, and the two LMs
@@ -202,6 +206,9 @@ def main():
     parser.add_argument("--shared", default=os.path.join(ROOT, "..", "shared"))
     parser.add_argument("--venv", default=None)
     parser.add_argument("--json", default=None, help="write every figure here too")
+    parser.add_argument("--pose-update", choices=["exponential", "additive"],
+                        default="exponential",
+                        help="how our smoother moves a pose (default: GTSAM's retraction)")
     parser.add_argument("--gtsam", choices=["batch", "incremental", "polish"],
                         help=argparse.SUPPRESS)
     parser.add_argument("--gtsam-solution", help=argparse.SUPPRESS)
@@ -228,7 +235,7 @@ def main():
         theirs = os.path.join(solutions, f"gtsam-{mode}.txt")
         print(f"compare-victoria-park: ours {mode} ...", file=sys.stderr)
         figures[f"ours_{mode}"] = run_json([tool, data, "--mode", mode, "--solution", ours,
-                                            "--polish"])
+                                            "--polish", "--pose-update", args.pose_update])
         print(f"compare-victoria-park: GTSAM {mode} ...", file=sys.stderr)
         figures[f"gtsam_{mode}"] = run_json([python, me, "--gtsam", mode, "--file", data,
                                              "--gtsam-solution", theirs])
@@ -240,7 +247,7 @@ def main():
              os.path.join(solutions, f"ours-{mode}.txt")])
         print(f"compare-victoria-park: our LM from GTSAM's {mode} solution ...", file=sys.stderr)
         figures[f"ours_from_gtsam_{mode}"] = run_json(
-            [tool, data, "--mode", "batch", "--initial",
+            [tool, data, "--mode", "batch", "--pose-update", args.pose_update, "--initial",
              os.path.join(solutions, f"gtsam-{mode}.txt")])
 
     ob, gb = figures["ours_batch"], figures["gtsam_batch"]

@@ -6,6 +6,7 @@
 //   slammtt-smooth-dataset FILE [--mode batch|incremental] [--reading bearing-range|relative]
 //                               [--max-keyframes N] [--method lm|gn] [--solution OUT] [--trace]
 //                               [--initial SOLUTION] [--polish]
+//                               [--pose-update additive|exponential]
 // --initial (batch): start from a solution file (POSE id x y theta / POINT id x y lines, the
 // format --solution writes) instead of the odometry chain. --polish (incremental): after the
 // last keyframe, Optimize from the incremental estimate (chi-square and time reported apart).
@@ -41,6 +42,7 @@ struct DatasetRunOptions {
   std::string reading_name = "bearing-range";
   LandmarkReading reading = LandmarkReading::kBearingRange;
   SmootherOptions::Method method = SmootherOptions::Method::kLevenbergMarquardt;
+  SmootherOptions::PoseUpdate pose_update = SmootherOptions{}.pose_update;
   std::string solution_path;
   std::string initial_path;
   int64_t max_keyframes = -1;
@@ -75,6 +77,9 @@ std::optional<DatasetRunOptions> ParseArguments(int argc, char** argv) {
   cl.AddOption("mode", "batch|incremental", "solve once at the end, or keyframe by keyframe");
   cl.AddOption("reading", "bearing-range|relative", "how the file's landmark lines read");
   cl.AddOption("method", "lm|gn", "Levenberg-Marquardt (default) or Gauss-Newton");
+  cl.AddOption("pose-update", "additive|exponential",
+               "a step moves a pose by adding to (x, y, theta) (default) or by pose * exp(step), "
+               "GTSAM's Pose2 retraction");
   cl.AddOption("max-keyframes", "N", "only the first N keyframes");
   cl.AddOption("solution", "OUT", "write the solution (POSE / POINT lines) to OUT");
   cl.AddOption("initial", "SOLUTION", "batch: start from a solution file, not the odometry");
@@ -94,6 +99,11 @@ std::optional<DatasetRunOptions> ParseArguments(int argc, char** argv) {
   const std::string method = cl.ValueOr("method", "lm");
   if (method != "lm" && method != "gn") throw UsageError("--method lm or gn");
   if (method == "gn") o.method = SmootherOptions::Method::kGaussNewton;
+  const std::string pose_update = cl.ValueOr("pose-update", "additive");
+  if (pose_update != "additive" && pose_update != "exponential") {
+    throw UsageError("--pose-update additive or exponential");
+  }
+  if (pose_update == "exponential") o.pose_update = SmootherOptions::PoseUpdate::kExponential;
   if (const std::optional<int64_t> n = cl.IntValue("max-keyframes")) {
     if (*n < 1) throw UsageError("--max-keyframes takes a positive number");
     o.max_keyframes = *n;
@@ -231,6 +241,7 @@ int Run(int argc, char** argv) {
   }
   SmootherOptions options;
   options.method = o->method;
+  options.pose_update = o->pose_update;
   Smoother smoother(options);
   const Clock::time_point start = Clock::now();
   if (o->incremental) {

@@ -123,6 +123,11 @@ std::optional<std::string> CheckFinite(const Eigen::MatrixXd& value, const char*
 void VisitSmootherOptions(OptionVisitor* v, SmootherOptions* o) {
   using R = OptionRange;
   constexpr double kMaxCount = 1e9;  // counts stay within int
+  int pose_update = static_cast<int>(o->pose_update);
+  v->Choice("pose_update", &pose_update, {"additive", "exponential"},
+            "a step moves a pose by adding to (x, y, theta), or by pose * exp(step) as GTSAM's "
+            "Pose2 retraction");
+  o->pose_update = static_cast<SmootherOptions::PoseUpdate>(pose_update);
   int method = static_cast<int>(o->method);
   v->Choice("method", &method, {"gauss_newton", "levenberg_marquardt"}, "batch solver");
   o->method = static_cast<SmootherOptions::Method>(method);
@@ -397,7 +402,11 @@ std::optional<std::string> Smoother::SetLandmarkEstimate(LandmarkId id,
 // ---- evaluation ----
 
 Eigen::Vector3d Smoother::Estimate(const Variable& variable) const {
-  if (variable.is_pose) return RetractPose(variable.linearization, variable.delta);
+  if (variable.is_pose) {
+    return options_.pose_update == SmootherOptions::PoseUpdate::kExponential
+               ? RetractPoseExponential(variable.linearization, variable.delta)
+               : RetractPose(variable.linearization, variable.delta);
+  }
   Eigen::Vector3d point = variable.linearization + variable.delta;
   point(2) = 0.0;
   return point;
@@ -447,6 +456,13 @@ void Smoother::Linearize(Factor* f) const {
   Eigen::Matrix3d jacobian_a = Eigen::Matrix3d::Zero();
   Eigen::Matrix3d jacobian_b = Eigen::Matrix3d::Zero();
   const Eigen::Vector3d r = EvaluateFactor(*f, a.linearization, value_b, &jacobian_a, &jacobian_b);
+  if (options_.pose_update == SmootherOptions::PoseUpdate::kExponential) {
+    // The steps are taken in each pose's own frame: chain the retraction's Jacobian.
+    if (a.is_pose) jacobian_a = jacobian_a * RetractionJacobianAtZero(a.linearization(2));
+    if (f->num_variables == 2 && variables_[f->variables[1]].is_pose) {
+      jacobian_b = jacobian_b * RetractionJacobianAtZero(value_b(2));
+    }
+  }
   const Eigen::Matrix3d upper = f->root.triangularView<Eigen::Upper>();
   f->residual = upper * r;
   f->jacobian[0] = upper * jacobian_a;
@@ -991,6 +1007,11 @@ std::optional<Eigen::Matrix3d> Smoother::PoseCovariance(PoseId id) {
   if (!index) return std::nullopt;
   const auto blocks = MarginalBlocks({*index});
   if (!blocks) return std::nullopt;
+  if (options_.pose_update == SmootherOptions::PoseUpdate::kExponential) {
+    // The block is in the pose's own frame (the chart of the steps): back to (x, y, theta).
+    const Eigen::Matrix3d g = RetractionJacobianAtZero(variables_[*index].linearization(2));
+    return Eigen::Matrix3d(g * *blocks * g.transpose());
+  }
   return Eigen::Matrix3d(*blocks);
 }
 

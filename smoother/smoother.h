@@ -60,6 +60,12 @@ struct SmootherOptions {
     kIdentity,  // LM adds lambda I (GTSAM's LevenbergMarquardtParams default)
     kDiagonal,  // LM adds lambda diag(J^T J) (Marquardt's scaling)
   };
+  // How a step moves a pose: adding to (x, y, theta), or pose * exp(step), the step in the
+  // pose's own frame as GTSAM's Pose2 retraction takes it. Both reach the same optima; from far
+  // away (Victoria Park from its odometry chain) LM's path, and so the local minimum it ends in,
+  // depends on the chart its damping acts in (docs/smoother.md, "Victoria Park").
+  enum class PoseUpdate { kAdditive, kExponential };
+  PoseUpdate pose_update = PoseUpdate::kAdditive;
   // Batch (Optimize).
   Method method = Method::kLevenbergMarquardt;
   Damping damping = Damping::kIdentity;

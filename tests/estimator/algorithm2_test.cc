@@ -443,6 +443,55 @@ TEST(NewObjectTest, OnlyOutsideGateDnOfEveryObject) {
   }
 }
 
+// Two posts side by side, the second's feature inside gate dn of the first's object (NIS 16)
+// from the scan it appears in, about 1.1 m behind it. The first post's object takes its own
+// feature; on (new_object_gate_skips_claimed_objects, with the separation below the posts') the
+// second post starts its own object at
+// once, and over 3 s of a robot standing still both become confirmed STATIC landmarks with no
+// MOVING object on the way. Off, the first post's gate keeps the second from being mapped then.
+TEST(NewObjectTest, ASecondPostInsideTheGateOfAMeasuredOneStartsItsOwnObject) {
+  for (const bool skips : {true, false}) {
+    EstimatorOptions options;
+    options.new_object_gate_skips_claimed_objects = skips;
+    options.new_object_beside_claimed_min_separation_m = 0.5;
+    KnownObjectScene scene(options);
+    const double range_offset = std::sqrt(16.0 / scene.innovation_covariance.inverse()(0, 0));
+    const Eigen::Vector2d second(scene.predicted(0) + range_offset, scene.predicted(1));
+    int64_t utime = kSecond + 1;
+    auto step = [&]() {
+      OdometryReading standing;
+      standing.utime = utime;
+      scene.estimator.AddOdometry(standing);
+      ScanInput scan;
+      scan.utime = utime;
+      scan.features.push_back(Feature(scene.predicted(0), scene.predicted(1)));
+      scan.features.push_back(Feature(second(0), second(1)));
+      utime += kScan;
+      return scene.estimator.ProcessScan(scan, &scene.rng);
+    };
+    const ScanResult appears = step();
+    EXPECT_EQ(appears.counts.level1_updates, 1);
+    if (!skips) {
+      EXPECT_EQ(appears.counts.new_objects, 0) << "the old behaviour: blocked by the first post";
+      continue;
+    }
+    EXPECT_EQ(appears.counts.new_objects, 1);
+    ScanResult last = appears;
+    for (int k = 0; k < 30; ++k) {
+      last = step();
+      EXPECT_EQ(last.counts.new_objects, 0);
+      for (const ObjectEstimate& o : last.objects) {
+        EXPECT_NE(o.object_class, ObjectClass::kMoving) << "object " << o.id << " scan " << k;
+      }
+    }
+    ASSERT_EQ(last.objects.size(), 2u);
+    for (const ObjectEstimate& o : last.objects) {
+      EXPECT_EQ(o.object_class, ObjectClass::kStatic) << "object " << o.id;
+      EXPECT_TRUE(o.confirmed);
+    }
+  }
+}
+
 TEST(LevelThreeTest, APairBetweenD1AndD2IsAssociatedOnlyWithLevelThree) {
   EstimatorOptions with;  // level3 true, d1 9.21, d2 13.82
   ASSERT_TRUE(with.level3);

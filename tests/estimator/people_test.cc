@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <vector>
 
 #include "estimator/estimator_options.h"
 #include "estimator/people.h"
@@ -56,6 +57,58 @@ TEST(PeopleTest, VelocitiesAreLimitedToWhatTheirKindCanReach) {
   off.other_max_speed_mps = 0.0;
   scene.state.mean().segment<2>(scene.state.object(runner).velocity_index) << 9.0, 0.0;
   EXPECT_EQ(LimitSpeedsToTheirKind(off, &scene.state), 0);
+}
+
+// A person stood at (4, 0) (a STATIC track of kind PERSON) and walked off: the scan measured a
+// confirmed MOVING person track 0.3 m from it and not the standing track, which goes. A
+// standing track that was measured, one farther than taken_over_within_m, one beside a
+// tentative or unmeasured walker or beside a walker born long before the standing track's last
+// measurement, and everything with the option 0, stay.
+TEST(PeopleTest, AStandingPersonWhoWalksOffLeavesNoStaticTrackBehind) {
+  StepScene scene;
+  // Standing tracks last measured at 5 s; walkers born at 5.2 s unless said otherwise.
+  const auto standing_person = [&](const Eigen::Vector2d& position) {
+    const int k = scene.AddLandmark(position, 0.05);
+    scene.state.object(k).record.kind = ObjectKind::kPerson;
+    scene.state.object(k).record.last_seen_utime = 5 * kSecond;
+    return k;
+  };
+  const auto walker = [&](const Eigen::Vector2d& position,
+                          int64_t born_utime = 52 * kSecond / 10) {
+    const int k = scene.AddMover(position, 0.05, {1.0, 0.0}, 0.1);
+    scene.state.object(k).record.kind = ObjectKind::kPerson;
+    scene.state.object(k).record.first_seen_utime = born_utime;
+    return k;
+  };
+  const int left_behind = standing_person({4.0, 0.0});
+  const int walked_off = walker({4.3, 0.0});
+  const int still_seen = standing_person({0.0, 4.0});
+  walker({0.3, 4.0});
+  const int far = standing_person({-4.0, 0.0});
+  walker({-3.0, 0.0});
+  const int beside_tentative = standing_person({0.0, -4.0});
+  const int tentative = walker({0.3, -4.0});
+  scene.state.object(tentative).record.confirmed = false;
+  const int beside_unmeasured = standing_person({6.0, 6.0});
+  const int unmeasured = walker({6.3, 6.0});
+  // An old walker (born 1.5 s before the standing track's last measurement) passing by.
+  const int beside_old_walker = standing_person({-6.0, 6.0});
+  walker({-6.3, 6.0}, 35 * kSecond / 10);
+  const int post = scene.AddLandmark({4.0, 0.2}, 0.05);  // not a person
+  std::vector<uint8_t> measured(static_cast<size_t>(scene.state.num_objects()), 1);
+  for (int k : {left_behind, far, beside_tentative, beside_unmeasured, unmeasured,
+                beside_old_walker, post}) {
+    measured[static_cast<size_t>(k)] = 0;
+  }
+  ASSERT_EQ(measured[static_cast<size_t>(still_seen)], 1);
+  PeopleOptions options;
+  options.taken_over_within_m = 0.5;
+  EXPECT_EQ(PersonTracksTakenOver(measured, options, scene.state), std::vector<int>{left_behind});
+  measured[static_cast<size_t>(walked_off)] = 0;
+  EXPECT_TRUE(PersonTracksTakenOver(measured, options, scene.state).empty());
+  measured[static_cast<size_t>(walked_off)] = 1;
+  options = PeopleOptions();  // the default: off
+  EXPECT_TRUE(PersonTracksTakenOver(measured, options, scene.state).empty());
 }
 
 // Confirmation by M of N (3 of the last 5 scans): scans hit (H) and missed (M) in the order

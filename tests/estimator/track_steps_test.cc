@@ -295,6 +295,76 @@ TEST(NewObjectsTest, FreeMeasurementsOutsideDnOfEveryObjectStartUndecidedTentati
   EXPECT_EQ(scene.state.object(2).record.continues_id, 42);
 }
 
+// Two things side by side: an object that took its own measurement does not keep a second
+// measurement inside its gate dn from starting an object (new_object_gate_skips_claimed_objects);
+// one that took none still does, and so does a MOVING one (most likely the same walker). The
+// UNDECIDED object beside such a birth forgets its moving evidence.
+TEST(NewObjectsTest, AClaimedObjectDoesNotBlockABirthBesideIt) {
+  StepScene scene;
+  const int undecided = scene.AddMover({8.0, 0.0}, 0.05, {0.0, 0.0}, 0.5, ObjectClass::kUndecided);
+  const int unclaimed = scene.AddLandmark({0.0, 8.0}, 0.05);
+  const int moving = scene.AddMover({8.0, -3.0}, 0.05, {0.0, 0.0}, 0.5, ObjectClass::kMoving);
+  scene.state.object(undecided).record.moving_evidence_scans = 1;
+  scene.state.object(moving).record.moving_evidence_scans = 3;
+  scene.Measure({8.0, 0.0});    // 0: the undecided object's own
+  scene.Measure({8.2, 0.0});    // 1: beside it
+  scene.Measure({0.0, 8.2});    // 2: beside the landmark, which took nothing
+  scene.Measure({8.0, -3.0});   // 3: the moving object's own
+  scene.Measure({8.2, -3.0});   // 4: beside it
+  scene.Measure({4.0, 4.0});    // 5: far from everything
+  const double dn = scene.options.new_object_gate_dn_chi2;
+  ASSERT_LT(scene.Nis(1, undecided), dn);
+  ASSERT_LT(scene.Nis(2, unclaimed), dn);
+  ASSERT_LT(scene.Nis(4, moving), dn);
+  ObservationPredictions predicted(scene.options.sensor);
+  const ScanGating gating = GateScan(scene.measurements, predicted.At(scene.state), scene.options);
+  Assignment assignment(6, 3);
+  assignment.Set(0, undecided);
+  assignment.Set(3, moving);
+
+  scene.options.new_object_gate_skips_claimed_objects = false;
+  const std::vector<double> blocked = NearestNisForBirths(scene.measurements, gating, assignment, scene.state, scene.options);
+  EXPECT_EQ(blocked, gating.nearest_nis);
+  EXPECT_TRUE(ClaimedObjectsBesideBirths(gating, blocked, assignment, dn).empty());
+
+  scene.options.new_object_gate_skips_claimed_objects = true;
+  scene.options.new_object_beside_claimed_min_separation_m = 0.1;  // the points are 0.2 m apart
+  const std::vector<double> births = NearestNisForBirths(scene.measurements, gating, assignment, scene.state, scene.options);
+  ASSERT_EQ(births.size(), 6u);
+  EXPECT_GE(births[1], dn);
+  EXPECT_EQ(births[2], gating.nearest_nis[2]);
+  EXPECT_LT(births[2], dn);
+  EXPECT_EQ(births[4], gating.nearest_nis[4]);
+  EXPECT_LT(births[4], dn);
+  EXPECT_EQ(births[5], gating.nearest_nis[5]);
+  const std::vector<int> beside = ClaimedObjectsBesideBirths(gating, births, assignment, dn);
+  EXPECT_EQ(beside, (std::vector<int>{undecided}));
+  EXPECT_EQ(RestartObjectsBesideBirths(beside, &scene.state), 1);
+  EXPECT_EQ(scene.state.object(undecided).record.moving_evidence_scans, 0);
+  // Only an UNDECIDED object is restarted.
+  EXPECT_EQ(RestartObjectsBesideBirths({moving}, &scene.state), 0);
+  EXPECT_EQ(scene.state.object(moving).record.moving_evidence_scans, 3);
+  // A person still blocks the point beside it (its other leg).
+  scene.state.object(undecided).record.kind = ObjectKind::kPerson;
+  EXPECT_LT(NearestNisForBirths(scene.measurements, gating, assignment, scene.state,
+                                scene.options)[1],
+            dn);
+  scene.state.object(undecided).record.kind = ObjectKind::kOther;
+  // Nor does a point nearer to the object's own than the separation.
+  scene.options.new_object_beside_claimed_min_separation_m = 0.3;
+  EXPECT_LT(NearestNisForBirths(scene.measurements, gating, assignment, scene.state,
+                                scene.options)[1],
+            dn);
+  scene.options.new_object_beside_claimed_min_separation_m = 0.1;
+
+  const std::vector<uint8_t> may_update = scene.AllMayUpdate();
+  const ScanAssociation scan{scene.measurements, may_update, 4 * kSecond};
+  int64_t next_id = 10;
+  AddNewObjects(scan, births, std::vector<int64_t>(6, 0), scene.options, assignment, &next_id,
+                &scene.state, &scene.counts);
+  EXPECT_EQ(scene.counts.new_objects, 2);  // measurements 1 and 5
+}
+
 TEST(NewObjectsTest, TheCapRefusesAndTheStaticWorldMapsConfirmedLandmarks) {
   StepScene scene;
   scene.options.mode = AssociationMode::kStaticNearestNeighbour;
@@ -317,6 +387,44 @@ TEST(NewObjectsTest, TheCapRefusesAndTheStaticWorldMapsConfirmedLandmarks) {
   EXPECT_EQ(scene.state.object(0).record.object_class, ObjectClass::kStatic);
   EXPECT_TRUE(scene.state.object(0).record.confirmed);
   EXPECT_FALSE(scene.state.object(0).has_velocity());
+}
+
+// Two person features 0.3 m apart (a person's legs split into two people) start one track; a
+// third 0.3 m from an existing person track starts none; a point feature as near starts its
+// object as before, and so does everything with people_min_separation_m 0.
+TEST(NewObjectsTest, NoPersonTrackIsBornCloserThanTheMinimumSeparationToAnother) {
+  for (const double min_separation_m : {0.4, 0.0}) {
+    StepScene scene;
+    scene.options.people.min_separation_m = min_separation_m;
+    const int standing = scene.AddLandmark({0.0, -4.0}, 0.01);
+    scene.state.object(standing).record.kind = ObjectKind::kPerson;
+    scene.Measure({3.0, 0.0});    // 0: a person
+    scene.Measure({3.0, 0.3});    // 1: a second person 0.3 m from the first
+    scene.Measure({0.3, -4.0});   // 2: a person 0.3 m from the standing person's track
+    scene.Measure({3.0, -0.3});   // 3: a point feature 0.3 m from the first person
+    for (int i : {0, 1, 2}) scene.measurements[static_cast<size_t>(i)].person = true;
+    ObservationPredictions predicted(scene.options.sensor);
+    const ScanGating gating =
+        GateScan(scene.measurements, predicted.At(scene.state), scene.options);
+    ASSERT_GE(gating.nearest_nis[2], scene.options.new_object_gate_dn_chi2)
+        << "outside gate dn of the standing track: a birth without the rule";
+    const std::vector<uint8_t> may_update = {1};
+    const ScanAssociation scan{scene.measurements, may_update, kSecond};
+    int64_t next_id = 10;
+    AddNewObjects(scan, gating.nearest_nis, {0, 0, 0, 0}, scene.options, Assignment(4, 1),
+                  &next_id, &scene.state, &scene.counts);
+    if (min_separation_m > 0.0) {
+      EXPECT_EQ(scene.counts.new_objects, 2);
+      EXPECT_EQ(scene.counts.person_births_joined, 2);
+      ASSERT_EQ(scene.state.num_objects(), 3);
+      EXPECT_EQ(scene.state.object(1).record.kind, ObjectKind::kPerson);
+      EXPECT_NEAR((scene.state.position(1) - Eigen::Vector2d(3.0, 0.0)).norm(), 0.0, 1e-9);
+      EXPECT_EQ(scene.state.object(2).record.kind, ObjectKind::kOther);
+    } else {
+      EXPECT_EQ(scene.counts.new_objects, 4);
+      EXPECT_EQ(scene.counts.person_births_joined, 0);
+    }
+  }
 }
 
 }  // namespace

@@ -56,6 +56,34 @@ TEST_F(FactorJacobianTest, PoseLogarithmInvertsComposition) {
   EXPECT_LT((PoseLogarithm(arc) - Eigen::Vector3d(M_PI / 2, 0, M_PI / 2)).norm(), 1e-12);
 }
 
+TEST_F(FactorJacobianTest, PoseExponentialInvertsTheLogarithm) {
+  for (int trial = 0; trial < kTrials; ++trial) {
+    Eigen::Vector3d twist = RandomPose() * 0.1;
+    if (trial % 4 == 0) twist(2) *= 1e-4;  // the series branch near omega = 0
+    EXPECT_LT((PoseLogarithm(PoseExponential(twist)) - twist).cwiseAbs().maxCoeff(), 1e-12)
+        << twist.transpose();
+  }
+  // GTSAM 4.3.0 (PyPI): Pose2(1, 2, 0.5).retract((0.1, 0.2, 0.3)) = (0.958726, 2.21891, 0.8).
+  const Eigen::Vector3d moved =
+      RetractPoseExponential(Eigen::Vector3d(1, 2, 0.5), Eigen::Vector3d(0.1, 0.2, 0.3));
+  EXPECT_LT((moved - Eigen::Vector3d(0.958726, 2.21891, 0.8)).cwiseAbs().maxCoeff(), 1e-5);
+}
+
+TEST_F(FactorJacobianTest, RetractionJacobianAtZeroMatchesNumerical) {
+  for (int trial = 0; trial < kTrials; ++trial) {
+    const Eigen::Vector3d pose = RandomPose();
+    const auto f = [&](const Eigen::VectorXd& delta) -> Eigen::VectorXd {
+      return RetractPoseExponential(pose, Eigen::Vector3d(delta));
+    };
+    EXPECT_LT((RetractionJacobianAtZero(pose(2)) -
+               NumericalJacobian(f, Eigen::Vector3d::Zero(), {2}))
+                  .cwiseAbs()
+                  .maxCoeff(),
+              kTolerance)
+        << pose.transpose();
+  }
+}
+
 TEST_F(FactorJacobianTest, OdometryMatchesNumerical) {
   for (int trial = 0; trial < kTrials; ++trial) {
     const Eigen::Vector3d xi = RandomPose();

@@ -308,6 +308,45 @@ TEST(SmootherTest, MarginalsMatchTheDenseInverse) {
   }
 }
 
+// GTSAM's Pose2 retraction (pose * exp(step)) is another chart of the same problem: the same
+// optimum, batch and incremental, and the pose marginal back in (x, y, theta).
+TEST(SmootherTest, ExponentialPoseUpdateReachesTheSameOptimumAndMarginals) {
+  SmootherOptions exponential;
+  exponential.pose_update = SmootherOptions::PoseUpdate::kExponential;
+  for (uint64_t seed = 1; seed <= 3; ++seed) {
+    const LoopProblem problem(30, 1.0, seed);
+    Smoother additive_batch;
+    Smoother exponential_batch(exponential);
+    problem.AddAll(&additive_batch);
+    problem.AddAll(&exponential_batch);
+    const SolveReport a = additive_batch.Optimize();
+    const SolveReport b = exponential_batch.Optimize();
+    ASSERT_TRUE(a.ok && b.ok) << a.error << b.error;
+    EXPECT_NEAR(a.chi_square, b.chi_square, 1e-9 * a.chi_square) << "seed " << seed;
+    EXPECT_LT(MaxStateDifference(State(additive_batch, problem),
+                                 State(exponential_batch, problem), 30),
+              1e-7);
+    const Eigen::Matrix3d pa = *additive_batch.PoseCovariance(29);
+    const Eigen::Matrix3d pb = *exponential_batch.PoseCovariance(29);
+    EXPECT_LT((pa - pb).norm(), 1e-6 * pa.norm()) << pa << "\n" << pb;
+
+    SmootherOptions options = exponential;
+    options.relinearize_threshold = 1e-5;
+    options.relinearize_skip = 1;
+    Smoother incremental(options);
+    SolveReport report;
+    for (int k = 0; k < 30; ++k) {
+      problem.AddKeyframe(k, &incremental);
+      report = incremental.Update();
+      ASSERT_TRUE(report.ok) << report.error;
+    }
+    for (int extra = 0; extra < 5; ++extra) report = incremental.Update();
+    EXPECT_NEAR(report.chi_square, a.chi_square, 1e-6 * a.chi_square) << "seed " << seed;
+    EXPECT_LT(MaxStateDifference(State(incremental, problem), State(additive_batch, problem), 30),
+              1e-6);
+  }
+}
+
 TEST(SmootherTest, RemovedLandmarkLeavesTheProblem) {
   const LoopProblem problem(24, 1.0, 4);
   SmootherOptions options;

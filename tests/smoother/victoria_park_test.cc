@@ -113,6 +113,23 @@ TEST(VictoriaParkTest, BatchFromTheOdometryChainReachesGtsamsOptimum) {
   EXPECT_NEAR(report.chi_square, kGtsamOptimumChiSquare, 1e-6 * kGtsamOptimumChiSquare);
 }
 
+// With GTSAM's Pose2 retraction the steps are GTSAM's too: the same optimum to rounding. (The
+// whole file from its odometry chain: scripts/compare-victoria-park.py, docs/smoother.md.)
+TEST(VictoriaParkTest, ExponentialPoseUpdateReachesGtsamsOptimumToRounding) {
+  const auto dataset = LoadVictoriaPark();
+  if (!dataset) GTEST_SKIP() << "no " << VictoriaParkPath() << " (../shared absent)";
+  SmootherOptions options;
+  options.pose_update = SmootherOptions::PoseUpdate::kExponential;
+  Smoother smoother(options);
+  for (size_t k = 0; k < kKeyframes; ++k) {
+    ASSERT_FALSE(AddKeyframe(*dataset, k, LandmarkReading::kBearingRange, &smoother));
+  }
+  const SolveReport report = smoother.Optimize();
+  ASSERT_TRUE(report.ok) << report.error;
+  EXPECT_TRUE(report.converged);
+  EXPECT_NEAR(report.chi_square, kGtsamOptimumChiSquare, 1e-12 * kGtsamOptimumChiSquare);
+}
+
 TEST(VictoriaParkTest, IncrementalPoseByPoseReachesTheSameOptimum) {
   const auto dataset = LoadVictoriaPark();
   if (!dataset) GTEST_SKIP() << "no " << VictoriaParkPath() << " (../shared absent)";
