@@ -57,7 +57,7 @@ struct MotionClassifierOptions {
   // chair leg at the edge of detection, a mixed pixel) is the difference of two noisy points
   // taken a few scans apart, not evidence of motion: with a third measurement the estimate has
   // to predict where the object is, which a flickering cluster's does not. 0 or 1: no minimum.
-  int moving_evidence_min_hits = 3;
+  int moving_evidence_min_hits = 0;
   double still_max_speed_mps = 0.15;
   double still_hold_s = 1.5;
   double started_moving_chi2 = 23.0;      // 1e-5 false alarms per scan and landmark (2 dof)

@@ -69,7 +69,7 @@ struct TrackManagementOptions {
   // object starts from it) or start a duplicate beside that new object; a new object born of
   // the same measurements is confirmed as soon as it could have been. No effect with
   // confirm_window_scans 0.
-  bool tentative_prune_unconfirmable = true;
+  bool tentative_prune_unconfirmable = false;
   double static_prune_unseen_in_view_s = 3.5;
   double prune_unseen_visible_s = 1.0;
   double shadow_radius_m = 0.4;  // angular half-width of what a point feature hides, at its range

@@ -246,8 +246,9 @@ TEST(PruningTest, ATentativeObjectIsPrunedAfterTentativePruneUnseenS) {
 // confirm_hits 3 of confirm_window_scans 5: one hit and three misses leave no window with
 // three hits that holds the hit; it is pruned at once, not 1 s after its hit.
 TEST(PruningTest, ATentativeObjectThatCanNoLongerBeConfirmedIsPrunedAtOnce) {
-  const TrackManagementOptions options;
-  ASSERT_TRUE(options.tentative_prune_unconfirmable);
+  TrackManagementOptions options;
+  ASSERT_FALSE(options.tentative_prune_unconfirmable) << "off by default";
+  options.tentative_prune_unconfirmable = true;
   ASSERT_EQ(options.confirm_hits, 3);
   ASSERT_EQ(options.confirm_window_scans, 5);
   ObjectRecord tentative = NewObjectRecord(1, 0, ObjectClass::kUndecided);
@@ -283,7 +284,8 @@ TEST(PruningTest, ATentativeObjectThatCanNoLongerBeConfirmedIsPrunedAtOnce) {
 }
 
 TEST(PruningTest, APersonNeedsFewerHitsSoItMayMissMore) {
-  const TrackManagementOptions options;
+  TrackManagementOptions options;
+  options.tentative_prune_unconfirmable = true;
   ASSERT_EQ(options.confirm_person_hits, 2);
   ObjectRecord person = NewObjectRecord(1, 0, ObjectClass::kUndecided);
   person.person_hits = 1;

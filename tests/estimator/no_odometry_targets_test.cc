@@ -52,6 +52,10 @@ const testing::PipelineRun& WithoutOdometry(const char* scenario, int seed) {
 
 #ifdef NO_ODOMETRY_TARGETS_OPEN
 
+TEST(NoOdometryOpenTargetsTest, OfficeAtMostOneNonPersonMoverPerMinute) {
+  ExpectAtMostOneNonPersonMoverPerMinute("office");
+}
+
 TEST(NoOdometryOpenTargetsTest, CorridorAtMostOneNonPersonMoverPerMinute) {
   ExpectAtMostOneNonPersonMoverPerMinute("corridor");
 }
@@ -61,10 +65,6 @@ TEST(NoOdometryOpenTargetsTest, OfficeAteWithinThreeTimesTheAteWithOdometry) {
 }
 
 #else
-
-TEST(NoOdometryTargetsTest, OfficeAtMostOneNonPersonMoverPerMinute) {
-  ExpectAtMostOneNonPersonMoverPerMinute("office");
-}
 
 TEST(NoOdometryTargetsTest, CorridorAteWithinThreeTimesTheAteWithOdometry) {
   ExpectAteWithinThreeTimesOdometrys("corridor");

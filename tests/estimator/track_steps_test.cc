@@ -142,7 +142,10 @@ TEST(ClassificationTest, AFastObjectBecomesMovingAStillOneStaticAMovedLandmarkUn
 struct FlickeringCluster {
   ObjectRecord record = NewObjectRecord(1, 0, ObjectClass::kUndecided);
   MotionClassifierOptions options;
-  FlickeringCluster() { RecordHit(kSecond / 2, TrackManagementOptions(), &record); }
+  FlickeringCluster() {
+    options.moving_evidence_min_hits = 3;  // the rule on (off by default)
+    RecordHit(kSecond / 2, TrackManagementOptions(), &record);
+  }
   // Judged at the scans after its second hit, unmeasured; returns the first class change.
   ClassChange JudgeCoasting(int scans) {
     for (int k = 1; k <= scans; ++k) {
