@@ -94,6 +94,23 @@ TEST(ClassificationTest, ALandmarksOwnMeasurementSpeaksForItElseTheNearestFreeOn
   EXPECT_EQ(m[static_cast<size_t>(mover)], -1);
 }
 
+// One scan in which the scene's landmark at (-4, 0) is measured 12 cm beside where it was
+// mapped (inside its gate dn), then every object is classified; returns the scan's counts.
+StepCounts ClassifyWithAMeasurementBesideTheLandmark(StepScene* scene,
+                                                   const std::vector<uint8_t>& may_update,
+                                                   const Assignment& assignment) {
+  scene->measurements.clear();
+  scene->Measure({-4.0, 0.12});
+  ObservationPredictions predicted(scene->options.sensor);
+  const ScanGating gating =
+      GateScan(scene->measurements, predicted.At(scene->state), scene->options);
+  const ScanAssociation scan{scene->measurements, may_update, 5 * kSecond};
+  StepCounts counts;
+  ClassifyObjects(scan, gating.gated, scene->options, scene->Predictions(), assignment,
+                  &scene->state, &counts);
+  return counts;
+}
+
 TEST(ClassificationTest, AFastObjectBecomesMovingAStillOneStaticAMovedLandmarkUndecided) {
   StepScene scene;
   scene.options.classifier.moving_confirm_scans = 1;
@@ -112,16 +129,8 @@ TEST(ClassificationTest, AFastObjectBecomesMovingAStillOneStaticAMovedLandmarkUn
   const std::vector<uint8_t> may_update = {1, 1, 1};
   int started = 0;
   for (int scan_index = 0; scan_index < 4 && started == 0; ++scan_index) {
-    scene.measurements.clear();
-    scene.Measure({-4.0, 0.12});
-    ObservationPredictions predicted(scene.options.sensor);
-    const ScanGating gating =
-        GateScan(scene.measurements, predicted.At(scene.state), scene.options);
-    const ScanAssociation scan{scene.measurements, may_update, 5 * kSecond};
-    Assignment assignment(1, 3);
-    StepCounts counts;
-    ClassifyObjects(scan, gating.gated, scene.options, scene.Predictions(), assignment,
-                    &scene.state, &counts);
+    const StepCounts counts =
+        ClassifyWithAMeasurementBesideTheLandmark(&scene, may_update, Assignment(1, 3));
     if (scan_index == 0) {
       EXPECT_EQ(counts.became_moving, 1);
       EXPECT_EQ(counts.became_static, 1);
@@ -190,17 +199,10 @@ TEST(ClassificationTest, ALandmarkThatStartsMovingCountsItsHitsAfresh) {
   const std::vector<uint8_t> may_update = {1};
   int started = 0;
   for (int scan_index = 0; scan_index < 4 && started == 0; ++scan_index) {
-    scene.measurements.clear();
-    scene.Measure({-4.0, 0.12});
-    ObservationPredictions predicted(scene.options.sensor);
-    const ScanGating gating =
-        GateScan(scene.measurements, predicted.At(scene.state), scene.options);
-    const ScanAssociation scan{scene.measurements, may_update, 5 * kSecond};
     Assignment assignment(1, 1);
     assignment.Set(0, landmark);
-    StepCounts counts;
-    ClassifyObjects(scan, gating.gated, scene.options, scene.Predictions(), assignment,
-                    &scene.state, &counts);
+    const StepCounts counts =
+        ClassifyWithAMeasurementBesideTheLandmark(&scene, may_update, assignment);
     started += counts.started_moving;
   }
   ASSERT_EQ(started, 1);
