@@ -7,12 +7,15 @@
 #include <cstring>
 #include <random>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "common/angle.h"
+#include "common/options_schema.h"
 #include "estimator/range_bearing_model.h"
 #include "smoother/keyframe_smoother.h"
 #include "geometry/pose2.h"
+#include "tests/support/options_table.h"
 
 namespace slammtt {
 namespace {
@@ -325,6 +328,20 @@ TEST(KeyframeSmootherTest, SameInputGivesTheSameBytes) {
   const std::vector<double> b = run();
   ASSERT_EQ(a.size(), b.size());
   EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(double)), 0);
+}
+
+// docs/smoother.md carries the `smoother:` section's table the schema makes (what
+// `slammtt-smoother --options-table` prints), the solver's keys included.
+TEST(KeyframeSmootherOptionsTest, TheSectionsOptionsTableIsDocumented) {
+  KeyframeSmootherOptions defaults;
+  OptionsMarkdownTable table;
+  VisitKeyframeSmootherOptions(&table, &defaults);
+  ASSERT_NE(table.Table().find("| `solver_pose_update` |"), std::string::npos);
+  const std::string docs = slammtt::testing::ReadCheckoutFile("docs/smoother.md");
+  ASSERT_FALSE(docs.empty()) << "docs/smoother.md is part of the checkout";
+  EXPECT_NE(docs.find(table.Table()), std::string::npos)
+      << "docs/smoother.md, Options (`smoother:` section): replace the table by "
+         "`slammtt-smoother --options-table`";
 }
 
 }  // namespace
