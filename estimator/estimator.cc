@@ -333,9 +333,11 @@ std::vector<StaticObservation> Estimator::ManageTracks(ScanInProgress* s) {
   // before they are judged.
   const std::vector<double> birth_nis = NearestNisForBirths(
       s->features.measurements, s->gating, s->assignment, state_, options_);
-  const std::vector<int> beside_births = ClaimedObjectsBesideBirths(
-      s->gating, birth_nis, s->assignment, options_.new_object_gate_dn_chi2);
-  RestartObjectsBesideBirths(beside_births, &state_);
+  if (options_.new_object_gate_skips_claimed_objects) {  // off, birth_nis is nearest_nis
+    RestartObjectsBesideBirths(ClaimedObjectsBesideBirths(s->gating, birth_nis, s->assignment,
+                                                          options_.new_object_gate_dn_chi2),
+                               &state_);
+  }
   // 8. Static or dynamic (line 12); then the standing people a walker took over (people.h).
   ClassifyObjects(association, s->gating.gated, options_, after_updates, s->assignment,
                   &state_, s->counts);
