@@ -27,6 +27,7 @@ const std::map<std::string, std::string>& Channels::Defaults() {
       {"smoother_input", "SMOOTHER_INPUT"},
       {"smoothed_pose", "SMOOTHED_POSE"},
       {"smoothed_map", "SMOOTHED_MAP"},
+      {"smoothed_trajectory", "SMOOTHED_TRAJECTORY"},
   };
   return defaults;
 }

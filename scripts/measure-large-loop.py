@@ -151,6 +151,7 @@ def one_run(args, out, config, count, seed):
         "odometry_ate_m": evaluation.get("odometry_ate_rmse_m"),
         "filter_ate_m": evaluation.get("ate_rmse_m"),
         "smoothed_ate_m": evaluation.get("smoothed_ate_rmse_m"),
+        "final_smoothed_ate_m": evaluation.get("final_smoothed_ate_rmse_m"),
         "filter_static_recall": evaluation.get("static_recall"),
         "smoothed_static_recall": (detail.get("smoothed_map") or {}).get("static_recall"),
         "filter_landmarks": (detail.get("map") or {}).get("landmarks"),
@@ -172,7 +173,8 @@ def line(f):
         return "null" if value is None else f"{value:.{digits}f}"
     c = f["cost"]
     return (f"{f['landmarks']:5d} {f['seed']:3d}  odo {fig(f['odometry_ate_m'], 2)}  "
-            f"ATE filter {fig(f['filter_ate_m'])} smoothed {fig(f['smoothed_ate_m'])}  "
+            f"ATE filter {fig(f['filter_ate_m'])} smoothed {fig(f['smoothed_ate_m'])} "
+            f"final {fig(f.get('final_smoothed_ate_m'))}  "
             f"recall filter {fig(f['filter_static_recall'])} smoothed "
             f"{fig(f['smoothed_static_recall'])}  state<= {f['most_objects_in_state']} "
             f"archive {f['archived_at_end']}  ms filter p50/p99 {fig(c['filter']['p50_ms'], 2)}/"

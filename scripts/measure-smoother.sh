@@ -1,8 +1,9 @@
 #!/bin/sh
 # The smoother beside the filter on a shipped scenario, seed by seed (docs/smoother.md, "In the
 # stack"): slammtt-world -> slammtt-replay with a `smoother:` section -> slammtt-eval and
-# slammtt-timing; one line per seed: filter ATE, smoothed ATE, filter and smoothed landmark
-# RMSE (m), the smoother's per-scan time p50 / p99 (us).
+# slammtt-timing; one line per seed: filter ATE, smoothed ATE (the live SMOOTHED_POSE), filter
+# and smoothed landmark RMSE (m), the smoother's per-scan time p50 / p99 (us), and the ATE of the
+# final smoothed trajectory (the last SMOOTHED_TRAJECTORY: every keyframe as estimated at the end).
 # Usage: scripts/measure-smoother.sh OUTDIR [SCENARIO [FIRST_SEED [LAST_SEED [SMOOTHER_YAML]]]]
 #   SMOOTHER_YAML: lines of the `smoother:` section (default: none, the defaults).
 set -eu
@@ -22,7 +23,7 @@ else
   echo 'smoother: {}' >> "$config"
 fi
 echo "seed filter_ate_m smoothed_ate_m filter_landmark_rmse_m smoothed_landmark_rmse_m" \
-  "smoother_p50_us smoother_p99_us"
+  "smoother_p50_us smoother_p99_us final_smoothed_ate_m"
 seed=$first
 while [ "$seed" -le "$last" ]; do
   w=$out/$scenario-seed$seed.lcm
@@ -39,7 +40,8 @@ report = json.load(open(sys.argv[1]))
 def figure(key):
     return "null" if report[key] is None else "%.3f" % report[key]
 print(sys.argv[2], figure("ate_rmse_m"), figure("smoothed_ate_rmse_m"),
-      figure("landmark_rmse_m"), figure("smoothed_landmark_rmse_m"), sys.argv[3])
+      figure("landmark_rmse_m"), figure("smoothed_landmark_rmse_m"), sys.argv[3],
+      figure("final_smoothed_ate_rmse_m"))
 PY
   seed=$((seed + 1))
 done

@@ -1,4 +1,5 @@
-// slammtt-smoother: SMOOTHER_INPUT in (from slammtt-estimator); SMOOTHED_POSE, SMOOTHED_MAP and
+// slammtt-smoother: SMOOTHER_INPUT in (from slammtt-estimator); SMOOTHED_POSE, SMOOTHED_MAP,
+// SMOOTHED_TRAJECTORY and
 // STAGE_TIMING out (docs/smoother.md, "In the stack"). Thin: the work is in SmootherStage
 // (smoother/smoother_stage.h), which slammtt-replay runs too.
 #include <iostream>
@@ -16,7 +17,8 @@ int main(int argc, char** argv) {
     slammtt::CommandLine command_line(
         "slammtt-smoother", "[options]",
         "Sparse smoothing of the estimator's trajectory and static map with CHOLMOD (issue 14). "
-        "Subscribes smoother_input; publishes smoothed_pose, smoothed_map and stage_timing; "
+        "Subscribes smoother_input; publishes smoothed_pose, smoothed_map, smoothed_trajectory and "
+        "stage_timing; "
         "options in the `smoother:` section of --config (docs/smoother.md).");
     slammtt::AddStandardOptions(&command_line);
     command_line.AddFlag("options-table",

@@ -1,5 +1,6 @@
 #include "smoother/smoother_stage.h"
 
+#include "common/angle.h"
 #include "estimator/row_major.h"
 #include "estimator/smoother_input_message.h"
 #include "runtime/config_options.h"
@@ -8,6 +9,7 @@
 #include "slammtt_msgs/pose_t.hpp"
 #include "slammtt_msgs/smoother_input_t.hpp"
 #include "slammtt_msgs/stage_timing_t.hpp"
+#include "slammtt_msgs/trajectory_t.hpp"
 
 namespace slammtt {
 
@@ -34,6 +36,7 @@ SmootherStage::SmootherStage(const KeyframeSmootherOptions& options, const Chann
       input_channel_(channels.Get("smoother_input")),
       pose_channel_(channels.Get("smoothed_pose")),
       map_channel_(channels.Get("smoothed_map")),
+      trajectory_channel_(channels.Get("smoothed_trajectory")),
       timing_channel_(channels.Get("stage_timing")) {}
 
 SmootherStage::SmootherStage(const ProcessSettings& settings)
@@ -74,6 +77,7 @@ void SmootherStage::Handle(const std::string& channel, const void* data, int siz
   if (scan.keyframe && ++keyframes_since_map_ >= map_every_keyframes_) {
     keyframes_since_map_ = 0;
     PublishMap(message.utime, out);
+    PublishTrajectory(message.utime, out);
   }
   timer.Lap("publish");
   timer.Count("observations", static_cast<int64_t>(input.observations.size()));
@@ -101,6 +105,19 @@ void SmootherStage::PublishMap(int64_t utime, MessageSink& out) {
   map.num_landmarks = static_cast<int32_t>(map.landmarks.size());
   map.num_lines = 0;
   out.PublishMessage(map_channel_, map);
+}
+
+void SmootherStage::PublishTrajectory(int64_t utime, MessageSink& out) {
+  slammtt_msgs::trajectory_t trajectory;
+  trajectory.utime = utime;
+  for (const auto& [keyframe_utime, pose] : smoother_.Keyframes()) {
+    trajectory.pose_utime.push_back(keyframe_utime);
+    trajectory.x_m.push_back(pose(0));
+    trajectory.y_m.push_back(pose(1));
+    trajectory.heading_rad.push_back(WrapAngle(pose(2)));
+  }
+  trajectory.num_poses = static_cast<int32_t>(trajectory.pose_utime.size());
+  out.PublishMessage(trajectory_channel_, trajectory);
 }
 
 std::unique_ptr<Stage> CreateSmootherStage(const ProcessSettings& settings) {

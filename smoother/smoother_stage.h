@@ -11,6 +11,10 @@
 //  - map_t (`smoothed_map`), at every map_every_keyframes-th keyframe: every landmark of the
 //    problem at its smoothed estimate, ids as the estimator's, with its marginal covariance; no
 //    lines;
+//  - trajectory_t (`smoothed_trajectory`), right after each map: every keyframe of the problem
+//    (since the last start) at its current smoothed estimate, each at its scan's utime. This is
+//    the smoothed trajectory in the smoothing sense (each pose estimated from every measurement
+//    so far, later ones included), where smoothed_pose is what the smoother knew at the scan;
 //  - stage_timing_t (`stage_timing`): stage "smoother", substages "smooth" (the scan's variables
 //    and factors, Update, and Optimize when due) and "publish" (covariances and messages);
 //    counters "observations", "keyframe" (1 or 0), "keyframes", "landmarks",
@@ -53,7 +57,7 @@ class SmootherStage : public Stage {
 
   std::string Name() const override { return "smoother"; }
   std::vector<std::string> InputChannels() const override { return {input_channel_}; }
-  std::vector<std::string> OutputChannels() const override { return {pose_channel_, map_channel_}; }
+  std::vector<std::string> OutputChannels() const override { return {pose_channel_, map_channel_, trajectory_channel_}; }
   void Handle(const std::string& channel, const void* data, int size, MessageSink& out) override;
 
   const KeyframeSmoother& smoother() const { return smoother_; }
@@ -61,6 +65,7 @@ class SmootherStage : public Stage {
 
  private:
   void PublishMap(int64_t utime, MessageSink& out);
+  void PublishTrajectory(int64_t utime, MessageSink& out);
 
   KeyframeSmoother smoother_;
   int map_every_keyframes_;
@@ -68,6 +73,7 @@ class SmootherStage : public Stage {
   std::string input_channel_;
   std::string pose_channel_;
   std::string map_channel_;
+  std::string trajectory_channel_;
   std::string timing_channel_;
   SmootherStageCounters counters_;
 };

@@ -28,7 +28,7 @@ CHANNEL_DEFAULTS = {
     "lidar_status": "LIDAR_STATUS", "base_status": "BASE_STATUS",
     "estimator_status": "ESTIMATOR_STATUS", "leg_labels": "LEG_LABELS",
     "smoother_input": "SMOOTHER_INPUT", "smoothed_pose": "SMOOTHED_POSE",
-    "smoothed_map": "SMOOTHED_MAP",
+    "smoothed_map": "SMOOTHED_MAP", "smoothed_trajectory": "SMOOTHED_TRAJECTORY",
 }
 
 DEFAULT_LCM_URL = "udpm://239.255.76.67:7667?ttl=0"

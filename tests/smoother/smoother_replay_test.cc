@@ -71,6 +71,7 @@ TEST(SmootherReplayTest, SmoothedTrajectoryAndMapAreDeterministicAndScored) {
   EXPECT_EQ(with["SMOOTHED_POSE"].size(), 961u);
   EXPECT_EQ(with["SMOOTHER_INPUT"].size(), 961u);
   EXPECT_GE(with["SMOOTHED_MAP"].size(), 961u / 8);
+  EXPECT_EQ(with["SMOOTHED_TRAJECTORY"].size(), with["SMOOTHED_MAP"].size());
   EXPECT_EQ(without.count("SMOOTHED_POSE"), 0u);
   for (const char* channel : {"POSE", "MAP", "TRACKS", "SMOOTHER_INPUT", "ESTIMATOR_STATUS"}) {
     EXPECT_TRUE(with[channel] == without[channel]) << channel;
@@ -96,6 +97,11 @@ TEST(SmootherReplayTest, SmoothedTrajectoryAndMapAreDeterministicAndScored) {
   EXPECT_LT(smoothed, 0.5 * report["odometry_ate_rmse_m"].get<double>());
   EXPECT_LT(report["smoothed_landmark_rmse_m"].get<double>(), 0.5);
   EXPECT_GE(report["detail"]["smoothed_map"]["static_recall"].get<double>(), 0.9);
+  // The final smoothed trajectory: every keyframe (every scan here) up to the last map's.
+  ASSERT_TRUE(report["final_smoothed_ate_rmse_m"].is_number());
+  EXPECT_GE(report["detail"]["final_smoothed_trajectory"]["per_scan"]["utime"].size(), 961u - 8u);
+  EXPECT_LT(report["final_smoothed_ate_rmse_m"].get<double>(),
+            0.5 * report["odometry_ate_rmse_m"].get<double>());
   const std::string trajectory = testing::FileBytes(dir.File("plots/trajectory.svg"));
   EXPECT_NE(trajectory.find("smoothed (ATE RMSE"), std::string::npos);
 

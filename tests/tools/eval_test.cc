@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "slammtt_msgs/trajectory_t.hpp"
 #include "tests/support/options_table.h"
 #include "tests/tools/hand_built_log.h"
 #include "tests/tools/log_test_util.h"
@@ -116,7 +117,7 @@ TEST(EvaluationTest, HandBuiltLogGivesHandComputedFigures) {
       "idf1",           "hota",                 "mota_with_coasting",
       "id_switches_with_coasting",              "people_mota",    "people_id_switches",
       "non_person_movers_per_minute",           "smoothed_ate_rmse_m",                    "smoothed_landmark_rmse_m",
-      "detail",         "warnings"};
+      "final_smoothed_ate_rmse_m", "detail",         "warnings"};
   std::sort(expected.begin(), expected.end());
   EXPECT_EQ(keys, expected);  // nlohmann::json iterates objects in key order
   std::vector<std::string> listed = TopLevelMetricKeys();
@@ -131,6 +132,68 @@ TEST(EvaluationTest, HandBuiltLogGivesHandComputedFigures) {
   EXPECT_DOUBLE_EQ(j["static_recall"].get<double>(), 1.0);
   EXPECT_DOUBLE_EQ(j["classification_accuracy"].get<double>(), 0.75);
   EXPECT_EQ(j["detail"]["classification"]["confusion_true_by_final"]["static"]["untracked"], 1);
+}
+
+// The smoother's two trajectories: SMOOTHED_POSE (live) and the last SMOOTHED_TRAJECTORY (every
+// keyframe as estimated at the end), both in the frame of the live one's anchor; a
+// SMOOTHED_TRAJECTORY with keyframes out of order or a NaN is rejected and counted, never used.
+TEST(EvaluationTest, TheFinalSmoothedTrajectoryIsScoredInTheLiveAnchorsFrame) {
+  testing::TempDir dir;
+  {
+    LogWriter log(dir.File("run.lcm"));
+    for (int k = 0; k < testing::kScans; ++k) {
+      const int64_t t = testing::ScanTime(k);
+      slammtt_msgs::ground_truth_t gt{};
+      gt.utime = t;
+      gt.robot_x_m = 2.0 + k;
+      gt.robot_y_m = 3.0;
+      log.WriteMessage(t, "GROUND_TRUTH", gt);
+      // Live: exact but 0.5 m off along the truth's x at the last scan.
+      slammtt_msgs::pose_t live{};
+      live.utime = t;
+      live.y_m = k + (k == 4 ? 0.5 : 0.0);
+      live.heading_rad = M_PI / 2;
+      log.WriteMessage(t, "SMOOTHED_POSE", live);
+    }
+    // Keyframes 0-3 at the end: keyframe 0 0.1 m off along the truth's x, keyframe 1 0.2 m
+    // along its y (map x = 3 - truth y); not re-anchored, so keyframe 0's error stays.
+    const auto trajectory = [](int64_t utime, std::vector<int> keyframes) {
+      slammtt_msgs::trajectory_t m{};
+      m.utime = utime;
+      for (int k : keyframes) {
+        m.pose_utime.push_back(testing::ScanTime(k));
+        m.x_m.push_back(k == 1 ? -0.2 : 0.0);
+        m.y_m.push_back(k + (k == 0 ? 0.1 : 0.0));
+        m.heading_rad.push_back(M_PI / 2);
+      }
+      m.num_poses = static_cast<int32_t>(m.pose_utime.size());
+      return m;
+    };
+    slammtt_msgs::trajectory_t early = trajectory(testing::ScanTime(1), {0, 1});
+    early.x_m[0] = 5.0;
+    log.WriteMessage(early.utime, "SMOOTHED_TRAJECTORY", early);
+    const slammtt_msgs::trajectory_t last = trajectory(testing::ScanTime(3), {0, 1, 2, 3});
+    log.WriteMessage(last.utime, "SMOOTHED_TRAJECTORY", last);
+    slammtt_msgs::trajectory_t disordered = trajectory(testing::ScanTime(4), {0, 2, 1});
+    log.WriteMessage(disordered.utime, "SMOOTHED_TRAJECTORY", disordered);
+    slammtt_msgs::trajectory_t nan = trajectory(testing::ScanTime(4), {0, 1});
+    nan.heading_rad[1] = std::numeric_limits<double>::quiet_NaN();
+    log.WriteMessage(nan.utime, "SMOOTHED_TRAJECTORY", nan);
+    log.Commit();
+  }
+  EvalInput input;
+  const EvaluationReport r = EvaluateFile(dir.File("run.lcm"), &input);
+  ASSERT_TRUE(r.smoothed_robot.has_value());
+  EXPECT_NEAR(r.smoothed_robot->error.rmse_m, std::sqrt(0.25 / 5), 1e-9);
+  ASSERT_TRUE(r.final_smoothed_trajectory.has_value());
+  EXPECT_EQ(r.final_smoothed_trajectory->anchored.size(), 4u);
+  EXPECT_NEAR(r.final_smoothed_trajectory->error.rmse_m, std::sqrt((0.01 + 0.04) / 4), 1e-9);
+  EXPECT_EQ(input.accepted.at("smoothed_trajectory"), 2);
+  EXPECT_EQ(input.rejected.at("smoothed_trajectory"), 2);
+  const nlohmann::json j = ReportToJson(input, r);
+  EXPECT_NEAR(j["final_smoothed_ate_rmse_m"].get<double>(), std::sqrt(0.05 / 4), 1e-9);
+  EXPECT_EQ(j["detail"]["final_smoothed_trajectory"]["trajectory_utime"].get<int64_t>(),
+            testing::ScanTime(3));
 }
 
 TEST(EvaluationTest, AWorldOnlyLogScoresOdometryAndSaysWhatIsMissing) {

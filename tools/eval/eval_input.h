@@ -127,10 +127,13 @@ struct EvalInput {
   std::vector<TimedPose> estimate;    // POSE, map frame, sorted, unique
   std::vector<TrackScan> tracks;      // sorted, unique
   // The smoother's outputs (slammtt-smoother), in the estimator's map frame: SMOOTHED_POSE
-  // (sorted, unique) and the last SMOOTHED_MAP.
+  // (sorted, unique), the last SMOOTHED_MAP and the last SMOOTHED_TRAJECTORY (its keyframes,
+  // sorted, unique: the trajectory as the smoother estimated it at the end).
   std::vector<TimedPose> smoothed_estimate;
   std::optional<std::vector<LandmarkSample>> final_smoothed_map;
   int64_t final_smoothed_map_utime = 0;
+  std::optional<std::vector<TimedPose>> final_smoothed_trajectory;
+  int64_t final_smoothed_trajectory_utime = 0;
   std::optional<std::vector<LandmarkSample>> final_map;  // the last MAP message
   std::vector<LineLandmarkSample> final_map_lines;       // its lines
   int64_t final_map_utime = 0;

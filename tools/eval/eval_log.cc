@@ -23,6 +23,7 @@
 #include "slammtt_msgs/odometry_t.hpp"
 #include "slammtt_msgs/pose_t.hpp"
 #include "slammtt_msgs/tracks_t.hpp"
+#include "slammtt_msgs/trajectory_t.hpp"
 
 namespace slammtt {
 namespace {
@@ -207,6 +208,25 @@ bool ReadMap(const LogEventView& e, std::vector<LandmarkSample>* landmarks,
   return ok;
 }
 
+// A SMOOTHED_TRAJECTORY's keyframes; false (nothing kept) when a utime is invalid or not
+// increasing, or a number is not finite.
+bool ReadTrajectory(const LogEventView& e, std::vector<TimedPose>* poses, int64_t* utime) {
+  slammtt_msgs::trajectory_t msg{};
+  if (!Decode(e.data, e.size, &msg) || !ValidUtime(msg.utime)) return false;
+  poses->clear();
+  for (int i = 0; i < msg.num_poses; ++i) {
+    if (!ValidUtime(msg.pose_utime[i]) ||
+        (!poses->empty() && msg.pose_utime[i] <= poses->back().utime) ||
+        !Finite({msg.x_m[i], msg.y_m[i], msg.heading_rad[i]})) {
+      return false;
+    }
+    poses->push_back({msg.pose_utime[i], Pose2{msg.x_m[i], msg.y_m[i],
+                                               WrapAngle(msg.heading_rad[i])}});
+  }
+  *utime = msg.utime;
+  return true;
+}
+
 }  // namespace
 
 EvalInput ReadEvalInput(const std::string& path, const Channels& channels, LogReadResult* read) {
@@ -221,6 +241,7 @@ EvalInput ReadEvalInput(const std::string& path, const Channels& channels, LogRe
   const std::string features_channel = channels.Get("features");
   const std::string smoothed_pose_channel = channels.Get("smoothed_pose");
   const std::string smoothed_map_channel = channels.Get("smoothed_map");
+  const std::string smoothed_trajectory_channel = channels.Get("smoothed_trajectory");
   const std::string laser_geometry_channel = channels.Get("laser_geometry");
   int64_t last_scan_utime = -1;  // the last decodable LASER_SCAN, kept for the snapshot
   std::vector<Eigen::Vector2d> last_scan_beams;
@@ -295,6 +316,18 @@ EvalInput ReadEvalInput(const std::string& path, const Channels& channels, LogRe
       ++input.accepted["smoothed_map"];
       input.final_smoothed_map = std::move(landmarks);
       input.final_smoothed_map_utime = utime;
+    } else if (e.channel == smoothed_trajectory_channel) {
+      input.accepted["smoothed_trajectory"] += 0;
+      std::vector<TimedPose> poses;
+      int64_t utime = 0;
+      if (!ReadTrajectory(e, &poses, &utime) ||
+          (input.final_smoothed_trajectory && utime < input.final_smoothed_trajectory_utime)) {
+        ++input.rejected["smoothed_trajectory"];
+        return;
+      }
+      ++input.accepted["smoothed_trajectory"];
+      input.final_smoothed_trajectory = std::move(poses);
+      input.final_smoothed_trajectory_utime = utime;
     } else if (e.channel == tracks_channel) {
       slammtt_msgs::tracks_t msg{};
       if (!Decode(e.data, e.size, &msg)) {

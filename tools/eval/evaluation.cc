@@ -31,12 +31,12 @@ bool Standing(const TruthObjectSample& o, double min_moving_speed_mps) {
   return o.moving && o.velocity_mps.norm() < min_moving_speed_mps;
 }
 
-// Anchors `pairs` at the first one and scores them; nullopt without any pair.
-std::optional<TrajectoryResult> ScorePairs(std::vector<PosePair> pairs) {
-  if (pairs.empty()) return std::nullopt;
+// Scores `pairs` already put into the truth frame by `anchor` (of the pair at anchor_utime).
+TrajectoryResult ScoreAnchoredPairs(std::vector<PosePair> pairs, const Pose2& anchor,
+                                    int64_t anchor_utime) {
   TrajectoryResult result;
-  result.anchor_utime = pairs.front().utime;
-  result.anchor = AnchorAtFirstPair(&pairs);
+  result.anchor_utime = anchor_utime;
+  result.anchor = anchor;
   result.error = EvaluateTrajectory(pairs);
   result.relative_error = EvaluateRelativePoseError(pairs);
   for (const PosePair& p : pairs) result.anchored.push_back({p.utime, p.estimate});
@@ -44,6 +44,14 @@ std::optional<TrajectoryResult> ScorePairs(std::vector<PosePair> pairs) {
   for (PosePair& p : pairs) p.estimate = Compose(result.least_squares_alignment, p.estimate);
   result.aligned_error = EvaluateTrajectory(pairs);
   return result;
+}
+
+// Anchors `pairs` at the first one and scores them; nullopt without any pair.
+std::optional<TrajectoryResult> ScorePairs(std::vector<PosePair> pairs) {
+  if (pairs.empty()) return std::nullopt;
+  const int64_t anchor_utime = pairs.front().utime;
+  const Pose2 anchor = AnchorAtFirstPair(&pairs);
+  return ScoreAnchoredPairs(std::move(pairs), anchor, anchor_utime);
 }
 
 // Pairs truth scans with estimates at exactly the same utime.
@@ -81,6 +89,25 @@ void ScoreSmoother(const EvalInput& input, const EvalOptions& options,
     report->notes.push_back("no SMOOTHED_POSE has the utime of a GROUND_TRUTH scan: smoother "
                             "not scored");
     return;
+  }
+  if (input.final_smoothed_trajectory) {
+    // In the frame of the live smoothed trajectory's anchor, as the map: the three figures
+    // share one frame, and a final trajectory whose first keyframe moved is scored with it.
+    std::map<int64_t, Pose2> by_time;
+    for (const TimedPose& p : *input.final_smoothed_trajectory) by_time[p.utime] = p.pose;
+    std::vector<PosePair> pairs;
+    for (const TruthScan& scan : input.truth) {
+      const auto it = by_time.find(scan.utime);
+      if (it == by_time.end()) continue;
+      pairs.push_back({scan.utime, scan.robot, Compose(report->smoothed_robot->anchor, it->second)});
+    }
+    if (pairs.empty()) {
+      report->notes.push_back("no keyframe of the last SMOOTHED_TRAJECTORY has the utime of a "
+                              "GROUND_TRUTH scan: final smoothed trajectory not scored");
+    } else {
+      report->final_smoothed_trajectory = ScoreAnchoredPairs(
+          std::move(pairs), report->smoothed_robot->anchor, report->smoothed_robot->anchor_utime);
+    }
   }
   if (!input.final_smoothed_map) return;
   std::vector<IdentifiedPoint> landmarks;

@@ -228,6 +228,10 @@ struct EvaluationReport {
   // as MAP, anchored by the smoothed trajectory's anchor.
   std::optional<TrajectoryResult> smoothed_robot;
   std::optional<MapScore> smoothed_map;
+  // The last SMOOTHED_TRAJECTORY (every keyframe as the smoother estimated it at the end: the
+  // smoothed trajectory in the smoothing sense, where smoothed_robot is the live, causal one),
+  // at the keyframes that have a ground-truth scan, in the frame of smoothed_robot's anchor.
+  std::optional<TrajectoryResult> final_smoothed_trajectory;
   // With a MAP and true surfaces (or line landmarks): the lines' score and the point landmarks
   // on walls (ids).
   std::optional<LineMapScore> line_map;

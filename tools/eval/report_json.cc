@@ -183,7 +183,7 @@ const std::vector<std::string>& TopLevelMetricKeys() {
       "id_switches_with_coasting",               "people_mota",     "people_id_switches",
       "non_person_movers_per_minute",
       "movers_in_static_map", "landmark_rmse_m", "static_recall",   "classification_accuracy",
-      "smoothed_ate_rmse_m",  "smoothed_landmark_rmse_m"};
+      "smoothed_ate_rmse_m",  "smoothed_landmark_rmse_m", "final_smoothed_ate_rmse_m"};
   return keys;
 }
 
@@ -255,6 +255,9 @@ json ReportToJson(const EvalInput& input, const EvaluationReport& report,
       report.smoothed_robot ? json(report.smoothed_robot->error.rmse_m) : json(nullptr);
   j["smoothed_landmark_rmse_m"] =
       report.smoothed_map ? OrNull(report.smoothed_map->landmark_rmse_m) : json(nullptr);
+  j["final_smoothed_ate_rmse_m"] = report.final_smoothed_trajectory
+                                       ? json(report.final_smoothed_trajectory->error.rmse_m)
+                                       : json(nullptr);
 
   json detail;
   json channels;
@@ -279,6 +282,11 @@ json ReportToJson(const EvalInput& input, const EvaluationReport& report,
   detail["odometry"] = report.odometry ? TrajectoryJson(*report.odometry) : json(nullptr);
   // The smoother's parts only when the log has its outputs.
   if (report.smoothed_robot) detail["smoothed_robot"] = TrajectoryJson(*report.smoothed_robot);
+  if (report.final_smoothed_trajectory) {
+    detail["final_smoothed_trajectory"] = TrajectoryJson(*report.final_smoothed_trajectory);
+    detail["final_smoothed_trajectory"]["trajectory_utime"] =
+        input.final_smoothed_trajectory_utime;
+  }
   if (report.smoothed_map) {
     const MapScore& m = *report.smoothed_map;
     detail["smoothed_map"] = {{"final_map_utime", input.final_smoothed_map_utime},
@@ -404,6 +412,12 @@ std::string ReportSummaryText(const EvaluationReport& report,
       out << "; smoothed map: landmark RMSE "
           << FixedOr(report.smoothed_map->landmark_rmse_m, 3, " m") << ", recall "
           << FixedOr(report.smoothed_map->static_recall, 3);
+    }
+    if (report.final_smoothed_trajectory) {
+      const TrajectoryError& f = report.final_smoothed_trajectory->error;
+      out << "\n  final smoothed trajectory (" << report.final_smoothed_trajectory->anchored.size()
+          << " keyframes): ATE RMSE " << Fixed(f.rmse_m, 3) << " m, max " << Fixed(f.max_m, 3)
+          << " m";
     }
   }
   out << "\n  map:            ";
