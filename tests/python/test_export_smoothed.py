@@ -1,6 +1,7 @@
 """slammtt-export of the smoother's outputs (docs/export.md): s1-crossing seed 1 replayed with
 slammtt-smoother (`slammtt-replay --smoother`), its SMOOTHED_MAP in smoothed_map.csv and in the
-MCAP file's /smoothed_map, its SMOOTHED_POSE in smoothed.tum, read back by the csv module and
+MCAP file's /smoothed_map, its SMOOTHED_POSE in smoothed.tum and its last SMOOTHED_TRAJECTORY in
+smoothed_final.tum, read back by the csv module and
 the `mcap` library."""
 
 import csv
@@ -60,3 +61,15 @@ def test_mcap_draws_the_smoothed_map_and_tum_has_every_smoothed_pose(smoothed):
         assert (e.spheres[0].pose.position.x, e.spheres[0].pose.position.y) == (l.x_m, l.y_m)
     poses = (out / "tum" / "smoothed.tum").read_text().splitlines()
     assert len(poses) == len(log["SMOOTHED_POSE"]) > 0
+
+
+def test_tum_has_the_final_smoothed_trajectory_keyframe_by_keyframe(smoothed):
+    out, log = smoothed
+    final = log["SMOOTHED_TRAJECTORY"][-1]
+    assert final.num_poses > 0, "the smoother published an empty trajectory"
+    lines = (out / "tum" / "smoothed_final.tum").read_text().splitlines()
+    assert len(lines) == final.num_poses
+    for line, utime, x, y in zip(lines, final.pose_utime, final.x_m, final.y_m):
+        fields = line.split()
+        assert float(fields[0]) == pytest.approx(utime * 1e-6, abs=1e-6)
+        assert (float(fields[1]), float(fields[2])) == pytest.approx((x, y), abs=1e-9)

@@ -17,7 +17,7 @@ from slammtt.lcmlog import LogReader
 EXPECTED_TYPES = {
     "odometry": "odometry_t", "laser_scan": "laser_scan_t", "features": "features_t",
     "pose": "pose_t", "smoothed_pose": "pose_t", "map": "map_t", "smoothed_map": "map_t",
-    "tracks": "tracks_t",
+    "tracks": "tracks_t", "smoothed_trajectory": "trajectory_t",
     "ground_truth": "ground_truth_t", "leg_labels": "leg_labels_t",
 }
 
@@ -41,6 +41,10 @@ def _problem(key, m):
         ok = all(_finite(t.x_m, t.y_m, t.vx_mps, t.vy_mps) for t in m.tracks)
     elif key in ("map", "smoothed_map"):
         ok = all(_finite(l.x_m, l.y_m) for l in m.landmarks)
+    elif key == "smoothed_trajectory":
+        ok = _finite(*m.x_m, *m.y_m, *m.heading_rad)
+        if ok and any(b <= a for a, b in zip(m.pose_utime, m.pose_utime[1:])):
+            return "keyframe utimes not increasing"
     else:
         return ""
     return "" if ok else "a NaN or infinite value"

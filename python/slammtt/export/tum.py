@@ -8,6 +8,7 @@ as a unit quaternion. The stack is planar: z = 0 and the quaternion turns by the
 | odometry.tum | ODOMETRY (odometry_t) | the base's odometry frame |
 | truth.tum | GROUND_TRUTH (ground_truth_t robot pose) | the world frame |
 | smoothed.tum | SMOOTHED_POSE (pose_t), when the log has it | the smoother's map frame |
+| smoothed_final.tum | the last SMOOTHED_TRAJECTORY (trajectory_t): every keyframe as the smoother estimated it at the end | the smoother's map frame |
 
 Each pose is written as it is, in its own frame: evo aligns them (`--align_origin` is
 slammtt-eval's anchoring, `-a` its least-squares alignment). A trajectory without any pose is
@@ -44,4 +45,11 @@ def write_tum(data, directory):
         lines = [tum_line(m.utime, *pose_of(m)) for m in messages]
         write_text(os.path.join(directory, stem + ".tum"), "\n".join(lines) + "\n")
         written[stem] = len(lines)
+    final = data["smoothed_trajectory"]
+    if final and final[-1].num_poses > 0:
+        last = final[-1]
+        lines = [tum_line(*pose) for pose in
+                 zip(last.pose_utime, last.x_m, last.y_m, last.heading_rad)]
+        write_text(os.path.join(directory, "smoothed_final.tum"), "\n".join(lines) + "\n")
+        written["smoothed_final"] = len(lines)
     return written
