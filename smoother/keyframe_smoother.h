@@ -80,8 +80,13 @@ struct KeyframeSmootherOptions {
   // The stage publishes the map (with the landmarks' covariances, the costly part) at every
   // this many keyframes (smoother_stage.h).
   int map_every_keyframes = 8;
-  // The incremental solver (Smoother::Update).
-  SmootherOptions solver;
+  // The incremental solver (Smoother::Update). The stack reads no update's chi^2, so it is not
+  // computed (a pass over every factor per keyframe).
+  SmootherOptions solver = [] {
+    SmootherOptions o;
+    o.update_chi_square = false;
+    return o;
+  }();
 };
 
 // The schema of the options (common/options_schema.h; keys of the `smoother:` section, the

@@ -166,6 +166,9 @@ void VisitSmootherOptions(OptionVisitor* v, SmootherOptions* o) {
   v->Int("min_free_slots", &o->min_free_slots, R::Between(0, kMaxCount),
          "variables' room reserved at the end of the ordering (at least a quarter of the live "
          "ones)");
+  v->Bool("update_chi_square", &o->update_chi_square,
+          "incremental: each update reports chi^2 (a pass over every factor; false: not "
+          "computed, as ISAM2's update() by default)");
 }
 
 std::string CheckSmootherOptions(const SmootherOptions& options) {
@@ -202,6 +205,10 @@ std::optional<std::string> Smoother::AddVariable(bool is_pose, int64_t id,
   if (is_pose) variable.linearization(2) = WrapAngle(value(2));
   index.emplace(id, static_cast<int>(variables_.size()));
   pending_variables_.push_back(static_cast<int>(variables_.size()));
+  component_parent_.push_back(static_cast<int>(variables_.size()));
+  component_anchored_.push_back(0);
+  ++unanchored_components_;
+  ++live_variables_;
   variables_.push_back(std::move(variable));
   marginal_factor_valid_ = false;
   return std::nullopt;
@@ -223,6 +230,8 @@ std::optional<std::string> Smoother::RemoveLandmark(LandmarkId id) {
   landmark.alive = false;
   for (int f : landmark.factors) factors_[f].alive = false;
   landmark_index_.erase(found);
+  --live_variables_;
+  components_stale_ = true;  // a removal can split a part: rebuilt at the next check
   needs_refactorization_ = true;
   marginal_factor_valid_ = false;
   return std::nullopt;
@@ -233,6 +242,7 @@ std::optional<std::string> Smoother::AddFactor(Factor factor) {
     variables_[factor.variables[k]].factors.push_back(static_cast<int>(factors_.size()));
   }
   pending_factors_.push_back(static_cast<int>(factors_.size()));
+  if (!components_stale_) JoinComponents(factor);
   factors_.push_back(std::move(factor));
   marginal_factor_valid_ = false;
   return std::nullopt;
@@ -477,38 +487,53 @@ void Smoother::RelinearizeAll() {
   }
 }
 
-std::optional<std::string> Smoother::CheckAnchored() const {
-  // Union-find over the live variables; a part without a prior is free to move as a whole.
+int Smoother::ComponentRoot(int variable) {
+  int v = variable;
+  while (component_parent_[v] != v) v = component_parent_[v] = component_parent_[component_parent_[v]];
+  return v;
+}
+
+void Smoother::JoinComponents(const Factor& factor) {
+  const int a = ComponentRoot(factor.variables[0]);
+  if (factor.num_variables == 1) {
+    if (!component_anchored_[a]) {
+      component_anchored_[a] = 1;
+      --unanchored_components_;
+    }
+    return;
+  }
+  const int b = ComponentRoot(factor.variables[1]);
+  if (a == b) return;
+  unanchored_components_ -= (component_anchored_[a] ? 0 : 1) + (component_anchored_[b] ? 0 : 1);
+  component_parent_[a] = b;
+  component_anchored_[b] = component_anchored_[a] || component_anchored_[b];
+  if (!component_anchored_[b]) ++unanchored_components_;
+}
+
+void Smoother::RebuildComponents() {
   const int n = static_cast<int>(variables_.size());
-  std::vector<int> parent(n);
-  std::iota(parent.begin(), parent.end(), 0);
-  const auto root_of = [&parent](int v) {
-    while (parent[v] != v) v = parent[v] = parent[parent[v]];
-    return v;
-  };
-  std::vector<char> anchored(n, 0);
-  int live = 0;
+  component_parent_.resize(n);
+  std::iota(component_parent_.begin(), component_parent_.end(), 0);
+  component_anchored_.assign(n, 0);
+  unanchored_components_ = 0;
+  for (const Variable& v : variables_) unanchored_components_ += v.alive ? 1 : 0;
   for (const Factor& f : factors_) {
-    if (!f.alive) continue;
-    if (f.num_variables == 1) {
-      anchored[f.variables[0]] = 1;
-    } else {
-      parent[root_of(f.variables[0])] = root_of(f.variables[1]);
-    }
+    if (f.alive) JoinComponents(f);
   }
-  for (int v = 0; v < n; ++v) {
-    if (anchored[v]) anchored[root_of(v)] = 1;
+  components_stale_ = false;
+}
+
+std::optional<std::string> Smoother::CheckAnchored() {
+  if (components_stale_) RebuildComponents();
+  if (live_variables_ == 0) return std::string("nothing to solve: no variables");
+  if (unanchored_components_ == 0) return std::nullopt;
+  // A part without a prior is free to move as a whole: name one of its variables.
+  for (int v = 0; v < static_cast<int>(variables_.size()); ++v) {
+    if (!variables_[v].alive || component_anchored_[ComponentRoot(v)]) continue;
+    return std::string("unconstrained problem: ") +
+           (variables_[v].is_pose ? "pose " : "landmark ") + std::to_string(variables_[v].id) +
+           " is in a part of the graph without a prior (add a pose or point prior)";
   }
-  for (int v = 0; v < n; ++v) {
-    if (!variables_[v].alive) continue;
-    ++live;
-    if (!anchored[root_of(v)]) {
-      return std::string("unconstrained problem: ") +
-             (variables_[v].is_pose ? "pose " : "landmark ") + std::to_string(variables_[v].id) +
-             " is in a part of the graph without a prior (add a pose or point prior)";
-    }
-  }
-  if (live == 0) return std::string("nothing to solve: no variables");
   return std::nullopt;
 }
 
@@ -922,7 +947,8 @@ SolveReport Smoother::Update() {
   }
   marginal_factor_valid_ = true;
   report.ok = true;
-  report.chi_square = ChiSquare();
+  report.chi_square =
+      options_.update_chi_square ? ChiSquare() : std::numeric_limits<double>::quiet_NaN();
   return report;
 }
 

@@ -93,6 +93,10 @@ struct SmootherOptions {
   int full_relinearization_interval = 200;  // updates between full relinearisations (0: never)
   double reorder_fill_ratio = 2.0;  // refactor when the factor's nonzeros grow this much
   int min_free_slots = 64;          // variables' room reserved at the end of the ordering
+  // Update reports chi^2 at the returned estimate: a pass over every factor, as costly as the
+  // rest of a small update. false: Update's chi_square is NaN (ChiSquare() on request), as
+  // ISAM2's update() evaluates no error unless asked (ISAM2Params::evaluateNonlinearError).
+  bool update_chi_square = true;
 };
 
 // The schema of SmootherOptions (common/options_schema.h): every field with its range and one
@@ -107,7 +111,9 @@ std::string CheckSmootherOptions(const SmootherOptions& options);
 struct SolveReport {
   bool ok = false;
   std::string error;                // one line when !ok
-  double chi_square = 0.0;          // sum of squared whitened residuals at the estimate
+  // Sum of squared whitened residuals at the estimate (NaN from an Update with
+  // update_chi_square false).
+  double chi_square = 0.0;
   double initial_chi_square = 0.0;  // batch: the same before the solve (incremental: 0)
   int iterations = 0;               // batch: accepted + rejected LM steps; incremental: 1
   // Batch: a tolerance was met, or no step with lambda up to max_lambda lowers chi^2 (where
@@ -188,7 +194,12 @@ class Smoother {
 
   std::optional<std::string> AddVariable(bool is_pose, int64_t id, const Eigen::Vector3d& value);
   std::optional<std::string> AddFactor(Factor factor);
-  std::optional<std::string> CheckAnchored() const;
+  // Every live variable's part of the graph has a prior (else the error naming one that has
+  // not). Kept as factors arrive, so that each Update need not pass over the whole graph.
+  std::optional<std::string> CheckAnchored();
+  int ComponentRoot(int variable);
+  void JoinComponents(const Factor& factor);
+  void RebuildComponents();
   Eigen::Vector3d Estimate(const Variable& variable) const;
   double FactorChiSquare(const Factor& factor, bool at_linearization_point) const;
   void Linearize(Factor* factor) const;
@@ -224,6 +235,14 @@ class Smoother {
   int next_free_offset_ = 0;
   // The factor in cholesky_ is of the undamped normal equations at the current linearisation.
   bool marginal_factor_valid_ = false;
+  // Connected parts of the factor graph (union-find over variable indices) and whether each
+  // root's part has a prior, updated as variables and factors arrive; a removal makes them
+  // stale and the next CheckAnchored rebuilds them.
+  std::vector<int> component_parent_;
+  std::vector<char> component_anchored_;
+  int unanchored_components_ = 0;
+  int live_variables_ = 0;
+  bool components_stale_ = false;
 };
 
 }  // namespace slammtt

@@ -347,6 +347,60 @@ TEST(SmootherTest, ExponentialPoseUpdateReachesTheSameOptimumAndMarginals) {
   }
 }
 
+TEST(SmootherTest, UpdatesWithoutChiSquareGiveTheSameEstimates) {
+  const LoopProblem problem(40, 1.0, 6);
+  SmootherOptions quiet_options;
+  quiet_options.update_chi_square = false;
+  Smoother reporting;
+  Smoother quiet(quiet_options);
+  for (int k = 0; k < 40; ++k) {
+    problem.AddKeyframe(k, &reporting);
+    problem.AddKeyframe(k, &quiet);
+    const SolveReport a = reporting.Update();
+    const SolveReport b = quiet.Update();
+    ASSERT_TRUE(a.ok && b.ok) << a.error << b.error;
+    EXPECT_TRUE(std::isfinite(a.chi_square));
+    EXPECT_TRUE(std::isnan(b.chi_square));
+    EXPECT_EQ(a.refactorized, b.refactorized);
+  }
+  EXPECT_EQ(MaxStateDifference(State(reporting, problem), State(quiet, problem), 40), 0.0);
+  EXPECT_EQ(reporting.ChiSquare(), quiet.ChiSquare());
+}
+
+// The parts of the graph are followed as factors arrive, and found again after a removal: a
+// landmark that was a pose's only link to the prior leaves that pose free.
+TEST(SmootherTest, AnchoringFollowsAdditionsAndRemovals) {
+  Smoother smoother;
+  const Eigen::Matrix3d info3 = Eigen::Matrix3d::Identity();
+  const Eigen::Matrix2d info2 = Eigen::Matrix2d::Identity();
+  ASSERT_FALSE(smoother.AddPose(0, Eigen::Vector3d(0, 0, 0)));
+  ASSERT_FALSE(smoother.AddPosePrior(0, Eigen::Vector3d::Zero(), info3));
+  ASSERT_FALSE(smoother.AddPose(1, Eigen::Vector3d(1, 0, 0)));
+  ASSERT_FALSE(smoother.AddLandmark(7, Eigen::Vector2d(2, 1)));
+  ASSERT_FALSE(smoother.AddLandmark(8, Eigen::Vector2d(3, -1)));
+  ASSERT_FALSE(smoother.AddRelativePosition(0, 7, Eigen::Vector2d(2, 1), info2));
+  ASSERT_FALSE(smoother.AddRelativePosition(0, 8, Eigen::Vector2d(3, -1), info2));
+  SolveReport report = smoother.Update();
+  EXPECT_FALSE(report.ok);
+  EXPECT_NE(report.error.find("pose 1 is in a part of the graph without a prior"),
+            std::string::npos)
+      << report.error;
+  // Landmark 7 links pose 1 (two sightings fix its position and heading) to the prior.
+  ASSERT_FALSE(smoother.AddRelativePosition(1, 7, Eigen::Vector2d(1, 1), info2));
+  ASSERT_FALSE(smoother.AddRelativePosition(1, 8, Eigen::Vector2d(2, -1), info2));
+  report = smoother.Update();
+  ASSERT_TRUE(report.ok) << report.error;
+  ASSERT_FALSE(smoother.RemoveLandmark(7));
+  ASSERT_FALSE(smoother.RemoveLandmark(8));
+  report = smoother.Update();
+  EXPECT_FALSE(report.ok);
+  EXPECT_NE(report.error.find("pose 1 is in a part"), std::string::npos) << report.error;
+  ASSERT_FALSE(smoother.AddOdometry(0, 1, Eigen::Vector3d(1, 0, 0), info3));
+  report = smoother.Update();
+  EXPECT_TRUE(report.ok) << report.error;
+  EXPECT_LT((*smoother.PoseEstimate(1) - Eigen::Vector3d(1, 0, 0)).norm(), 1e-9);
+}
+
 TEST(SmootherTest, RemovedLandmarkLeavesTheProblem) {
   const LoopProblem problem(24, 1.0, 4);
   SmootherOptions options;
