@@ -105,10 +105,22 @@ bool SparseCholesky::Modify(bool update, const std::vector<SparseColumn>& column
   int* p = static_cast<int*>(c->p);
   int* i = static_cast<int*>(c->i);
   double* x = static_cast<double*>(c->x);
+  // cholmod_updown runs the columns in groups of up to 8, each group along the union of its
+  // columns' paths in the elimination tree (from a column's first row to the root): columns
+  // sorted by their first row in the factor's ordering share most of their paths.
+  std::vector<std::pair<int, size_t>> order;
+  order.reserve(columns.size());
+  for (size_t k = 0; k < columns.size(); ++k) {
+    int first = n_;
+    for (int row : columns[k].rows) first = std::min(first, position_[row]);
+    order.emplace_back(first, k);
+  }
+  std::sort(order.begin(), order.end());
   std::vector<std::pair<int, double>> entries;
   size_t at = 0;
-  for (size_t k = 0; k < columns.size(); ++k) {
-    p[k] = static_cast<int>(at);
+  for (size_t slot = 0; slot < order.size(); ++slot) {
+    const size_t k = order[slot].second;
+    p[slot] = static_cast<int>(at);
     // cholmod_updown takes C in the factor's ordering, rows sorted.
     entries.clear();
     for (size_t e = 0; e < columns[k].rows.size(); ++e) {
