@@ -232,7 +232,9 @@ std::optional<std::string> Smoother::RemoveLandmark(LandmarkId id) {
   landmark_index_.erase(found);
   --live_variables_;
   components_stale_ = true;  // a removal can split a part: rebuilt at the next check
-  needs_refactorization_ = true;
+  // In the kept factor, the next Update takes its factors out by rank downdates (its slot stays,
+  // an isolated identity, until the next re-ordering); a landmark not in it yet needs nothing.
+  if (landmark.in_system) removed_in_system_.push_back(found->second);
   marginal_factor_valid_ = false;
   return std::nullopt;
 }
@@ -552,6 +554,7 @@ void Smoother::BuildLayout(int free_scalars) {
   }
   pending_variables_.clear();
   pending_factors_.clear();
+  removed_in_system_.clear();
   layout.free_begin = offset;
   layout.n = offset + free_scalars;
   next_free_offset_ = offset;
@@ -843,6 +846,21 @@ bool Smoother::SolveIncrementalStep(bool relinearize) {
           sign * f.jacobian[k].topLeftCorner(f.rows, v.dim).transpose() * f.residual.head(f.rows);
     }
   };
+  // Removed landmarks: an identity on their slot goes in (the matrix stays positive definite),
+  // their factors come out; the slot is then decoupled with a zero gradient, so its step is 0.
+  for (int index : removed_in_system_) {
+    const Variable& landmark = variables_[index];
+    for (int i = 0; i < landmark.dim; ++i) updates.push_back({{landmark.offset + i}, {1.0}});
+    for (int f : landmark.factors) {
+      Factor& factor = factors_[f];
+      if (!factor.in_system) continue;
+      AppendFactorColumns(factor, &downdates);
+      subtract_gradient(factor, -1.0);
+      factor.in_system = false;
+    }
+    gradient_.segment(landmark.offset, landmark.dim).setZero();
+  }
+  removed_in_system_.clear();
   // Variables whose pending step is large: their factors come out and go back relinearised.
   const std::vector<int> moved = relinearize ? VariablesToRelinearize() : std::vector<int>();
   std::vector<int> relinearized_factors;

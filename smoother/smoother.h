@@ -27,9 +27,10 @@
 //   ordering), so a keyframe that touches only recent variables costs little. Every
 //   full_relinearization_interval updates, when more than max_incremental_relinearizations
 //   variables must be relinearised at once, when the factor's fill has grown by
-//   reorder_fill_ratio, when the slots run out, after a landmark is removed or an estimate
-//   set, everything is relinearised, re-ordered and re-factorised (simplicial LDL^T, which
-//   updates need).
+//   reorder_fill_ratio, when the slots run out or after an estimate is set, everything is
+//   relinearised, re-ordered and re-factorised (simplicial LDL^T, which updates need). A
+//   removed landmark's factors leave the kept factor by rank downdates (its slot stays, an
+//   isolated identity, until then).
 // The chi-square at the returned estimate is in every SolveReport.
 //
 // Bad input is refused with a one-line reason and changes nothing: non-finite numbers, an
@@ -230,6 +231,8 @@ class Smoother {
   // Added since the last update, not yet in the kept factor (indices).
   std::vector<int> pending_variables_;
   std::vector<int> pending_factors_;
+  // Landmarks removed since the last update that are in the kept factor (indices).
+  std::vector<int> removed_in_system_;
   double nonzeros_after_ordering_ = 0.0;
   Eigen::VectorXd gradient_;
   int next_free_offset_ = 0;

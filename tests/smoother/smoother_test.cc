@@ -411,6 +411,8 @@ TEST(SmootherTest, RemovedLandmarkLeavesTheProblem) {
     problem.AddKeyframe(k, &smoother);
     ASSERT_TRUE(smoother.Update().ok);
   }
+  // Converged first, so that no relinearisation asks for a refactorisation by itself.
+  for (int extra = 0; extra < 5; ++extra) ASSERT_TRUE(smoother.Update().ok);
   const int factors = smoother.num_factors();
   ASSERT_FALSE(smoother.RemoveLandmark(3));
   EXPECT_TRUE(smoother.RemoveLandmark(3));  // gone
@@ -420,7 +422,7 @@ TEST(SmootherTest, RemovedLandmarkLeavesTheProblem) {
   EXPECT_TRUE(smoother.AddRangeBearing(5, 3, Eigen::Vector2d(1, 0), Eigen::Matrix2d::Identity()));
   const SolveReport after = smoother.Update();
   ASSERT_TRUE(after.ok) << after.error;
-  EXPECT_TRUE(after.refactorized);
+  EXPECT_FALSE(after.refactorized);  // its factors leave by rank downdates
   // Same optimum as a problem built without it.
   Smoother batch;
   problem.AddAll(&batch);
