@@ -26,6 +26,7 @@ constexpr int kLandmarkDim = 2;
 
 struct Smoother::Variable {
   bool is_pose = true;
+  int newest_factor_update = 0;  // the update count when its newest factor arrived
   int64_t id = 0;
   int dim = kPoseDim;
   Eigen::Vector3d linearization = Eigen::Vector3d::Zero();  // (x, y[, theta])
@@ -166,6 +167,9 @@ void VisitSmootherOptions(OptionVisitor* v, SmootherOptions* o) {
   v->Int("min_free_slots", &o->min_free_slots, R::Between(0, kMaxCount),
          "variables' room reserved at the end of the ordering (at least a quarter of the live "
          "ones)");
+  v->Int("ordering_recent_updates", &o->ordering_recent_updates, R::Between(0, kMaxCount),
+         "incremental: a refactorisation orders the variables of factors added in this many last "
+         "updates after the others (constrained minimum degree, as ISAM2; 0: CHOLMOD's ordering)");
   v->Bool("update_chi_square", &o->update_chi_square,
           "incremental: each update reports chi^2 (a pass over every factor; false: not "
           "computed, as ISAM2's update() by default)");
@@ -242,6 +246,7 @@ std::optional<std::string> Smoother::RemoveLandmark(LandmarkId id) {
 std::optional<std::string> Smoother::AddFactor(Factor factor) {
   for (int k = 0; k < factor.num_variables; ++k) {
     variables_[factor.variables[k]].factors.push_back(static_cast<int>(factors_.size()));
+    variables_[factor.variables[k]].newest_factor_update = updates_;
   }
   pending_factors_.push_back(static_cast<int>(factors_.size()));
   if (!components_stale_) JoinComponents(factor);
@@ -800,8 +805,21 @@ SolveReport Smoother::FullRefactorization(SolveReport report) {
   const int free_variables = std::max(options_.min_free_slots, live / 4);
   BuildLayout(free_variables * kPoseDim);
   const Layout& layout = *layout_;
+  // The variables of the newest factors last (ISAM2's constrained ordering): the next
+  // keyframes' factors are mostly on them.
+  std::vector<char> recent;
+  if (options_.ordering_recent_updates > 0) {
+    recent.assign(layout.free_begin, 0);
+    for (const Variable& v : variables_) {
+      if (!v.alive || updates_ - v.newest_factor_update > options_.ordering_recent_updates) {
+        continue;
+      }
+      for (int i = 0; i < v.dim; ++i) recent[v.offset + i] = 1;
+    }
+  }
   if (!cholesky_->Analyze(layout.n, layout.column_starts, layout.rows,
-                          SparseCholesky::Form::kSimplicial, layout.n - layout.free_begin)) {
+                          SparseCholesky::Form::kSimplicial, layout.n - layout.free_begin,
+                          recent.empty() ? nullptr : &recent)) {
     report.error = "CHOLMOD could not analyse the normal equations";
     return report;
   }

@@ -94,6 +94,11 @@ struct SmootherOptions {
   int full_relinearization_interval = 200;  // updates between full relinearisations (0: never)
   double reorder_fill_ratio = 2.0;  // refactor when the factor's nonzeros grow this much
   int min_free_slots = 64;          // variables' room reserved at the end of the ordering
+  // A refactorisation orders the variables of the factors added in this many last updates
+  // after the others (constrained minimum degree, CAMD; ISAM2 orders its newest factors' keys
+  // last the same way): the next keyframes observe mostly the same variables, and their rank
+  // updates then run along short paths of the elimination tree. 0: CHOLMOD's own ordering.
+  int ordering_recent_updates = 1;
   // Update reports chi^2 at the returned estimate: a pass over every factor, as costly as the
   // rest of a small update. false: Update's chi_square is NaN (ChiSquare() on request), as
   // ISAM2's update() evaluates no error unless asked (ISAM2Params::evaluateNonlinearError).

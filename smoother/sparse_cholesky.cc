@@ -31,7 +31,8 @@ SparseCholesky::SparseCholesky() : state_(std::make_unique<State>()) {}
 SparseCholesky::~SparseCholesky() = default;
 
 bool SparseCholesky::Analyze(int n, const std::vector<int>& column_starts,
-                             const std::vector<int>& rows, Form form, int trailing_natural) {
+                             const std::vector<int>& rows, Form form, int trailing_natural,
+                             const std::vector<char>* ordered_last) {
   State& s = *state_;
   s.Release();
   factorized_ = false;
@@ -53,17 +54,26 @@ bool SparseCholesky::Analyze(int n, const std::vector<int>& column_starts,
   } else {
     // Order the leading part as CHOLMOD chooses, then keep the trailing indices last: they are
     // isolated diagonal entries now, so where they go changes no fill of the rest.
-    cholmod_factor* first = cholmod_analyze(s.matrix, &s.common);
-    if (first == nullptr) return false;
     const int leading = n - trailing_natural;
+    std::vector<int> chosen(n);
+    if (ordered_last != nullptr) {
+      std::vector<int> constraint(n, 2);
+      for (int k = 0; k < leading; ++k) constraint[k] = (*ordered_last)[k] ? 1 : 0;
+      if (!cholmod_camd(s.matrix, nullptr, 0, constraint.data(), chosen.data(), &s.common)) {
+        return false;
+      }
+    } else {
+      cholmod_factor* first = cholmod_analyze(s.matrix, &s.common);
+      if (first == nullptr) return false;
+      std::memcpy(chosen.data(), first->Perm, sizeof(int) * n);
+      cholmod_free_factor(&first, &s.common);
+    }
     std::vector<int> permutation;
     permutation.reserve(n);
-    const int* chosen = static_cast<const int*>(first->Perm);
     for (int k = 0; k < n; ++k) {
       if (chosen[k] < leading) permutation.push_back(chosen[k]);
     }
     for (int k = leading; k < n; ++k) permutation.push_back(k);
-    cholmod_free_factor(&first, &s.common);
     s.common.nmethods = 1;
     s.common.method[0].ordering = CHOLMOD_GIVEN;
     s.common.postorder = 0;  // a postorder could move the trailing slots forward

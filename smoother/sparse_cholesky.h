@@ -35,9 +35,14 @@ class SparseCholesky {
 
   // Symbolic analysis of the n x n pattern (upper triangle, column starts of size n + 1, row
   // indices sorted per column, diagonal present in every column). Indices >= n -
-  // trailing_natural are ordered last, in natural order. False if CHOLMOD fails.
+  // trailing_natural are ordered last, in natural order. With `ordered_last` (one flag per
+  // leading index), the flagged indices are ordered after the others (constrained minimum
+  // degree, CHOLMOD's CAMD), as ISAM2 orders the variables of the newest factors last: later
+  // rank updates on them then run along short paths of the elimination tree. False if CHOLMOD
+  // fails.
   bool Analyze(int n, const std::vector<int>& column_starts, const std::vector<int>& rows,
-               Form form, int trailing_natural = 0);
+               Form form, int trailing_natural = 0,
+               const std::vector<char>* ordered_last = nullptr);
 
   // Numeric factorisation of the analysed pattern with these values (one per row index). False
   // if the matrix is not positive definite.

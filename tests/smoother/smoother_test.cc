@@ -1,6 +1,7 @@
 // The smoother on small problems: known optima, batch against incremental, Gauss-Newton against
 // Levenberg-Marquardt, marginals against a dense inverse, bad input, determinism.
 #include "smoother/smoother.h"
+#include "smoother/sparse_cholesky.h"
 
 #include <gtest/gtest.h>
 
@@ -399,6 +400,46 @@ TEST(SmootherTest, AnchoringFollowsAdditionsAndRemovals) {
   report = smoother.Update();
   EXPECT_TRUE(report.ok) << report.error;
   EXPECT_LT((*smoother.PoseEstimate(1) - Eigen::Vector3d(1, 0, 0)).norm(), 1e-9);
+}
+
+// The constrained ordering: flagged indices after the other leading ones, the trailing slots
+// last in natural order, and the factor still solves the system.
+TEST(SparseCholeskyTest, FlaggedIndicesAreOrderedLastBeforeTheTrailingSlots) {
+  const int n = 12;
+  const int trailing = 2;
+  // A chain (tridiagonal, diagonally dominant) in its upper triangle; the slots are isolated.
+  std::vector<int> starts = {0};
+  std::vector<int> rows;
+  std::vector<double> values;
+  Eigen::MatrixXd dense = Eigen::MatrixXd::Zero(n, n);
+  for (int c = 0; c < n; ++c) {
+    if (c > 0 && c < n - trailing) {
+      rows.push_back(c - 1);
+      values.push_back(-1.0);
+      dense(c - 1, c) = dense(c, c - 1) = -1.0;
+    }
+    rows.push_back(c);
+    values.push_back(4.0);
+    dense(c, c) = 4.0;
+    starts.push_back(static_cast<int>(rows.size()));
+  }
+  std::vector<char> last(n - trailing, 0);
+  last[1] = last[4] = 1;
+  SparseCholesky cholesky;
+  ASSERT_TRUE(cholesky.Analyze(n, starts, rows, SparseCholesky::Form::kSimplicial, trailing,
+                               &last));
+  for (int i = 0; i < n - trailing; ++i) {
+    if (last[i]) {
+      EXPECT_GE(cholesky.PositionOf(i), n - trailing - 2) << i;
+    } else {
+      EXPECT_LT(cholesky.PositionOf(i), n - trailing - 2) << i;
+    }
+  }
+  EXPECT_EQ(cholesky.PositionOf(n - 2), n - 2);
+  EXPECT_EQ(cholesky.PositionOf(n - 1), n - 1);
+  ASSERT_TRUE(cholesky.Factorize(values));
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, 1.0, 2.0);
+  EXPECT_LT((cholesky.Solve(b) - dense.ldlt().solve(b)).cwiseAbs().maxCoeff(), 1e-12);
 }
 
 TEST(SmootherTest, RemovedLandmarkLeavesTheProblem) {
