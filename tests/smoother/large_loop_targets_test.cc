@@ -1,6 +1,6 @@
 // Issue 14, "Large loop": on the large-loop family (1000 point landmarks over a 365 m loop with
-// odometry drift, seeds 1-10) the smoothed ATE (live and final) is at most 0.2 m and the static recall at least
-// 0.95 (the smoother's map: the smoother keeps every landmark). Label target_open: not met yet
+// odometry drift, seeds 1-10) the smoothed ATE (live and final) is at most 0.2 m and the static
+// recall at least 0.95 (the smoother's map: the smoother keeps every landmark). Label target_open: not met yet
 // (docs/targets.md, "Smoother in the stack"; figures by scripts/measure-large-loop.py). The
 // cost target (per-scan p99 <= 10 ms) is measured by that script, never by a timed test.
 // About a minute per seed.
