@@ -73,10 +73,11 @@ struct TrackManagementOptions {
   bool tentative_prune_unconfirmable = false;
   // The same rule for a tentative object that is not of kind PERSON only (people.h): a person
   // whose legs were missed for a few scans keeps its tentative track (with the rule for all,
-  // corridor people MOTA's worst seed fell 0.804 -> 0.764 and the real recordings' people got
-  // worse), while a cluster seen once and again a second later a metre away goes before its
-  // second sighting makes it a fast mover.
-  bool other_tentative_prune_unconfirmable = true;
+  // corridor people MOTA's worst seed fell 0.804 -> 0.764), while a cluster seen once and again
+  // a second later a metre away goes before its second sighting makes it a fast mover. Off by
+  // default, as the classifier's other_moving_evidence_min_hits that it goes with
+  // (motion_classifier.h: what both give, what they cost on the real recordings).
+  bool other_tentative_prune_unconfirmable = false;
   double static_prune_unseen_in_view_s = 3.5;
   double prune_unseen_visible_s = 1.0;
   double shadow_radius_m = 0.4;  // angular half-width of what a point feature hides, at its range
