@@ -14,7 +14,11 @@ double LargestEigenvalue(const Eigen::Matrix2d& m) {
 }
 
 bool HasEnoughHitsToMove(const ObjectRecord& record, const MotionClassifierOptions& options) {
-  return record.hits_with_velocity >= options.moving_evidence_min_hits;
+  const int min_hits = record.kind == ObjectKind::kPerson
+                           ? options.moving_evidence_min_hits
+                           : std::max(options.moving_evidence_min_hits,
+                                      options.other_moving_evidence_min_hits);
+  return record.hits_with_velocity >= min_hits;
 }
 
 ClassChange ClassifyMover(const Eigen::Vector2d& position, const Eigen::Matrix2d& position_cov,
@@ -130,6 +134,8 @@ void VisitMotionClassifierOptions(OptionVisitor* v, MotionClassifierOptions* c) 
          "consecutive scans of moving evidence that make an object MOVING");
   v->Int("moving_evidence_min_hits", &c->moving_evidence_min_hits, R::Between(0, 1000),
          "measured scans since it got velocity states before an object can become MOVING");
+  v->Int("other_moving_evidence_min_hits", &c->other_moving_evidence_min_hits,
+         R::Between(0, 1000), "the same for an object that is not of kind person (the larger)");
   v->Double("still_max_speed_mps", &c->still_max_speed_mps, R::AtLeast(0),
             "largest mean speed over the still window of still evidence");
   v->Double("still_hold_s", &c->still_hold_s, R::AtLeast(0), "shortest still window");

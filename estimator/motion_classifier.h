@@ -16,7 +16,8 @@
 // estimate keeps a standard deviation of about 0.2 m/s at the paper's sensor noise, while the
 // mean velocity over T seconds is known to about sigma_position * sqrt(2) / T.
 // UNDECIDED -> MOVING after moving_confirm_scans consecutive "moving" scans, once the object
-// has had moving_evidence_min_hits measured scans since it got its velocity states.
+// has had moving_evidence_min_hits measured scans since it got its velocity states
+// (other_moving_evidence_min_hits for an object that is not of kind PERSON).
 // UNDECIDED or MOVING -> STATIC on "still" evidence; the estimator then conditions the state on
 // v = 0 and removes the velocity states (SlamState::RemoveVelocityAssumingZero).
 // A STATIC landmark has no velocity to judge; it is judged on its measurements instead. Each
@@ -58,6 +59,18 @@ struct MotionClassifierOptions {
   // taken a few scans apart, not evidence of motion: with a third measurement the estimate has
   // to predict where the object is, which a flickering cluster's does not. 0 or 1: no minimum.
   int moving_evidence_min_hits = 0;
+  // The same minimum for an object that is not of kind PERSON (people.h), taken with
+  // moving_evidence_min_hits (the larger counts). A person is recognised by its shape (two legs
+  // paired) and needs no more evidence of motion than its velocity; anything else is found
+  // only by its motion, and the clusters that move without moving (a piece of a far wall seen
+  // through dropouts whose fitted centre slides along it, a chair's occlusion edge, a cluster
+  // seen once and again a second later a metre away) keep a significant velocity for a few
+  // scans. With 8 (0.8 s at 10 Hz) and tracks' other_tentative_prune_unconfirmable, office and
+  // corridor seeds 1-20 meet "at most 1 non-person mover per minute" with and without
+  // ODOMETRY and people MOTA improves (docs/estimator.md, "Classification"); off (0) by
+  // default because the real recordings' person tracks get worse: negative_2 25.9 -> 38.4
+  // person identities per minute, leg_tracker_demo 18.1 -> 19.5 (their floors).
+  int other_moving_evidence_min_hits = 0;
   double still_max_speed_mps = 0.15;
   double still_hold_s = 1.5;
   double started_moving_chi2 = 23.0;      // 1e-5 false alarms per scan and landmark (2 dof)
@@ -85,8 +98,9 @@ enum class ClassChange {
   kStartedMoving,      // STATIC -> UNDECIDED: add velocity states
 };
 
-// Whether the object has had moving_evidence_min_hits measured scans since it got its velocity
-// states (it may become MOVING).
+// Whether the object has had moving_evidence_min_hits (other_moving_evidence_min_hits, if
+// larger, for an object not of kind PERSON) measured scans since it got its velocity states (it
+// may become MOVING).
 bool HasEnoughHitsToMove(const ObjectRecord& record, const MotionClassifierOptions& options);
 
 // Judges an object with velocity states at utime and updates its evidence. Returns the class

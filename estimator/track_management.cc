@@ -99,7 +99,10 @@ bool ShouldPrune(const ObjectRecord& record, bool has_velocity, int64_t utime, b
                  double position_sigma_m, const TrackManagementOptions& options) {
   const double unseen_s = SecondsBetween(utime, record.last_seen_utime);
   if (!record.confirmed) {
-    if (options.tentative_prune_unconfirmable && !CanStillConfirm(record, options)) return true;
+    const bool prune_unconfirmable =
+        options.tentative_prune_unconfirmable ||
+        (options.other_tentative_prune_unconfirmable && record.kind != ObjectKind::kPerson);
+    if (prune_unconfirmable && !CanStillConfirm(record, options)) return true;
     return unseen_s > options.tentative_prune_unseen_s;
   }
   if (has_velocity) {
@@ -187,6 +190,8 @@ void VisitTrackManagementOptions(OptionVisitor* v, TrackManagementOptions* t) {
             "a tentative object unseen this long goes");
   v->Bool("tentative_prune_unconfirmable", &t->tentative_prune_unconfirmable,
           "a tentative object that can no longer be confirmed goes at once");
+  v->Bool("other_tentative_prune_unconfirmable", &t->other_tentative_prune_unconfirmable,
+          "the same for a tentative object that is not of kind person");
   v->Double("static_prune_unseen_in_view_s", &t->static_prune_unseen_in_view_s, R::AtLeast(0),
             "a landmark missed this long where it should be seen goes (0: never)");
   v->Double("prune_unseen_visible_s", &t->prune_unseen_visible_s, R::AtLeast(0),

@@ -283,6 +283,27 @@ TEST(PruningTest, ATentativeObjectThatCanNoLongerBeConfirmedIsPrunedAtOnce) {
   EXPECT_TRUE(CanStillConfirm(twice, options));
 }
 
+// other_tentative_prune_unconfirmable: the rule for objects that are not people only; a
+// person's tentative track that could no longer be confirmed waits tentative_prune_unseen_s.
+TEST(PruningTest, TheRuleForOtherObjectsSparesAPersonThatCanNoLongerBeConfirmed) {
+  TrackManagementOptions options;
+  ASSERT_FALSE(options.other_tentative_prune_unconfirmable) << "off by default";
+  options.other_tentative_prune_unconfirmable = true;
+  ObjectRecord person = NewObjectRecord(1, 0, ObjectClass::kUndecided);
+  person.person_hits = 1;
+  person.kind = ObjectKind::kPerson;
+  ObjectRecord other = NewObjectRecord(2, 0, ObjectClass::kUndecided);
+  for (int miss = 1; miss <= 4; ++miss) {
+    RecordMiss(0.1, true, true, &person);
+    RecordMiss(0.1, true, true, &other);
+  }
+  ASSERT_FALSE(CanStillConfirm(person, options));
+  ASSERT_FALSE(CanStillConfirm(other, options));
+  EXPECT_FALSE(ShouldPrune(person, true, 4 * kScan, false, 0.1, options));
+  EXPECT_TRUE(ShouldPrune(other, true, 4 * kScan, false, 0.1, options));
+  EXPECT_TRUE(ShouldPrune(person, true, Utime(1.1), false, 0.1, options)) << "unseen 1.1 s";
+}
+
 TEST(PruningTest, APersonNeedsFewerHitsSoItMayMissMore) {
   TrackManagementOptions options;
   options.tentative_prune_unconfirmable = true;

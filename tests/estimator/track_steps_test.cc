@@ -189,6 +189,27 @@ TEST(ClassificationTest, WithoutAMinimumOfHitsTwoSightingsMakeAMover) {
   }
 }
 
+// The minimum for objects that are not people leaves people as they were: the same two
+// sightings make a person track MOVING, and another object only after the minimum.
+TEST(ClassificationTest, TheMinimumOfHitsForOtherObjectsSparesPeople) {
+  FlickeringCluster person;
+  person.options.moving_evidence_min_hits = 0;
+  person.options.other_moving_evidence_min_hits = 8;
+  person.record.kind = ObjectKind::kPerson;
+  EXPECT_EQ(person.JudgeCoasting(20), ClassChange::kBecameMoving);
+
+  FlickeringCluster other;
+  other.options.moving_evidence_min_hits = 0;
+  other.options.other_moving_evidence_min_hits = 8;
+  ASSERT_EQ(other.record.kind, ObjectKind::kOther);
+  EXPECT_EQ(other.JudgeCoasting(20), ClassChange::kNone);
+  for (int k = 0; k < 5; ++k) RecordHit(3 * kSecond + k, TrackManagementOptions(), &other.record);
+  ASSERT_EQ(other.record.hits_with_velocity, 7);
+  EXPECT_EQ(other.JudgeCoasting(1), ClassChange::kNone) << "7 of 8";
+  RecordHit(4 * kSecond, TrackManagementOptions(), &other.record);
+  EXPECT_EQ(other.JudgeCoasting(1), ClassChange::kBecameMoving);
+}
+
 TEST(ClassificationTest, ALandmarkThatStartsMovingCountsItsHitsAfresh) {
   StepScene scene;
   const int landmark = scene.AddLandmark({-4.0, 0.0}, 0.02);
