@@ -112,6 +112,14 @@ bool PlausibleLegLabels(const void* data, int size) {
   return w.End();
 }
 
+bool PlausibleTrajectory(const void* data, int size) {
+  EncodedWalk w(data, size);
+  w.Fixed(kFingerprint + kInt64);  // utime
+  const int32_t poses = w.Count(kTrajectoryPose);
+  w.Elements(poses, kTrajectoryPose);  // pose_utime[], x_m[], y_m[], heading_rad[]
+  return w.End();
+}
+
 bool PlausibleTracks(const void* data, int size) {
   EncodedWalk w(data, size);
   w.Fixed(kFingerprint + kInt64);  // utime

@@ -46,6 +46,7 @@
 #include "slammtt_msgs/smoother_input_t.hpp"
 #include "slammtt_msgs/stage_timing_t.hpp"
 #include "slammtt_msgs/tracks_t.hpp"
+#include "slammtt_msgs/trajectory_t.hpp"
 
 namespace slammtt {
 
@@ -81,6 +82,8 @@ inline constexpr int64_t kObjectTruth =
 inline constexpr int64_t kSegmentTruth = kInt64 + kInt8 + 4 * kDouble + kInt32;
 // One leg_labels_t label: x_m and y_m.
 inline constexpr int64_t kLegLabel = 2 * kDouble;
+// One trajectory_t pose: pose_utime, x_m, y_m, heading_rad.
+inline constexpr int64_t kTrajectoryPose = kInt64 + 3 * kDouble;
 // track_t: id, x_m, y_m, vx_mps, vy_mps, covariance[16], object_class, confirmed,
 // first_seen_utime, hits, last_seen_utime, measured, coasting_s, reported, kind.
 inline constexpr int64_t kTrack = kInt64 + 4 * kDouble + 16 * kDouble + kInt8 + kBoolean +
@@ -108,6 +111,7 @@ bool PlausibleEstimatorStatus(const void* data, int size);
 bool PlausibleLegLabels(const void* data, int size);
 bool PlausibleLaserGeometry(const void* data, int size);
 bool PlausibleSmootherInput(const void* data, int size);
+bool PlausibleTrajectory(const void* data, int size);
 
 // The check of a type, chosen by overload on a (never dereferenced) pointer to the type.
 inline bool PlausibleEncoding(const slammtt_msgs::laser_scan_t*, const void* data, int size) {
@@ -148,6 +152,9 @@ inline bool PlausibleEncoding(const slammtt_msgs::laser_geometry_t*, const void*
 inline bool PlausibleEncoding(const slammtt_msgs::smoother_input_t*, const void* data,
                               int size) {
   return PlausibleSmootherInput(data, size);
+}
+inline bool PlausibleEncoding(const slammtt_msgs::trajectory_t*, const void* data, int size) {
+  return PlausibleTrajectory(data, size);
 }
 // Every other type (odometry_t, pose_t, velocity_command_t and the nested element types) has a
 // fixed size: the generated decoder checks each read against `size` before it makes it and

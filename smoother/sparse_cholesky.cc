@@ -49,7 +49,11 @@ bool SparseCholesky::Analyze(int n, const std::vector<int>& column_starts,
   s.common.final_ll = form == Form::kSupernodal ? 1 : 0;
   s.common.nmethods = 0;  // CHOLMOD's choice: AMD, METIS if AMD fills badly
   s.common.postorder = 1;
-  if (trailing_natural == 0) {
+  if (ordered_last != nullptr &&
+      ordered_last->size() != static_cast<size_t>(n - trailing_natural)) {
+    return false;  // one flag per leading index
+  }
+  if (trailing_natural == 0 && ordered_last == nullptr) {
     s.factor = cholmod_analyze(s.matrix, &s.common);
   } else {
     // Order the leading part as CHOLMOD chooses, then keep the trailing indices last: they are

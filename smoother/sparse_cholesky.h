@@ -39,7 +39,7 @@ class SparseCholesky {
   // leading index), the flagged indices are ordered after the others (constrained minimum
   // degree, CHOLMOD's CAMD), as ISAM2 orders the variables of the newest factors last: later
   // rank updates on them then run along short paths of the elimination tree. False if CHOLMOD
-  // fails.
+  // fails or `ordered_last` does not have n - trailing_natural flags.
   bool Analyze(int n, const std::vector<int>& column_starts, const std::vector<int>& rows,
                Form form, int trailing_natural = 0,
                const std::vector<char>* ordered_last = nullptr);

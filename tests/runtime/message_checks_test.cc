@@ -230,7 +230,7 @@ TEST(MessageChecksCoverageTest, EveryTypeWithAnArrayOrAStringIsChecked) {
   const std::set<std::string> expected = {
       "laser_scan_t", "features_t",     "ground_truth_t", "tracks_t",          "map_t",
       "stage_timing_t", "lidar_status_t", "base_status_t", "estimator_status_t", "leg_labels_t",
-      "laser_geometry_t", "smoother_input_t"};
+      "laser_geometry_t", "smoother_input_t", "trajectory_t"};
   EXPECT_EQ(TypesWithVariableLength(std::string(SLAMMTT_SOURCE_DIR) + "/lcmtypes"), expected);
 }
 

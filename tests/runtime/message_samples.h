@@ -25,6 +25,7 @@
 #include "slammtt_msgs/laser_geometry_t.hpp"
 #include "slammtt_msgs/lidar_status_t.hpp"
 #include "slammtt_msgs/map_t.hpp"
+#include "slammtt_msgs/trajectory_t.hpp"
 #include "slammtt_msgs/smoother_input_t.hpp"
 #include "slammtt_msgs/stage_timing_t.hpp"
 #include "slammtt_msgs/tracks_t.hpp"
@@ -557,6 +558,30 @@ struct Sample<slammtt_msgs::smoother_input_t> {
   }
 };
 
+template <>
+struct Sample<slammtt_msgs::trajectory_t> {
+  static slammtt_msgs::trajectory_t Make() {
+    slammtt_msgs::trajectory_t m{};
+    m.utime = 1700000002000000;
+    m.num_poses = 3;
+    for (int k = 0; k < m.num_poses; ++k) {
+      m.pose_utime.push_back(1700000000000000 + 125000 * k);
+      m.x_m.push_back(0.5 * k);
+      m.y_m.push_back(-0.1 * k);
+      m.heading_rad.push_back(0.05 * k);
+    }
+    return m;
+  }
+  static std::vector<CountField> Counts(const slammtt_msgs::trajectory_t& m) {
+    return {{"num_poses", kFingerprint + 8, m.num_poses}};  // after utime
+  }
+  static bool ArraysMatchCounts(const slammtt_msgs::trajectory_t& m) {
+    const size_t n = static_cast<size_t>(m.num_poses);
+    return m.num_poses >= 0 && m.pose_utime.size() == n && m.x_m.size() == n &&
+           m.y_m.size() == n && m.heading_rad.size() == n;
+  }
+};
+
 // Every type with a Sample above, for the typed tests of the checks and of the fuzzer: a new
 // type is added here once.
 using SampledTypes =
@@ -565,7 +590,7 @@ using SampledTypes =
                      slammtt_msgs::stage_timing_t, slammtt_msgs::lidar_status_t,
                      slammtt_msgs::base_status_t, slammtt_msgs::estimator_status_t,
                      slammtt_msgs::leg_labels_t, slammtt_msgs::laser_geometry_t,
-                     slammtt_msgs::smoother_input_t>;
+                     slammtt_msgs::smoother_input_t, slammtt_msgs::trajectory_t>;
 
 // Names each typed test after its message type ("laser_scan_t") instead of a number.
 class SampledTypeNames {

@@ -400,6 +400,16 @@ TEST(SmootherTest, AnchoringFollowsAdditionsAndRemovals) {
   report = smoother.Update();
   EXPECT_TRUE(report.ok) << report.error;
   EXPECT_LT((*smoother.PoseEstimate(1) - Eigen::Vector3d(1, 0, 0)).norm(), 1e-9);
+  // Two parts without a prior joined stay one part without a prior, until it is linked.
+  ASSERT_FALSE(smoother.AddPose(2, Eigen::Vector3d(2, 0, 0)));
+  ASSERT_FALSE(smoother.AddPose(3, Eigen::Vector3d(3, 0, 0)));
+  ASSERT_FALSE(smoother.AddOdometry(2, 3, Eigen::Vector3d(1, 0, 0), info3));
+  report = smoother.Update();
+  EXPECT_FALSE(report.ok);
+  EXPECT_NE(report.error.find("pose 2 is in a part"), std::string::npos) << report.error;
+  ASSERT_FALSE(smoother.AddOdometry(1, 2, Eigen::Vector3d(1, 0, 0), info3));
+  report = smoother.Update();
+  EXPECT_TRUE(report.ok) << report.error;
 }
 
 // The constrained ordering: flagged indices after the other leading ones, the trailing slots
@@ -440,6 +450,13 @@ TEST(SparseCholeskyTest, FlaggedIndicesAreOrderedLastBeforeTheTrailingSlots) {
   ASSERT_TRUE(cholesky.Factorize(values));
   const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, 1.0, 2.0);
   EXPECT_LT((cholesky.Solve(b) - dense.ldlt().solve(b)).cwiseAbs().maxCoeff(), 1e-12);
+  // Without trailing slots the flags still hold; a wrong number of flags is refused.
+  std::vector<char> all_last(n, 0);
+  all_last[0] = 1;
+  ASSERT_TRUE(cholesky.Analyze(n, starts, rows, SparseCholesky::Form::kSimplicial, 0, &all_last));
+  EXPECT_EQ(cholesky.PositionOf(0), n - 1);
+  EXPECT_FALSE(cholesky.Analyze(n, starts, rows, SparseCholesky::Form::kSimplicial, trailing,
+                                &all_last));
 }
 
 TEST(SmootherTest, RemovedLandmarkLeavesTheProblem) {

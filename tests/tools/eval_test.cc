@@ -136,7 +136,8 @@ TEST(EvaluationTest, HandBuiltLogGivesHandComputedFigures) {
 
 // The smoother's two trajectories: SMOOTHED_POSE (live) and the last SMOOTHED_TRAJECTORY (every
 // keyframe as estimated at the end), both in the frame of the live one's anchor; a
-// SMOOTHED_TRAJECTORY with keyframes out of order or a NaN is rejected and counted, never used.
+// SMOOTHED_TRAJECTORY not newer than the last accepted one, with keyframes out of order or with
+// a NaN is rejected and counted, never used.
 TEST(EvaluationTest, TheFinalSmoothedTrajectoryIsScoredInTheLiveAnchorsFrame) {
   testing::TempDir dir;
   {
@@ -169,11 +170,17 @@ TEST(EvaluationTest, TheFinalSmoothedTrajectoryIsScoredInTheLiveAnchorsFrame) {
       m.num_poses = static_cast<int32_t>(m.pose_utime.size());
       return m;
     };
-    slammtt_msgs::trajectory_t early = trajectory(testing::ScanTime(1), {0, 1});
-    early.x_m[0] = 5.0;
+    const slammtt_msgs::trajectory_t early = trajectory(testing::ScanTime(1), {0, 1});
     log.WriteMessage(early.utime, "SMOOTHED_TRAJECTORY", early);
     const slammtt_msgs::trajectory_t last = trajectory(testing::ScanTime(3), {0, 1, 2, 3});
     log.WriteMessage(last.utime, "SMOOTHED_TRAJECTORY", last);
+    // Older than the last (and wrong, were it used), and one of the same utime: rejected.
+    slammtt_msgs::trajectory_t older = trajectory(testing::ScanTime(2), {0, 1, 2});
+    older.x_m[0] = 5.0;
+    log.WriteMessage(older.utime, "SMOOTHED_TRAJECTORY", older);
+    slammtt_msgs::trajectory_t again = trajectory(testing::ScanTime(3), {0, 1});
+    again.y_m[1] = 7.0;
+    log.WriteMessage(again.utime, "SMOOTHED_TRAJECTORY", again);
     slammtt_msgs::trajectory_t disordered = trajectory(testing::ScanTime(4), {0, 2, 1});
     log.WriteMessage(disordered.utime, "SMOOTHED_TRAJECTORY", disordered);
     slammtt_msgs::trajectory_t nan = trajectory(testing::ScanTime(4), {0, 1});
@@ -189,7 +196,7 @@ TEST(EvaluationTest, TheFinalSmoothedTrajectoryIsScoredInTheLiveAnchorsFrame) {
   EXPECT_EQ(r.final_smoothed_trajectory->anchored.size(), 4u);
   EXPECT_NEAR(r.final_smoothed_trajectory->error.rmse_m, std::sqrt((0.01 + 0.04) / 4), 1e-9);
   EXPECT_EQ(input.accepted.at("smoothed_trajectory"), 2);
-  EXPECT_EQ(input.rejected.at("smoothed_trajectory"), 2);
+  EXPECT_EQ(input.rejected.at("smoothed_trajectory"), 4);
   const nlohmann::json j = ReportToJson(input, r);
   EXPECT_NEAR(j["final_smoothed_ate_rmse_m"].get<double>(), std::sqrt(0.05 / 4), 1e-9);
   EXPECT_EQ(j["detail"]["final_smoothed_trajectory"]["trajectory_utime"].get<int64_t>(),

@@ -318,10 +318,13 @@ EvalInput ReadEvalInput(const std::string& path, const Channels& channels, LogRe
       input.final_smoothed_map_utime = utime;
     } else if (e.channel == smoothed_trajectory_channel) {
       input.accepted["smoothed_trajectory"] += 0;
+      input.rejected["smoothed_trajectory"] += 0;
       std::vector<TimedPose> poses;
       int64_t utime = 0;
+      // Not newer than the last accepted one: rejected (the first of a utime wins, as in
+      // slammtt-export).
       if (!ReadTrajectory(e, &poses, &utime) ||
-          (input.final_smoothed_trajectory && utime < input.final_smoothed_trajectory_utime)) {
+          (input.final_smoothed_trajectory && utime <= input.final_smoothed_trajectory_utime)) {
         ++input.rejected["smoothed_trajectory"];
         return;
       }

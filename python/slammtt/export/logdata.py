@@ -43,6 +43,8 @@ def _problem(key, m):
         ok = all(_finite(l.x_m, l.y_m) for l in m.landmarks)
     elif key == "smoothed_trajectory":
         ok = _finite(*m.x_m, *m.y_m, *m.heading_rad)
+        if ok and any(u < 0 for u in m.pose_utime):
+            return "a negative keyframe utime"
         if ok and any(b <= a for a, b in zip(m.pose_utime, m.pose_utime[1:])):
             return "keyframe utimes not increasing"
     else:
