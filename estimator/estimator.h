@@ -108,7 +108,8 @@ struct ObjectEstimate {
   ObjectKind kind = ObjectKind::kOther;
   bool confirmed = false;
   // Honest reporting (track_management.h): measured in this scan, time since the last
-  // measurement, and whether it counts as a reported track.
+  // measurement, and whether it counts as a reported track (a tentative person track in the
+  // scan it was born in too, people.h: ReportedAtBirth).
   bool measured = false;
   double coasting_s = 0.0;
   bool reported = false;

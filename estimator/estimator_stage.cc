@@ -192,6 +192,7 @@ ScanInput ScanInputFromFeatures(const slammtt_msgs::features_t& message, bool pe
         legs.push_back(&message.features[static_cast<size_t>(index)]);
       }
       if (legs.size() == 2) {
+        reading.pair_confidence = p.confidence;
         reading.width_m = (SensorPoint(*legs[0]) - SensorPoint(*legs[1])).norm() +
                           0.5 * (legs[0]->width_m + legs[1]->width_m);
       } else if (legs.size() == 1) {

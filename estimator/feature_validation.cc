@@ -36,6 +36,7 @@ PointMeasurement MeasurementOf(const FeatureReading& f, const EstimatorOptions& 
   PointMeasurement m;
   m.range_bearing = Eigen::Vector2d(f.range_m, WrapAngle(f.bearing_rad));
   m.person = f.person;
+  m.pair_confidence = f.pair_confidence;
   if (options.use_feature_covariance && f.range_var_m2 > 0.0 && f.bearing_var_rad2 > 0.0) {
     m.covariance << f.range_var_m2, f.range_bearing_cov_m_rad, f.range_bearing_cov_m_rad,
         f.bearing_var_rad2;

@@ -33,6 +33,9 @@ struct FeatureReading {
   double range_bearing_cov_m_rad = 0.0;
   double width_m = 0.0;        // extent of the cluster (0: a point), for occlusion reasoning
   bool person = false;         // a person feature's centre (people.h), not a point feature
+  // A person feature of two legs: perception's confidence that it is a person (0: one leg, or
+  // not a person feature; people.h, report_pair_births_confidence).
+  double pair_confidence = 0.0;
 };
 
 struct ValidatedFeatures {

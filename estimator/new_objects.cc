@@ -45,6 +45,9 @@ std::vector<StaticObservation> AddNewObjects(const ScanAssociation& scan,
     record.continues_id = continues_id[static_cast<size_t>(i)];
     record.person_hits = z.person ? 1 : 0;
     record.kind = KindOfRecord(record);
+    record.birth_pair_confidence =
+        z.person && !BesideAPersonOrMover(position, options.people, *state) ? z.pair_confidence
+                                                                            : 0.0;
     const int k = state->AddObject(
         position, jacobian_robot,
         jacobian_measurement * z.covariance * jacobian_measurement.transpose(), record);

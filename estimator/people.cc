@@ -18,6 +18,17 @@ void VisitPeopleOptions(OptionVisitor* v, PeopleOptions* o) {
             "an unmeasured STATIC person this near a measured MOVING one goes (0: off)");
   v->Double("taken_over_born_within_s", &o->taken_over_born_within_s, R::AtLeast(0),
             "... born at most this long before the STATIC one's last measurement");
+  v->Double("report_pair_births_confidence", &o->report_pair_births_confidence, R::Between(0, 1),
+            "a new person track of two legs this confident is reported at birth (0: off)");
+  v->Double("report_pair_births_clear_m", &o->report_pair_births_clear_m, R::AtLeast(0),
+            "... unless a person or mover lies this near");
+}
+
+bool ReportedAtBirth(const ObjectRecord& record, int64_t utime, const PeopleOptions& options) {
+  return options.report_pair_births_confidence > 0.0 && !record.confirmed &&
+         record.first_seen_utime == utime && record.last_seen_utime == utime &&
+         record.kind == ObjectKind::kPerson &&
+         record.birth_pair_confidence >= options.report_pair_births_confidence;
 }
 
 ObjectKind KindOfRecord(const ObjectRecord& record) {
@@ -54,6 +65,16 @@ bool TooCloseToAPerson(const Eigen::Vector2d& point_m, const PeopleOptions& opti
   for (int k = 0; k < state.num_objects(); ++k) {
     if (state.object(k).record.kind != ObjectKind::kPerson) continue;
     if ((state.position(k) - point_m).norm() < options.min_separation_m) return true;
+  }
+  return false;
+}
+
+bool BesideAPersonOrMover(const Eigen::Vector2d& point_m, const PeopleOptions& options,
+                          const SlamState& state) {
+  for (int k = 0; k < state.num_objects(); ++k) {
+    const ObjectRecord& r = state.object(k).record;
+    if (r.kind != ObjectKind::kPerson && r.object_class != ObjectClass::kMoving) continue;
+    if ((state.position(k) - point_m).norm() < options.report_pair_births_clear_m) return true;
   }
   return false;
 }

@@ -44,6 +44,9 @@ struct ObjectRecord {
   // (people.h: a person when most of its measurements were person features).
   int person_hits = 0;
   ObjectKind kind = ObjectKind::kOther;
+  // The person feature that started the object: its two legs' confidence (0: one leg, or not
+  // a person feature; people.h, ReportedAtBirth).
+  double birth_pair_confidence = 0.0;
   // The object's last scans, newest in bit 0: 1 for a scan with a measurement (M-of-N
   // confirmation, TrackManagementOptions::confirm_window_scans).
   uint32_t recent_hits = 0;

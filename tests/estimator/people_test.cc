@@ -111,6 +111,54 @@ TEST(PeopleTest, AStandingPersonWhoWalksOffLeavesNoStaticTrackBehind) {
   EXPECT_TRUE(PersonTracksTakenOver(measured, options, scene.state).empty());
 }
 
+// A person track born of two legs paired with confidence 0.9 at 5 s is reported in that scan
+// (while tentative), not in the next one unless confirmation says so; one born of a weaker pair,
+// of one leg (confidence 0), of another kind, or with the option 0, is not reported at birth.
+TEST(PeopleTest, ATwoLegPersonIsReportedInTheScanItIsBornIn) {
+  PeopleOptions options;
+  ASSERT_GT(options.report_pair_births_confidence, 0.0);  // on by default
+  options.report_pair_births_confidence = 0.85;
+  ObjectRecord born = NewObjectRecord(1, 5 * kSecond, ObjectClass::kUndecided);
+  born.person_hits = 1;
+  born.kind = KindOfRecord(born);
+  born.birth_pair_confidence = 0.9;
+  EXPECT_TRUE(ReportedAtBirth(born, 5 * kSecond, options));
+  // The next scan, measured again or not: confirmation decides (track_management.h).
+  EXPECT_FALSE(ReportedAtBirth(born, 52 * kSecond / 10, options));
+  ObjectRecord seen_again = born;
+  seen_again.last_seen_utime = 52 * kSecond / 10;
+  EXPECT_FALSE(ReportedAtBirth(seen_again, 52 * kSecond / 10, options));
+  ObjectRecord weak = born;
+  weak.birth_pair_confidence = 0.8;
+  EXPECT_FALSE(ReportedAtBirth(weak, 5 * kSecond, options));
+  ObjectRecord one_leg = born;
+  one_leg.birth_pair_confidence = 0.0;
+  EXPECT_FALSE(ReportedAtBirth(one_leg, 5 * kSecond, options));
+  ObjectRecord other = born;
+  other.kind = ObjectKind::kOther;
+  EXPECT_FALSE(ReportedAtBirth(other, 5 * kSecond, options));
+  options.report_pair_births_confidence = 0.0;
+  EXPECT_FALSE(ReportedAtBirth(born, 5 * kSecond, options));
+}
+
+// A birth 0.8 m from a person track (or a MOVING track of any kind) is beside it (clearance
+// 1 m); one 1.2 m away, or beside a static landmark that is not a person, is not.
+TEST(PeopleTest, ABirthBesideAPersonOrAMoverIsNotClear) {
+  StepScene scene;
+  const int person = scene.AddLandmark({4.0, 0.0}, 0.05);
+  scene.state.object(person).record.kind = ObjectKind::kPerson;
+  scene.AddMover({0.0, 4.0}, 0.05, {1.0, 0.0}, 0.1);
+  scene.AddLandmark({-4.0, 0.0}, 0.05);  // a post
+  PeopleOptions options;
+  options.report_pair_births_clear_m = 1.0;
+  EXPECT_TRUE(BesideAPersonOrMover({4.8, 0.0}, options, scene.state));
+  EXPECT_FALSE(BesideAPersonOrMover({5.2, 0.0}, options, scene.state));
+  EXPECT_TRUE(BesideAPersonOrMover({0.0, 4.8}, options, scene.state));
+  EXPECT_FALSE(BesideAPersonOrMover({-4.8, 0.0}, options, scene.state));
+  options.report_pair_births_clear_m = 0.0;
+  EXPECT_FALSE(BesideAPersonOrMover({4.8, 0.0}, options, scene.state));
+}
+
 // Confirmation by M of N (3 of the last 5 scans): scans hit (H) and missed (M) in the order
 // H M M H M H: 3 hits in all, but only 2 in the last 5, so not confirmed (the rule before, 3
 // hits at any time, confirms it); one more hit makes 3 of the last 5.
