@@ -496,7 +496,9 @@ void Smoother::RelinearizeAll() {
 
 int Smoother::ComponentRoot(int variable) {
   int v = variable;
-  while (component_parent_[v] != v) v = component_parent_[v] = component_parent_[component_parent_[v]];
+  while (component_parent_[v] != v) {
+    v = component_parent_[v] = component_parent_[component_parent_[v]];  // path halving
+  }
   return v;
 }
 

@@ -56,8 +56,9 @@ bool SparseCholesky::Analyze(int n, const std::vector<int>& column_starts,
   if (trailing_natural == 0 && ordered_last == nullptr) {
     s.factor = cholmod_analyze(s.matrix, &s.common);
   } else {
-    // Order the leading part as CHOLMOD chooses, then keep the trailing indices last: they are
-    // isolated diagonal entries now, so where they go changes no fill of the rest.
+    // Order the leading part as CHOLMOD chooses (or by CAMD, the flagged indices after the
+    // others), then keep the trailing indices last: they are isolated diagonal entries now, so
+    // where they go changes no fill of the rest.
     const int leading = n - trailing_natural;
     std::vector<int> chosen(n);
     if (ordered_last != nullptr) {
@@ -119,29 +120,27 @@ bool SparseCholesky::Modify(bool update, const std::vector<SparseColumn>& column
   int* p = static_cast<int*>(c->p);
   int* i = static_cast<int*>(c->i);
   double* x = static_cast<double*>(c->x);
-  // cholmod_updown runs the columns in groups of up to 8, each group along the union of its
-  // columns' paths in the elimination tree (from a column's first row to the root): columns
-  // sorted by their first row in the factor's ordering share most of their paths.
+  // cholmod_updown takes C in the factor's ordering, rows sorted within each column.
+  std::vector<std::vector<std::pair<int, double>>> permuted(columns.size());
+  for (size_t k = 0; k < columns.size(); ++k) {
+    for (size_t e = 0; e < columns[k].rows.size(); ++e) {
+      permuted[k].emplace_back(position_[columns[k].rows[e]], columns[k].values[e]);
+    }
+    std::sort(permuted[k].begin(), permuted[k].end());
+  }
+  // It runs the columns in groups of up to 8, each group along the union of its columns' paths
+  // in the elimination tree (from a column's first row to the root): columns sorted by their
+  // first row share most of their paths.
   std::vector<std::pair<int, size_t>> order;
   order.reserve(columns.size());
   for (size_t k = 0; k < columns.size(); ++k) {
-    int first = n_;
-    for (int row : columns[k].rows) first = std::min(first, position_[row]);
-    order.emplace_back(first, k);
+    order.emplace_back(permuted[k].empty() ? n_ : permuted[k].front().first, k);
   }
   std::sort(order.begin(), order.end());
-  std::vector<std::pair<int, double>> entries;
   size_t at = 0;
   for (size_t slot = 0; slot < order.size(); ++slot) {
-    const size_t k = order[slot].second;
     p[slot] = static_cast<int>(at);
-    // cholmod_updown takes C in the factor's ordering, rows sorted.
-    entries.clear();
-    for (size_t e = 0; e < columns[k].rows.size(); ++e) {
-      entries.emplace_back(position_[columns[k].rows[e]], columns[k].values[e]);
-    }
-    std::sort(entries.begin(), entries.end());
-    for (const auto& [row, value] : entries) {
+    for (const auto& [row, value] : permuted[order[slot].second]) {
       i[at] = row;
       x[at] = value;
       ++at;

@@ -54,17 +54,26 @@ std::optional<TrajectoryResult> ScorePairs(std::vector<PosePair> pairs) {
   return ScoreAnchoredPairs(std::move(pairs), anchor, anchor_utime);
 }
 
-// Pairs truth scans with estimates at exactly the same utime.
-std::optional<TrajectoryResult> ScoreExactTimes(const std::vector<TruthScan>& truth,
-                                                const std::vector<TimedPose>& estimate) {
+// Truth scans paired with the estimates of exactly the same utime, each estimate put through
+// `frame` (estimate frame -> truth frame) when one is given.
+std::vector<PosePair> PairsAtExactTimes(const std::vector<TruthScan>& truth,
+                                        const std::vector<TimedPose>& estimate,
+                                        const Pose2* frame = nullptr) {
   std::map<int64_t, Pose2> by_time;
   for (const TimedPose& p : estimate) by_time[p.utime] = p.pose;
   std::vector<PosePair> pairs;
   for (const TruthScan& scan : truth) {
     const auto it = by_time.find(scan.utime);
-    if (it != by_time.end()) pairs.push_back({scan.utime, scan.robot, it->second});
+    if (it == by_time.end()) continue;
+    pairs.push_back({scan.utime, scan.robot, frame ? Compose(*frame, it->second) : it->second});
   }
-  return ScorePairs(std::move(pairs));
+  return pairs;
+}
+
+// Pairs truth scans with estimates at exactly the same utime.
+std::optional<TrajectoryResult> ScoreExactTimes(const std::vector<TruthScan>& truth,
+                                                const std::vector<TimedPose>& estimate) {
+  return ScorePairs(PairsAtExactTimes(truth, estimate));
 }
 
 // Pairs truth scans with the odometry interpolated at their times.
@@ -93,14 +102,8 @@ void ScoreSmoother(const EvalInput& input, const EvalOptions& options,
   if (input.final_smoothed_trajectory) {
     // In the frame of the live smoothed trajectory's anchor, as the map: the three figures
     // share one frame, and a final trajectory whose first keyframe moved is scored with it.
-    std::map<int64_t, Pose2> by_time;
-    for (const TimedPose& p : *input.final_smoothed_trajectory) by_time[p.utime] = p.pose;
-    std::vector<PosePair> pairs;
-    for (const TruthScan& scan : input.truth) {
-      const auto it = by_time.find(scan.utime);
-      if (it == by_time.end()) continue;
-      pairs.push_back({scan.utime, scan.robot, Compose(report->smoothed_robot->anchor, it->second)});
-    }
+    std::vector<PosePair> pairs = PairsAtExactTimes(input.truth, *input.final_smoothed_trajectory,
+                                                    &report->smoothed_robot->anchor);
     if (pairs.empty()) {
       report->notes.push_back("no keyframe of the last SMOOTHED_TRAJECTORY has the utime of a "
                               "GROUND_TRUTH scan: final smoothed trajectory not scored");
