@@ -59,24 +59,35 @@ int LimitSpeedsToTheirKind(const PeopleOptions& options, SlamState* state) {
   return limited;
 }
 
-bool TooCloseToAPerson(const Eigen::Vector2d& point_m, const PeopleOptions& options,
-                       const SlamState& state) {
-  if (!(options.min_separation_m > 0.0)) return false;
+namespace {
+
+// Whether an object whose record `counts` lies closer than radius_m to point_m (map frame).
+template <class Counts>
+bool AnObjectCloserThan(const Eigen::Vector2d& point_m, double radius_m, const SlamState& state,
+                        Counts counts) {
   for (int k = 0; k < state.num_objects(); ++k) {
-    if (state.object(k).record.kind != ObjectKind::kPerson) continue;
-    if ((state.position(k) - point_m).norm() < options.min_separation_m) return true;
+    if (!counts(state.object(k).record)) continue;
+    if ((state.position(k) - point_m).norm() < radius_m) return true;
   }
   return false;
 }
 
+}  // namespace
+
+bool TooCloseToAPerson(const Eigen::Vector2d& point_m, const PeopleOptions& options,
+                       const SlamState& state) {
+  if (!(options.min_separation_m > 0.0)) return false;
+  return AnObjectCloserThan(point_m, options.min_separation_m, state,
+                            [](const ObjectRecord& r) { return r.kind == ObjectKind::kPerson; });
+}
+
 bool BesideAPersonOrMover(const Eigen::Vector2d& point_m, const PeopleOptions& options,
                           const SlamState& state) {
-  for (int k = 0; k < state.num_objects(); ++k) {
-    const ObjectRecord& r = state.object(k).record;
-    if (r.kind != ObjectKind::kPerson && r.object_class != ObjectClass::kMoving) continue;
-    if ((state.position(k) - point_m).norm() < options.report_pair_births_clear_m) return true;
-  }
-  return false;
+  return AnObjectCloserThan(point_m, options.report_pair_births_clear_m, state,
+                            [](const ObjectRecord& r) {
+                              return r.kind == ObjectKind::kPerson ||
+                                     r.object_class == ObjectClass::kMoving;
+                            });
 }
 
 std::vector<int> PersonTracksTakenOver(const std::vector<uint8_t>& measured,
