@@ -164,6 +164,10 @@ void VisitSmootherOptions(OptionVisitor* v, SmootherOptions* o) {
          R::Between(0, kMaxCount), "updates between full relinearisations (0: never)");
   v->Double("reorder_fill_ratio", &o->reorder_fill_ratio, R::AtLeast(1),
             "refactorise when the factor's nonzeros grew this much since the ordering");
+  v->Double("max_update_work_share", &o->max_update_work_share, R::AtLeast(0),
+            "incremental: an update whose rank updates would cost more than this share of a "
+            "factorisation afresh (counted from the factor's structure) refactorises instead "
+            "(0: never)");
   v->Int("min_free_slots", &o->min_free_slots, R::Between(0, kMaxCount),
          "variables' room reserved at the end of the ordering (at least a quarter of the live "
          "ones)");
@@ -798,10 +802,17 @@ SolveReport Smoother::Optimize() {
 
 // ---- incremental ----
 
-SolveReport Smoother::FullRefactorization(SolveReport report) {
+SolveReport Smoother::FullRefactorization(SolveReport report, bool relinearize_all) {
   incremental_ready_ = false;
   marginal_factor_valid_ = false;
-  RelinearizeAll();
+  // The factors to linearise: all of them at their variables' new linearisation points, or the
+  // ones not yet in the system (BuildLayout marks every live factor as in it).
+  std::vector<char> linearize(factors_.size(), 1);
+  if (relinearize_all) {
+    RelinearizeAll();
+  } else {
+    for (size_t f = 0; f < factors_.size(); ++f) linearize[f] = !factors_[f].in_system;
+  }
   int live = 0;
   for (const Variable& v : variables_) live += v.alive ? 1 : 0;
   const int free_variables = std::max(options_.min_free_slots, live / 4);
@@ -825,8 +836,8 @@ SolveReport Smoother::FullRefactorization(SolveReport report) {
     report.error = "CHOLMOD could not analyse the normal equations";
     return report;
   }
-  for (Factor& f : factors_) {
-    if (f.alive) Linearize(&f);
+  for (size_t f = 0; f < factors_.size(); ++f) {
+    if (factors_[f].alive && linearize[f]) Linearize(&factors_[f]);
   }
   std::vector<double> values;
   AssembleNormalEquations(&values, &gradient_);
@@ -835,7 +846,10 @@ SolveReport Smoother::FullRefactorization(SolveReport report) {
     return report;
   }
   nonzeros_after_ordering_ = cholesky_->factor_nonzeros();
-  updates_since_refactorization_ = 0;
+  factorization_work_ = cholesky_->FactorizationWork();
+  // A re-ordering alone leaves the linearisation points where they were: the schedule of full
+  // relinearisations counts on.
+  if (relinearize_all) updates_since_refactorization_ = 0;
   needs_refactorization_ = false;
   incremental_ready_ = true;
   report.refactorized = true;
@@ -856,7 +870,7 @@ std::vector<int> Smoother::VariablesToRelinearize() const {
   return moved;
 }
 
-bool Smoother::SolveIncrementalStep(bool relinearize) {
+Smoother::StepResult Smoother::SolveIncrementalStep(bool relinearize) {
   std::vector<SparseCholesky::SparseColumn> updates;
   std::vector<SparseCholesky::SparseColumn> downdates;
   const auto subtract_gradient = [this](const Factor& f, double sign) {
@@ -927,12 +941,21 @@ bool Smoother::SolveIncrementalStep(bool relinearize) {
     AppendFactorColumns(f, &updates);
     subtract_gradient(f, 1.0);
   }
-  // Updates first: the matrix stays positive definite through the downdates that follow.
   pending_variables_.clear();
   pending_factors_.clear();
-  if (!cholesky_->Modify(true, updates)) return false;
-  if (!cholesky_->Modify(false, downdates)) return false;
-  return true;
+  // Rank updates dearer than a factorisation afresh (its work as at the last ordering, which a
+  // re-ordering restores): the caller re-orders and re-factorises, from every factor (what was
+  // changed above is rebuilt there).
+  if (options_.max_update_work_share > 0.0 &&
+      cholesky_->ModifyWork(updates) + cholesky_->ModifyWork(downdates) >
+          options_.max_update_work_share * factorization_work_) {
+    return StepResult::kTooDear;
+  }
+  // Updates first: the matrix stays positive definite through the downdates that follow.
+  if (!cholesky_->Modify(true, updates) || !cholesky_->Modify(false, downdates)) {
+    return StepResult::kFailed;
+  }
+  return StepResult::kDone;
 }
 
 SolveReport Smoother::Update() {
@@ -960,13 +983,17 @@ SolveReport Smoother::Update() {
     if (moved > options_.max_incremental_relinearizations) incremental = false;
     report.relinearized_variables = moved;
   }
+  bool relinearize_all = true;
   if (incremental) {
-    if (!SolveIncrementalStep(relinearize)) incremental = false;  // numerical trouble: afresh
+    const StepResult step = SolveIncrementalStep(relinearize);
+    if (step != StepResult::kDone) incremental = false;  // numerical trouble: afresh
+    // Too dear: the same linear system, re-ordered with the newest factors' variables last.
+    if (step == StepResult::kTooDear) relinearize_all = false;
     ++updates_since_refactorization_;
   }
   if (!incremental) {
     report.relinearized_variables = 0;
-    report = FullRefactorization(report);
+    report = FullRefactorization(report, relinearize_all);
     if (!report.error.empty()) return report;
   }
   const Eigen::VectorXd step = cholesky_->Solve(-gradient_);

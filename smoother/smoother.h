@@ -93,6 +93,12 @@ struct SmootherOptions {
   int max_incremental_relinearizations = 16;
   int full_relinearization_interval = 200;  // updates between full relinearisations (0: never)
   double reorder_fill_ratio = 2.0;  // refactor when the factor's nonzeros grow this much
+  // An update whose rank updates would cost more than this share of a factorisation afresh
+  // (both counted from the factor's structure: SparseCholesky::ModifyWork, FactorizationWork)
+  // re-orders and re-factorises instead. After a loop closes, factors on landmarks mapped long
+  // ago, eliminated early, run along the whole height of the elimination tree; re-ordered, those
+  // landmarks come last and the next keyframes' updates are short again. 0: never.
+  double max_update_work_share = 0.25;
   int min_free_slots = 64;          // variables' room reserved at the end of the ordering
   // A refactorisation orders the variables of the factors added in this many last updates
   // after the others (constrained minimum degree, CAMD; ISAM2 orders its newest factors' keys
@@ -214,8 +220,12 @@ class Smoother {
   void AssembleNormalEquations(std::vector<double>* values, Eigen::VectorXd* gradient) const;
   void AppendFactorColumns(const Factor& factor,
                            std::vector<SparseCholesky::SparseColumn>* columns) const;
-  SolveReport FullRefactorization(SolveReport report);
-  bool SolveIncrementalStep(bool relinearize);
+  // Re-orders and re-factorises the whole system. With relinearize_all every variable's
+  // linearisation point moves to its estimate first; without, only the factors not yet in the
+  // system are linearised (a re-ordering: the linear system stays the same).
+  SolveReport FullRefactorization(SolveReport report, bool relinearize_all);
+  enum class StepResult { kDone, kTooDear, kFailed };
+  StepResult SolveIncrementalStep(bool relinearize);
   std::vector<int> VariablesToRelinearize() const;
   double LinearizedChiSquare() const;
   bool EnsureMarginalFactor();
@@ -232,6 +242,7 @@ class Smoother {
   bool incremental_ready_ = false;
   bool needs_refactorization_ = false;
   int updates_since_refactorization_ = 0;
+  double factorization_work_ = 0.0;  // SparseCholesky::FactorizationWork at the last ordering
   int updates_ = 0;
   // Added since the last update, not yet in the kept factor (indices).
   std::vector<int> pending_variables_;

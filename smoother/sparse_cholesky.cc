@@ -11,6 +11,7 @@ struct SparseCholesky::State {
   cholmod_common common;
   cholmod_sparse* matrix = nullptr;
   cholmod_factor* factor = nullptr;
+  std::vector<double> to_root;  // ModifyWork's scratch, -1 everywhere between calls
 
   State() {
     cholmod_start(&common);
@@ -152,6 +153,56 @@ bool SparseCholesky::Modify(bool update, const std::vector<SparseColumn>& column
   cholmod_free_sparse(&c, &s.common);
   if (!ok) factorized_ = false;
   return ok;
+}
+
+double SparseCholesky::ModifyWork(const std::vector<SparseColumn>& columns) const {
+  if (!factorized_ || state_->factor == nullptr || state_->factor->is_super) return 0.0;
+  const cholmod_factor* l = state_->factor;
+  const int* starts = static_cast<const int*>(l->p);
+  const int* rows = static_cast<const int*>(l->i);
+  const int* counts = static_cast<const int*>(l->nz);
+  // The parent of column j in the elimination tree: its first row below the diagonal (the
+  // diagonal comes first in a simplicial column; n_ for a root).
+  const auto parent = [&](int j) {
+    int first = n_;
+    for (int e = starts[j] + 1; e < starts[j] + counts[j]; ++e) first = std::min(first, rows[e]);
+    return first;
+  };
+  // Entries from each column up to the root, filled in along the walks (paths share their top);
+  // the scratch is reset where it was written, so a call costs its paths, not n.
+  std::vector<double>& to_root = state_->to_root;
+  to_root.resize(n_, -1.0);
+  std::vector<int> walk;
+  std::vector<int> written;
+  double work = 0.0;
+  for (const SparseColumn& column : columns) {
+    if (column.rows.empty()) continue;
+    int first = n_;
+    for (int row : column.rows) first = std::min(first, position_[row]);
+    int j = first;
+    while (j < n_ && to_root[j] < 0.0) {
+      walk.push_back(j);
+      j = parent(j);
+    }
+    double above = j < n_ ? to_root[j] : 0.0;
+    for (; !walk.empty(); walk.pop_back()) {
+      above += counts[walk.back()];
+      to_root[walk.back()] = above;
+      written.push_back(walk.back());
+    }
+    work += to_root[first];
+  }
+  for (int j : written) to_root[j] = -1.0;
+  return work;
+}
+
+double SparseCholesky::FactorizationWork() const {
+  if (!factorized_ || state_->factor == nullptr || state_->factor->is_super) return 0.0;
+  const cholmod_factor* l = state_->factor;
+  const int* counts = static_cast<const int*>(l->nz);
+  double work = 0.0;
+  for (size_t k = 0; k < l->n; ++k) work += static_cast<double>(counts[k]) * counts[k];
+  return work;
 }
 
 Eigen::MatrixXd SparseCholesky::SolveColumns(const Eigen::MatrixXd& b) const {

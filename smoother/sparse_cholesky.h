@@ -57,6 +57,16 @@ class SparseCholesky {
   };
   bool Modify(bool update, const std::vector<SparseColumn>& columns);
 
+  // The work Modify(columns) would do, counted without doing it: for each column, the factor's
+  // entries along its path in the elimination tree, from the column's first row (in the
+  // factor's ordering) to the root, summed over the columns. cholmod_updown runs every column
+  // along that path (in groups of up to 8 sharing it), so a column on a variable eliminated
+  // early, far from the root, costs the factor's whole height. 0 before a factorisation.
+  double ModifyWork(const std::vector<SparseColumn>& columns) const;
+  // The work of a simplicial factorisation with the factor's present fill, in the same unit:
+  // the sum over its columns of the squared entry counts.
+  double FactorizationWork() const;
+
   // x with A x = b (A the factorised matrix). Empty on failure.
   Eigen::VectorXd Solve(const Eigen::VectorXd& b) const;
   // A^-1 B for the columns of B.
