@@ -802,16 +802,24 @@ SolveReport Smoother::Optimize() {
 
 // ---- incremental ----
 
-SolveReport Smoother::FullRefactorization(SolveReport report, bool relinearize_all) {
+SolveReport Smoother::FullRefactorization(SolveReport report,
+                                          const std::vector<int>* relinearized_variables) {
   incremental_ready_ = false;
   marginal_factor_valid_ = false;
   // The factors to linearise: all of them at their variables' new linearisation points, or the
-  // ones not yet in the system (BuildLayout marks every live factor as in it).
+  // ones not yet in the system (BuildLayout marks every live factor as in it) and those of the
+  // variables whose linearisation point moves.
   std::vector<char> linearize(factors_.size(), 1);
-  if (relinearize_all) {
+  if (relinearized_variables == nullptr) {
     RelinearizeAll();
   } else {
     for (size_t f = 0; f < factors_.size(); ++f) linearize[f] = !factors_[f].in_system;
+    for (int v : *relinearized_variables) {
+      Variable& variable = variables_[v];
+      variable.linearization = Estimate(variable);
+      variable.delta.setZero();
+      for (int f : variable.factors) linearize[f] = 1;
+    }
   }
   int live = 0;
   for (const Variable& v : variables_) live += v.alive ? 1 : 0;
@@ -847,9 +855,9 @@ SolveReport Smoother::FullRefactorization(SolveReport report, bool relinearize_a
   }
   nonzeros_after_ordering_ = cholesky_->factor_nonzeros();
   factorization_work_ = cholesky_->FactorizationWork();
-  // A re-ordering alone leaves the linearisation points where they were: the schedule of full
-  // relinearisations counts on.
-  if (relinearize_all) updates_since_refactorization_ = 0;
+  // A re-ordering alone leaves (most) linearisation points where they were: the schedule of
+  // full relinearisations counts on.
+  if (relinearized_variables == nullptr) updates_since_refactorization_ = 0;
   needs_refactorization_ = false;
   incremental_ready_ = true;
   report.refactorized = true;
@@ -978,22 +986,29 @@ SolveReport Smoother::Update() {
   const bool relinearize =
       options_.relinearize_skip <= 1 || updates_ % options_.relinearize_skip == 0;
   bool incremental = incremental_ready_ && !needs_refactorization_ && room && !schedule;
+  // What a refactorisation relinearises: everything (nullptr), or only these variables.
+  std::vector<int> moved;
+  const std::vector<int>* relinearized = nullptr;
   if (incremental && relinearize) {
-    const int moved = static_cast<int>(VariablesToRelinearize().size());
-    if (moved > options_.max_incremental_relinearizations) incremental = false;
-    report.relinearized_variables = moved;
+    moved = VariablesToRelinearize();
+    report.relinearized_variables = static_cast<int>(moved.size());
+    if (report.relinearized_variables > options_.max_incremental_relinearizations) {
+      // Too many for rank updates: they are relinearised, the rest stays, all re-factorised.
+      incremental = false;
+      relinearized = &moved;
+    }
   }
-  bool relinearize_all = true;
   if (incremental) {
     const StepResult step = SolveIncrementalStep(relinearize);
     if (step != StepResult::kDone) incremental = false;  // numerical trouble: afresh
     // Too dear: the same linear system, re-ordered with the newest factors' variables last.
-    if (step == StepResult::kTooDear) relinearize_all = false;
+    moved.clear();
+    if (step == StepResult::kTooDear) relinearized = &moved;
     ++updates_since_refactorization_;
   }
   if (!incremental) {
     report.relinearized_variables = 0;
-    report = FullRefactorization(report, relinearize_all);
+    report = FullRefactorization(report, relinearized);
     if (!report.error.empty()) return report;
   }
   const Eigen::VectorXd step = cholesky_->Solve(-gradient_);

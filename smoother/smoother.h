@@ -25,10 +25,12 @@
 //   normal equations is kept between calls and modified by rank-k updates and downdates
 //   (new factors, relinearised factors, new variables in slots reserved at the end of the
 //   ordering), so a keyframe that touches only recent variables costs little. Every
-//   full_relinearization_interval updates, when more than max_incremental_relinearizations
-//   variables must be relinearised at once, when the factor's fill has grown by
+//   full_relinearization_interval updates, when the factor's fill has grown by
 //   reorder_fill_ratio, when the slots run out or after an estimate is set, everything is
-//   relinearised, re-ordered and re-factorised (simplicial LDL^T, which updates need). A
+//   relinearised, re-ordered and re-factorised (simplicial LDL^T, which updates need). When
+//   more than max_incremental_relinearizations variables must be relinearised at once, or when
+//   the rank updates would cost more than max_update_work_share of a factorisation, only the
+//   variables due are relinearised and the whole is re-ordered and re-factorised. A
 //   removed landmark's factors leave the kept factor by rank downdates (its slot stays, an
 //   isolated identity, until then).
 // The chi-square at the returned estimate is in every SolveReport.
@@ -220,10 +222,12 @@ class Smoother {
   void AssembleNormalEquations(std::vector<double>* values, Eigen::VectorXd* gradient) const;
   void AppendFactorColumns(const Factor& factor,
                            std::vector<SparseCholesky::SparseColumn>* columns) const;
-  // Re-orders and re-factorises the whole system. With relinearize_all every variable's
-  // linearisation point moves to its estimate first; without, only the factors not yet in the
-  // system are linearised (a re-ordering: the linear system stays the same).
-  SolveReport FullRefactorization(SolveReport report, bool relinearize_all);
+  // Re-orders and re-factorises the whole system. Without relinearized_variables every
+  // variable's linearisation point moves to its estimate first; with them only theirs does, and
+  // only their factors and those not yet in the system are linearised (none given: a
+  // re-ordering, the linear system stays the same).
+  SolveReport FullRefactorization(SolveReport report,
+                                  const std::vector<int>* relinearized_variables);
   enum class StepResult { kDone, kTooDear, kFailed };
   StepResult SolveIncrementalStep(bool relinearize);
   std::vector<int> VariablesToRelinearize() const;
