@@ -158,7 +158,8 @@ void PersonDetector::Detect(const std::vector<LegCandidate>& candidates,
     const double threshold =
         options.single_leg_threshold + options.single_leg_open_edge_step * c.open_edges;
     if ((*used)[i] || c.provisional || !Finite(c) || c.surface_piece ||
-        c.leg_likeness < threshold) {
+        c.leg_likeness < threshold ||
+        c.surface_clearance_m < options.single_leg_surface_clearance_m) {
       continue;
     }
     (*used)[i] = 1;

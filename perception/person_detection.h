@@ -36,6 +36,16 @@
 // 0.05 already left 97 of 1265 scans without anybody (49 without it; docs/perception.md,
 // "World scenarios").
 //
+// A one-leg person whose leg stands less than single_leg_surface_clearance_m in front of a line
+// feature of the scan (LegCandidate::surface_clearance_m: a wall, a side of furniture; the
+// distance to the observed extent) is none: the hidden leg must be somewhere, and the visible
+// leg's shadow, where it usually is (the other foot behind it from the sensor), ends at the
+// surface before there is room for a leg (min_leg_separation_m behind the visible one and a
+// leg's radius clear of the surface). Such clusters are objects on the surface: in the world's
+// corridor a fire extinguisher on the wall gave 64 of the 185 false people within 4 m, and no
+// real one-leg person was within 0.3 m of a line (docs/perception.md, "World scenarios"). Two
+// legs in front of a wall are still a person.
+//
 // Covariance, in Cartesian coordinates and then in range/bearing of the centre (first-order):
 //   two legs: (P1 + P2) / 4 + pair_centre_sigma_m^2 I (the body's centre is not exactly the
 //             midpoint of the legs);
@@ -48,6 +58,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace slammtt {
@@ -70,6 +81,9 @@ struct LegCandidate {
   bool provisional = false;
   bool surface_piece = false;  // flat, and no usable return on either side
   int open_edges = 0;          // edges (0-2) beside a beam without a usable return
+  // Distance from the centre to the nearest line feature of the scan (a wall, a side of
+  // furniture) that it stands in front of (on the sensor's side); +infinity without one.
+  double surface_clearance_m = std::numeric_limits<double>::infinity();
   int32_t feature_index = -1;  // copied into PersonFeature::leg_index
 };
 
@@ -94,6 +108,9 @@ struct PersonDetectionOptions {
   bool hidden_leg_centre = false;
   // A one-leg person needs this much more leg-likeness per open edge of its leg.
   double single_leg_open_edge_step = 0.0;
+  // A one-leg person's leg stands at least this far in front of a line feature of the scan (no
+  // room behind it for the hidden leg); 0: no such rule.
+  double single_leg_surface_clearance_m = 0.2;
 };
 
 // (range, bearing) covariance -> Cartesian covariance at that point, and back (first order).

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "common/angle.h"
@@ -43,6 +44,23 @@ constexpr double kMergeAngleRad = 5.0 * M_PI / 180.0;
 double CcwDelta(double a_rad, double b_rad) {
   const double d = b_rad - a_rad;
   return d < 0.0 ? d + kTwoPi : d;
+}
+
+// Distance from `point` (sensor frame) to the nearest line feature (its observed extent) that
+// it lies in front of, on the sensor's side of the line; +infinity without one.
+double SurfaceClearance(const Eigen::Vector2d& point, const std::vector<LineFeature>& lines) {
+  double clearance = std::numeric_limits<double>::infinity();
+  for (const LineFeature& line : lines) {
+    const Eigen::Vector2d normal(std::cos(line.alpha_rad), std::sin(line.alpha_rad));
+    if (line.rho_m - point.dot(normal) <= 0.0) continue;  // on the line or beyond it
+    const Eigen::Vector2d extent = line.last_point_m - line.first_point_m;
+    const double length2 = extent.squaredNorm();
+    const double t =
+        length2 > 0.0 ? std::clamp((point - line.first_point_m).dot(extent) / length2, 0.0, 1.0)
+                      : 0.0;
+    clearance = std::min(clearance, (line.first_point_m + t * extent - point).norm());
+  }
+  return clearance;
 }
 
 }  // namespace
@@ -123,6 +141,10 @@ const std::vector<Feature>& Segmenter::FindPeople() {
     c.leg_likeness = f.leg_likeness;
     c.provisional = provisional;
     c.open_edges = 2 - f.bounded_edges;
+    c.surface_clearance_m =
+        SurfaceClearance(f.range_m * Eigen::Vector2d(std::cos(f.bearing_rad),
+                                                     std::sin(f.bearing_rad)),
+                         lines_);
     // Flat (a leg, round, shows about 0.7: leg_features.h), with both edges unbounded.
     if (f.bounded_edges == 0 && f.leg_cluster >= 0) {
       const LegClusterRecord& r = leg_clusters_[static_cast<size_t>(f.leg_cluster)];
