@@ -46,6 +46,16 @@
 // real one-leg person was within 0.3 m of a line (docs/perception.md, "World scenarios"). Two
 // legs in front of a wall are still a person.
 //
+// With separate_dropout_pieces, a candidate of a dropout run (LegCandidate::dropout_run, set by
+// the Segmenter: three or more clusters in a row, each with no usable return on either side,
+// nothing but beams without a return between them, and one straight line through all their
+// points) makes no person alone and no pair with another of its run: they are pieces of one
+// surface that drops beams (a dark or shiny wall, a wall at grazing incidence). Two such
+// clusters are left alone: a person's two legs with nothing behind them in range (or blanked,
+// as in the extracted leg_tracker bags) look the same. In the world's corridor the end wall
+// drops half its beams; its pieces made 50 of the 121 false people within 4 m left by the
+// surface-clearance rule, 31 after this one (docs/perception.md, "World scenarios").
+//
 // Covariance, in Cartesian coordinates and then in range/bearing of the centre (first-order):
 //   two legs: (P1 + P2) / 4 + pair_centre_sigma_m^2 I (the body's centre is not exactly the
 //             midpoint of the legs);
@@ -84,6 +94,9 @@ struct LegCandidate {
   // Distance from the centre to the nearest line feature of the scan (a wall, a side of
   // furniture) that it stands in front of (on the sensor's side); +infinity without one.
   double surface_clearance_m = std::numeric_limits<double>::infinity();
+  // Candidates with one value >= 0 are clusters of one straight run of three or more separated
+  // only by beams without a usable return, each with none on either side (-1: in no such run).
+  int32_t dropout_run = -1;
   int32_t feature_index = -1;  // copied into PersonFeature::leg_index
 };
 
@@ -111,6 +124,9 @@ struct PersonDetectionOptions {
   // A one-leg person's leg stands at least this far in front of a line feature of the scan (no
   // room behind it for the hidden leg); 0: no such rule.
   double single_leg_surface_clearance_m = 0.2;
+  // A candidate of a dropout run (LegCandidate::dropout_run) makes no person alone and no pair
+  // with another of its run.
+  bool separate_dropout_pieces = true;
 };
 
 // (range, bearing) covariance -> Cartesian covariance at that point, and back (first order).

@@ -308,6 +308,29 @@ TEST(PersonDetectorTest, ALegRightInFrontOfASurfaceMakesNoPersonAlone) {
   EXPECT_EQ(people.size(), 1u);
 }
 
+TEST(PersonDetectorTest, PiecesOfOneDropoutRunMakeNoPerson) {
+  PersonDetector detector;
+  PersonDetectionOptions options;
+  std::vector<PersonFeature> people;
+  std::vector<uint8_t> used;
+  LegCandidate a = Leg(3.0, 0.0, 0.95, 0);
+  LegCandidate b = Leg(3.0, 0.3, 0.95, 1);
+  LegCandidate c = Leg(3.0, 0.6, 0.95, 2);
+  a.dropout_run = b.dropout_run = c.dropout_run = 0;
+  detector.Detect({a, b, c}, options, &people, &used);
+  EXPECT_TRUE(people.empty());
+  EXPECT_EQ(used, (std::vector<uint8_t>{0, 0, 0}));
+  // A leg of another run or of none may still pair with one of them.
+  LegCandidate leg = Leg(3.0, -0.3, 0.95, 3);
+  detector.Detect({a, b, c, leg}, options, &people, &used);
+  ASSERT_EQ(people.size(), 1u);
+  EXPECT_EQ(people[0].num_legs, 2);
+  // Without the rule: pairs and a one-leg person.
+  options.separate_dropout_pieces = false;
+  detector.Detect({a, b, c}, options, &people, &used);
+  EXPECT_EQ(people.size(), 2u);
+}
+
 TEST(PersonDetectorTest, NonFiniteCandidatesAreSkipped) {
   PersonDetector detector;
   std::vector<PersonFeature> people;
@@ -499,6 +522,38 @@ TEST(SegmenterPeopleTest, ALegSizedObjectOnAWallIsNoPerson) {
     EXPECT_GE(on_wall_without_rule, 5);  // it does look like a leg
     EXPECT_GE(in_front, 8);
   }
+}
+
+// A wall that drops beams (two in a row every six: no return) shows as a row of short pieces
+// with nothing between them; they make no person. Two legs with no return around them (the
+// background out of range) are still one.
+TEST(SegmenterPeopleTest, PiecesOfAWallBetweenDropoutsAreNoPeople) {
+  int people_with_rule = 0;
+  int people_without_rule = 0;
+  int legs_in_the_open = 0;
+  for (uint64_t seed = 1; seed <= 10; ++seed) {
+    std::mt19937_64 rng(seed);
+    TestScan wall = CastScene({}, {{3.0, -1.0, 3.0, 1.0}}, Angles(0.9), 12.0, 0.01, 0.0, &rng);
+    for (size_t i = 0; i < wall.size(); ++i) {
+      if (i % 6 >= 4) wall.valid[i] = 0;
+    }
+    for (bool rule : {true, false}) {
+      SegmenterOptions options;
+      options.person.separate_dropout_pieces = rule;
+      Segmenter segmenter(options);
+      segmenter.Segment(wall.View());
+      (rule ? people_with_rule : people_without_rule) +=
+          static_cast<int>(segmenter.people().size());
+    }
+    const TestScan legs =
+        CastScene({{2.0, 0.15, 0.06}, {2.0, -0.15, 0.06}}, {}, Angles(0.9), 12.0, 0.01, 0.0, &rng);
+    Segmenter segmenter(SegmenterOptions{});
+    segmenter.Segment(legs.View());
+    legs_in_the_open += segmenter.people().size() == 1 && segmenter.people()[0].num_legs == 2;
+  }
+  EXPECT_GE(people_without_rule, 2);  // some pieces do look like legs
+  EXPECT_EQ(people_with_rule, 0);
+  EXPECT_GE(legs_in_the_open, 9);
 }
 
 // Chair legs (radius 1.5 cm, four at the corners of 0.45 m) at 0.35 degrees: no person.
