@@ -286,6 +286,7 @@ TEST(PersonDetectorTest, SurfacePiecesMakeNoPersonAloneAndNoPairTogether) {
 TEST(PersonDetectorTest, ALegRightInFrontOfASurfaceMakesNoPersonAlone) {
   PersonDetector detector;
   PersonDetectionOptions options;
+  options.single_leg_surface_clearance_m = 0.2;
   std::vector<PersonFeature> people;
   std::vector<uint8_t> used;
   LegCandidate against = Leg(3.0, 0.0, 0.95, 0);
@@ -311,6 +312,7 @@ TEST(PersonDetectorTest, ALegRightInFrontOfASurfaceMakesNoPersonAlone) {
 TEST(PersonDetectorTest, PiecesOfOneDropoutRunMakeNoPerson) {
   PersonDetector detector;
   PersonDetectionOptions options;
+  options.separate_dropout_pieces = true;
   std::vector<PersonFeature> people;
   std::vector<uint8_t> used;
   LegCandidate a = Leg(3.0, 0.0, 0.95, 0);
@@ -513,7 +515,7 @@ TEST(SegmenterPeopleTest, ALegSizedObjectOnAWallIsNoPerson) {
         EXPECT_FALSE(segmenter.lines().empty());
         return static_cast<int>(segmenter.people().size());
       };
-      const double clearance_m = PersonDetectionOptions{}.single_leg_surface_clearance_m;
+      const double clearance_m = 0.2;
       on_wall += people_of({2.5, 0.88, 0.08}, clearance_m);
       on_wall_without_rule += people_of({2.5, 0.88, 0.08}, 0.0);
       in_front += people_of({2.5, 0.6, 0.06}, clearance_m);
