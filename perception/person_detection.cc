@@ -119,6 +119,10 @@ void PersonDetector::Detect(const std::vector<LegCandidate>& candidates,
       if (!Finite(candidates[j])) continue;
       if (candidates[i].provisional && candidates[j].provisional) continue;
       if (candidates[i].surface_piece && candidates[j].surface_piece) continue;
+      if (options.separate_dropout_pieces && candidates[i].dropout_run >= 0 &&
+          candidates[i].dropout_run == candidates[j].dropout_run) {
+        continue;
+      }
       const double separation = (positions_[i] - positions_[j]).norm();
       if (separation < options.min_leg_separation_m ||
           separation > options.max_leg_separation_m) {
@@ -158,7 +162,9 @@ void PersonDetector::Detect(const std::vector<LegCandidate>& candidates,
     const double threshold =
         options.single_leg_threshold + options.single_leg_open_edge_step * c.open_edges;
     if ((*used)[i] || c.provisional || !Finite(c) || c.surface_piece ||
-        c.leg_likeness < threshold) {
+        c.leg_likeness < threshold ||
+        c.surface_clearance_m < options.single_leg_surface_clearance_m ||
+        (options.separate_dropout_pieces && c.dropout_run >= 0)) {
       continue;
     }
     (*used)[i] = 1;

@@ -36,6 +36,26 @@
 // 0.05 already left 97 of 1265 scans without anybody (49 without it; docs/perception.md,
 // "World scenarios").
 //
+// A one-leg person whose leg stands less than single_leg_surface_clearance_m in front of a line
+// feature of the scan (LegCandidate::surface_clearance_m: a wall, a side of furniture; the
+// distance to the observed extent) is none: the hidden leg must be somewhere, and the visible
+// leg's shadow, where it usually is (the other foot behind it from the sensor), ends at the
+// surface before there is room for a leg (min_leg_separation_m behind the visible one and a
+// leg's radius clear of the surface). Such clusters are objects on the surface: in the world's
+// corridor a fire extinguisher on the wall gave 64 of the 185 false people within 4 m, and no
+// real one-leg person was within 0.3 m of a line (docs/perception.md, "World scenarios"). Two
+// legs in front of a wall are still a person.
+//
+// With separate_dropout_pieces, a candidate of a dropout run (LegCandidate::dropout_run, set by
+// the Segmenter: three or more clusters in a row, each with no usable return on either side,
+// nothing but beams without a return between them, and one straight line through all their
+// points) makes no person alone and no pair with another of its run: they are pieces of one
+// surface that drops beams (a dark or shiny wall, a wall at grazing incidence). Two such
+// clusters are left alone: a person's two legs with nothing behind them in range (or blanked,
+// as in the extracted leg_tracker bags) look the same. In the world's corridor the end wall
+// drops half its beams; its pieces made 50 of the 121 false people within 4 m left by the
+// surface-clearance rule, 31 after this one (docs/perception.md, "World scenarios").
+//
 // Covariance, in Cartesian coordinates and then in range/bearing of the centre (first-order):
 //   two legs: (P1 + P2) / 4 + pair_centre_sigma_m^2 I (the body's centre is not exactly the
 //             midpoint of the legs);
@@ -48,6 +68,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 namespace slammtt {
@@ -70,6 +91,12 @@ struct LegCandidate {
   bool provisional = false;
   bool surface_piece = false;  // flat, and no usable return on either side
   int open_edges = 0;          // edges (0-2) beside a beam without a usable return
+  // Distance from the centre to the nearest line feature of the scan (a wall, a side of
+  // furniture) that it stands in front of (on the sensor's side); +infinity without one.
+  double surface_clearance_m = std::numeric_limits<double>::infinity();
+  // Candidates with one value >= 0 are clusters of one straight run of three or more separated
+  // only by beams without a usable return, each with none on either side (-1: in no such run).
+  int32_t dropout_run = -1;
   int32_t feature_index = -1;  // copied into PersonFeature::leg_index
 };
 
@@ -94,6 +121,16 @@ struct PersonDetectionOptions {
   bool hidden_leg_centre = false;
   // A one-leg person needs this much more leg-likeness per open edge of its leg.
   double single_leg_open_edge_step = 0.0;
+  // A one-leg person's leg stands at least this far in front of a line feature of the scan (no
+  // room behind it for the hidden leg); 0: no such rule. Off by default, as is
+  // separate_dropout_pieces: on the world's corridor they raise the precision (0.2 m and true:
+  // 0.801 -> 0.881), but the real estimator's map of the mines recordings moves beyond its
+  // floors (tests/python/test_real_estimator.py: the legs of the people no longer found become
+  // point landmarks there; docs/perception.md, "World scenarios", items 5 and 6).
+  double single_leg_surface_clearance_m = 0.0;
+  // A candidate of a dropout run (LegCandidate::dropout_run) makes no person alone and no pair
+  // with another of its run.
+  bool separate_dropout_pieces = false;
 };
 
 // (range, bearing) covariance -> Cartesian covariance at that point, and back (first order).

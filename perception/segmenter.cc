@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "common/angle.h"
@@ -36,6 +37,11 @@ constexpr double kFlatConvexity = 0.1;
 // "World scenarios"): 1 of 3670 leg candidates on real legs came this close to a line, against
 // 103 of the false people's legs, on the stubs of walls beside openings and furniture sides.
 constexpr double kOnSurfaceM = 0.025;
+// Pieces in a run of clusters separated only by beams without a return (FindDropoutRuns) that
+// make a surface: two are too often a person's two legs with no return around them (the
+// background out of range, or blanked in the extracted leg_tracker bags: with two, positive_4's
+// labelled legs in a person fell from 0.80 to 0.66); a wall that drops beams gives many.
+constexpr size_t kMinDropoutRun = 3;
 // Lines of neighbouring clusters are tried for one line only when their normals are this close.
 constexpr double kMergeAngleRad = 5.0 * M_PI / 180.0;
 
@@ -43,6 +49,23 @@ constexpr double kMergeAngleRad = 5.0 * M_PI / 180.0;
 double CcwDelta(double a_rad, double b_rad) {
   const double d = b_rad - a_rad;
   return d < 0.0 ? d + kTwoPi : d;
+}
+
+// Distance from `point` (sensor frame) to the nearest line feature (its observed extent) that
+// it lies in front of, on the sensor's side of the line; +infinity without one.
+double SurfaceClearance(const Eigen::Vector2d& point, const std::vector<LineFeature>& lines) {
+  double clearance = std::numeric_limits<double>::infinity();
+  for (const LineFeature& line : lines) {
+    const Eigen::Vector2d normal(std::cos(line.alpha_rad), std::sin(line.alpha_rad));
+    if (line.rho_m - point.dot(normal) <= 0.0) continue;  // on the line or beyond it
+    const Eigen::Vector2d extent = line.last_point_m - line.first_point_m;
+    const double length2 = extent.squaredNorm();
+    const double t =
+        length2 > 0.0 ? std::clamp((point - line.first_point_m).dot(extent) / length2, 0.0, 1.0)
+                      : 0.0;
+    clearance = std::min(clearance, (line.first_point_m + t * extent - point).norm());
+  }
+  return clearance;
 }
 
 }  // namespace
@@ -123,6 +146,10 @@ const std::vector<Feature>& Segmenter::FindPeople() {
     c.leg_likeness = f.leg_likeness;
     c.provisional = provisional;
     c.open_edges = 2 - f.bounded_edges;
+    c.surface_clearance_m =
+        SurfaceClearance(f.range_m * Eigen::Vector2d(std::cos(f.bearing_rad),
+                                                     std::sin(f.bearing_rad)),
+                         lines_);
     // Flat (a leg, round, shows about 0.7: leg_features.h), with both edges unbounded.
     if (f.bounded_edges == 0 && f.leg_cluster >= 0) {
       const LegClusterRecord& r = leg_clusters_[static_cast<size_t>(f.leg_cluster)];
@@ -139,6 +166,7 @@ const std::vector<Feature>& Segmenter::FindPeople() {
   stats_.leg_candidates = static_cast<int64_t>(candidates_.size());
   // Provisional legs get the codes -2, -3, ... until they have a place among the features.
   for (size_t j = 0; j < provisional_.size(); ++j) add(provisional_[j], true, -2 - int32_t(j));
+  FindDropoutRuns();
   person_detector_.Detect(candidates_, options_.person, &people_, &candidate_used_,
                           SightLinesOfScan());
   for (const PersonFeature& p : people_) stats_.people_one_leg += p.num_legs == 1;
@@ -189,6 +217,90 @@ const std::vector<Feature>& Segmenter::FindPeople() {
   features_.swap(merged_);
   stats_.features = static_cast<int64_t>(features_.size());
   return features_;
+}
+
+void Segmenter::FindDropoutRuns() {
+  // The point features and the provisional legs as one list of pieces: i < n is features_[i],
+  // the others provisional_[i - n]. A piece's successor is the piece whose first beam is the
+  // next usable beam after its last one, when both have no usable return on either side.
+  int32_t max_index = -1;
+  for (const Beam& b : beams_) max_index = std::max(max_index, b.index);
+  ring_of_input_.assign(static_cast<size_t>(max_index + 1), -1);
+  for (size_t k = 0; k < beams_.size(); ++k) {
+    ring_of_input_[static_cast<size_t>(beams_[k].index)] = static_cast<int32_t>(k);
+  }
+  const size_t n = features_.size();
+  const size_t total = n + provisional_.size();
+  const auto piece = [&](size_t i) -> const Feature& {
+    return i < n ? features_[i] : provisional_[i - n];
+  };
+  const auto ring = [&](int32_t input_index) {
+    return static_cast<size_t>(ring_of_input_[static_cast<size_t>(input_index)]);
+  };
+  piece_at_ring_.assign(beams_.size(), -1);
+  for (size_t i = 0; i < total; ++i) {
+    piece_at_ring_[ring(piece(i).first_beam_index)] = static_cast<int32_t>(i);
+  }
+  piece_next_.assign(total, -1);
+  piece_has_previous_.assign(total, 0);
+  piece_run_.assign(total, -1);
+  for (size_t i = 0; i < total; ++i) {
+    if (piece(i).bounded_edges != 0) continue;
+    const int32_t j = piece_at_ring_[Next(ring(piece(i).last_beam_index))];
+    if (j < 0 || static_cast<size_t>(j) == i || piece(static_cast<size_t>(j)).bounded_edges != 0) {
+      continue;
+    }
+    piece_next_[i] = j;
+    piece_has_previous_[static_cast<size_t>(j)] = 1;
+  }
+  // Each run is labelled by its first piece; a run around the whole ring by any of its own.
+  for (int pass = 0; pass < 2; ++pass) {
+    for (size_t i = 0; i < total; ++i) {
+      if (piece_next_[i] < 0 || piece_run_[i] >= 0) continue;
+      if (pass == 0 && piece_has_previous_[i]) continue;
+      for (int32_t k = static_cast<int32_t>(i); k >= 0 && piece_run_[size_t(k)] < 0;
+           k = piece_next_[size_t(k)]) {
+        piece_run_[size_t(k)] = static_cast<int32_t>(i);
+      }
+    }
+  }
+  // A run is a surface when it has kMinDropoutRun pieces or more and one straight line holds
+  // all their points (within the split distance, as a line of the scan).
+  for (size_t head = 0; head < total; ++head) {
+    if (piece_run_[head] != static_cast<int32_t>(head)) continue;
+    size_t pieces = 0;
+    size_t count = 0;
+    for (size_t i = 0; i < total; ++i) {
+      if (piece_run_[i] != static_cast<int32_t>(head)) continue;
+      const size_t first = ring(piece(i).first_beam_index);
+      const size_t last = ring(piece(i).last_beam_index);
+      const size_t points = (last + beams_.size() - first) % beams_.size() + 1;
+      FillRunPoints(first, points, count);
+      count += points;
+      ++pieces;
+    }
+    bool surface = pieces >= kMinDropoutRun && count >= 2;
+    if (surface) {
+      const LineFit fit = FitLine(sensor_x_.data(), sensor_y_.data(), count, options_.sigma_r_m,
+                                  options_.bearing_sigma_rad);
+      const double ca = std::cos(fit.alpha_rad);
+      const double sa = std::sin(fit.alpha_rad);
+      const double tolerance = SplitDistance(MeanRange(count));
+      for (size_t i = 0; i < count && surface; ++i) {
+        surface = std::abs(DistanceFromLine(fit.rho_m, ca, sa, sensor_x_[i], sensor_y_[i])) <=
+                  tolerance;
+      }
+    }
+    if (surface) continue;
+    for (size_t i = 0; i < total; ++i) {
+      if (piece_run_[i] == static_cast<int32_t>(head)) piece_run_[i] = -1;
+    }
+  }
+  for (LegCandidate& c : candidates_) {
+    const size_t i = c.feature_index >= 0 ? static_cast<size_t>(c.feature_index)
+                                          : n + static_cast<size_t>(-2 - c.feature_index);
+    c.dropout_run = piece_run_[i];
+  }
 }
 
 const SightLines* Segmenter::SightLinesOfScan() {

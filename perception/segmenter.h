@@ -62,7 +62,11 @@
 //     candidate that is flat (convexity below 0.1, leg_features.h; a leg shows about 0.7) and
 //     has no usable return on either side (Feature::bounded_edges == 0) may be a visible piece
 //     of a larger surface: it is a LegCandidate::surface_piece, which makes no person alone and
-//     no pair with another.
+//     no pair with another. Optionally (both off by default, person_detection.h): a one-leg
+//     person stands at least person.single_leg_surface_clearance_m in front of every line
+//     feature of the scan, and the pieces of a wall between dropouts (three or more clusters in
+//     a row with nothing but beams without a return around and between them, on one straight
+//     line) make no person (person.separate_dropout_pieces).
 //
 // Measurement covariance of (range, bearing), with R the estimated object radius, D the centre
 // range, delta the cluster's mean beam spacing and f = shape_sigma_fraction:
@@ -239,6 +243,13 @@ class Segmenter {
   std::vector<int32_t> final_index_;
   std::vector<Feature> merged_;
   std::vector<PersonFeature> people_;
+  // LegCandidate::dropout_run of every candidate (person_detection.h).
+  void FindDropoutRuns();
+  std::vector<int32_t> ring_of_input_;
+  std::vector<int32_t> piece_at_ring_;
+  std::vector<int32_t> piece_next_;
+  std::vector<uint8_t> piece_has_previous_;
+  std::vector<int32_t> piece_run_;
   // The scan's usable beams in increasing angle, for the one-leg centre (person_detection.h).
   const SightLines* SightLinesOfScan();
   std::vector<double> sight_angle_;

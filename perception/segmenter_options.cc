@@ -132,6 +132,10 @@ void VisitSegmenterOptions(OptionVisitor* v, SegmenterOptions* o) {
             "centre vs the one visible leg, in the covariance");
   v->Double("single_leg_open_edge_step", &o->person.single_leg_open_edge_step, R::Between(0, 1),
             "one-leg person: more leg-likeness per edge beside a beam without a usable return");
+  v->Double("single_leg_surface_clearance_m", &o->person.single_leg_surface_clearance_m,
+            R::AtLeast(0), "one-leg person: least distance of the leg in front of a line feature");
+  v->Bool("separate_dropout_pieces", &o->person.separate_dropout_pieces,
+          "no pair of two clusters with only beams without a return around and between them");
   v->Bool("hidden_leg_centre", &o->person.hidden_leg_centre,
           "one-leg person: centre between the leg and where the scan cannot see (false: on the leg)");
   v->EndGroup();

@@ -28,7 +28,9 @@ struct Floors {
 
 // Measured (pooled over seeds 1-20, every 10th scan; held-out seeds 21-40 in docs/perception.md):
 // office within 4 m recall 0.861, precision 0.891, centre error median 0.016 m; office-hokuyo
-// 0.710, 0.583, 0.097 m; corridor within 4 m 0.926, 0.801, 0.123 m. With
+// 0.710, 0.583, 0.097 m; corridor within 4 m 0.926, 0.801, 0.123 m (0.860 with
+// person_single_leg_surface_clearance_m 0.2, 0.881 with person_separate_dropout_pieces too, both
+// off by default; office and office-hokuyo unchanged by them). With
 // person_hidden_leg_centre (off by default: it costs the estimator's office people MOTA):
 // office 0.862 / 0.892 / 0.016 m, office-hokuyo 0.756 / 0.621 / 0.083 m, corridor 0.930 /
 // 0.806 / 0.126 m. Before leg-like clusters
