@@ -388,6 +388,20 @@ void Supervisor::Reap(bool stopping) {
   }
 }
 
+void Supervisor::SettleBeforeTheLastGroup() {
+  bool any = false;
+  for (auto& child : children_) any = any || (child->pid > 0 && child->spec.stop_last);
+  if (!any) return;
+  // The others' last messages (a driver's final status) are on the bus or in the logger's socket
+  // when they exit; the logger, still running, gets this long to record them before its SIGTERM
+  // (a loaded machine may not schedule it at once).
+  const double deadline = NowSeconds() + kLastWordsSettleS;
+  while (NowSeconds() < deadline) {
+    Reap(/*stopping=*/true);
+    Pump(20);
+  }
+}
+
 void Supervisor::StopGroup(bool stop_last_group) {
   bool any = false;
   for (auto& child : children_) {
@@ -461,6 +475,7 @@ int Supervisor::Run() {
     LogInfo() << "stopping (signal " << ShutdownSignal() << ")";
   }
   StopGroup(/*stop_last_group=*/false);
+  SettleBeforeTheLastGroup();
   StopGroup(/*stop_last_group=*/true);
   return failed_ ? 1 : 0;
 }

@@ -1,7 +1,8 @@
 // Carries out a LaunchPlan: starts every process, prefixes their output lines with their names,
 // restarts the ones that die (RestartPolicy), and stops them all on SIGINT/SIGTERM: SIGTERM to
 // each process group, a grace period, then SIGKILL; processes marked stop_last (the logger) go
-// after all the others, so they record the others' last words.
+// after all the others, half a second after the last of them ended, so they record the others'
+// last words.
 //
 // Each child runs in a process group of its own (a Ctrl-C in the terminal reaches only the
 // launcher, which then stops the children in order) and gets SIGTERM should the launcher die
@@ -60,6 +61,9 @@ class Supervisor {
   void Pump(int timeout_ms);
   void Reap(bool stopping);
   void StopGroup(bool stop_last_group);
+  // Between the two groups: time for the stop_last processes to take the others' last messages.
+  void SettleBeforeTheLastGroup();
+  static constexpr double kLastWordsSettleS = 0.5;
   void DrainAndClose(Child* child);
   // A new timestamped name in the log directory; with `create`, the file is created there
   // exclusively (never through a link, never over a file), so whoever opens it next (lcm-logger)
