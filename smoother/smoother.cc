@@ -878,7 +878,7 @@ std::vector<int> Smoother::VariablesToRelinearize() const {
   return moved;
 }
 
-Smoother::StepResult Smoother::SolveIncrementalStep(bool relinearize) {
+Smoother::StepResult Smoother::SolveIncrementalStep(const std::vector<int>& moved) {
   std::vector<SparseCholesky::SparseColumn> updates;
   std::vector<SparseCholesky::SparseColumn> downdates;
   const auto subtract_gradient = [this](const Factor& f, double sign) {
@@ -904,7 +904,6 @@ Smoother::StepResult Smoother::SolveIncrementalStep(bool relinearize) {
   }
   removed_in_system_.clear();
   // Variables whose pending step is large: their factors come out and go back relinearised.
-  const std::vector<int> moved = relinearize ? VariablesToRelinearize() : std::vector<int>();
   std::vector<int> relinearized_factors;
   for (int v : moved) {
     for (int f : variables_[v].factors) {
@@ -999,7 +998,7 @@ SolveReport Smoother::Update() {
     }
   }
   if (incremental) {
-    const StepResult step = SolveIncrementalStep(relinearize);
+    const StepResult step = SolveIncrementalStep(moved);
     if (step != StepResult::kDone) incremental = false;  // numerical trouble: afresh
     // Too dear: the same linear system, re-ordered with the newest factors' variables last.
     moved.clear();

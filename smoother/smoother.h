@@ -229,7 +229,8 @@ class Smoother {
   SolveReport FullRefactorization(SolveReport report,
                                   const std::vector<int>* relinearized_variables);
   enum class StepResult { kDone, kTooDear, kFailed };
-  StepResult SolveIncrementalStep(bool relinearize);
+  // One update by rank updates; `moved`: the variables whose linearisation point moves now.
+  StepResult SolveIncrementalStep(const std::vector<int>& moved);
   std::vector<int> VariablesToRelinearize() const;
   double LinearizedChiSquare() const;
   bool EnsureMarginalFactor();
