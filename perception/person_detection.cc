@@ -167,6 +167,11 @@ void PersonDetector::Detect(const std::vector<LegCandidate>& candidates,
         (options.separate_dropout_pieces && c.dropout_run >= 0)) {
       continue;
     }
+    if (c.open_edges > 0 && c.num_points > 0 &&
+        c.num_points <= options.single_leg_open_edge_max_points) {
+      (*used)[i] = kStubLeg;
+      continue;
+    }
     (*used)[i] = 1;
     const Eigen::Matrix2d cartesian =
         PolarToCartesianCovariance(c.range_m, c.bearing_rad, c.covariance) +

@@ -134,6 +134,7 @@ const std::vector<Feature>& Segmenter::FindPeople() {
   people_.clear();
   stats_.leg_candidates = 0;
   stats_.provisional_legs_used = 0;
+  stats_.leg_stubs = 0;
   stats_.people = 0;
   stats_.people_one_leg = 0;
   if (!options_.detect_people) return features_;
@@ -146,6 +147,7 @@ const std::vector<Feature>& Segmenter::FindPeople() {
     c.leg_likeness = f.leg_likeness;
     c.provisional = provisional;
     c.open_edges = 2 - f.bounded_edges;
+    c.num_points = f.num_points;
     c.surface_clearance_m =
         SurfaceClearance(f.range_m * Eigen::Vector2d(std::cos(f.bearing_rad),
                                                      std::sin(f.bearing_rad)),
@@ -176,12 +178,22 @@ const std::vector<Feature>& Segmenter::FindPeople() {
   const size_t first_provisional_candidate = static_cast<size_t>(stats_.leg_candidates);
   size_t used = 0;
   for (size_t k = first_provisional_candidate; k < candidates_.size(); ++k) {
-    used += candidate_used_[k];
+    used += candidate_used_[k] != 0;
   }
   stats_.provisional_legs_used = static_cast<int64_t>(used);
-  if (used == 0) return features_;
+  // Stubs (PersonDetector::Detect's kStubLeg) leave the point features: too leg-like to be a
+  // landmark, too short of their extent to be a person (person_detection.h).
+  dropped_.assign(n, 0);
+  size_t stubs = 0;
+  for (size_t k = 0; k < first_provisional_candidate; ++k) {
+    if (candidate_used_[k] != kStubLeg) continue;
+    dropped_[static_cast<size_t>(candidates_[k].feature_index)] = 1;
+    ++stubs;
+  }
+  stats_.leg_stubs = static_cast<int64_t>(stubs);
+  if (used == 0 && stubs == 0) return features_;
   // final_index_[old]: position in the merged list of feature `old` (features_ first, then
-  // provisional_); -1 for a provisional leg that is dropped.
+  // provisional_); -1 for a provisional leg or a stub that is dropped.
   final_index_.assign(n + provisional_.size(), -1);
   merged_.clear();
   size_t next_provisional = 0;
@@ -199,8 +211,11 @@ const std::vector<Feature>& Segmenter::FindPeople() {
       final_index_[n + next_provisional] = static_cast<int32_t>(merged_.size());
       merged_.push_back(provisional_[next_provisional++]);
     } else if (i < n) {
-      final_index_[i] = static_cast<int32_t>(merged_.size());
-      merged_.push_back(features_[i++]);
+      if (!dropped_[i]) {
+        final_index_[i] = static_cast<int32_t>(merged_.size());
+        merged_.push_back(features_[i]);
+      }
+      ++i;
     } else {
       break;
     }

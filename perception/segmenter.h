@@ -127,6 +127,9 @@ struct SegmentationStats {
   int64_t leg_candidates = 0;          // point features with leg_likeness >= leg_threshold
   int64_t provisional_legs = 0;        // two-point clusters offered as provisional legs...
   int64_t provisional_legs_used = 0;   // ...and those that joined a person
+  // Leg candidates dropped as stubs: no person, no point feature (person_detection.h,
+  // single_leg_open_edge_max_points).
+  int64_t leg_stubs = 0;
   int64_t people = 0;
   int64_t people_one_leg = 0;
 };
@@ -247,6 +250,7 @@ class Segmenter {
   void FindDropoutRuns();
   std::vector<int32_t> ring_of_input_;
   std::vector<int32_t> piece_at_ring_;
+  std::vector<uint8_t> dropped_;  // FindPeople: 1 for a point feature dropped as a stub
   std::vector<int32_t> piece_next_;
   std::vector<uint8_t> piece_has_previous_;
   std::vector<int32_t> piece_run_;

@@ -136,6 +136,10 @@ void VisitSegmenterOptions(OptionVisitor* v, SegmenterOptions* o) {
             R::AtLeast(0), "one-leg person: least distance of the leg in front of a line feature");
   v->Bool("separate_dropout_pieces", &o->person.separate_dropout_pieces,
           "no pair of two clusters with only beams without a return around and between them");
+  v->Int("single_leg_open_edge_max_points", &o->person.single_leg_open_edge_max_points,
+         R::AtLeast(0),
+         "one-leg person: a leg with an edge beside a beam without a usable return and at most "
+         "this many points is a stub, no person and no point feature (0: no such rule)");
   v->Bool("hidden_leg_centre", &o->person.hidden_leg_centre,
           "one-leg person: centre between the leg and where the scan cannot see (false: on the leg)");
   v->EndGroup();

@@ -333,6 +333,37 @@ TEST(PersonDetectorTest, PiecesOfOneDropoutRunMakeNoPerson) {
   EXPECT_EQ(people.size(), 2u);
 }
 
+TEST(PersonDetectorTest, AShortLegWithAnOpenEdgeIsAStub) {
+  PersonDetector detector;
+  PersonDetectionOptions options;
+  options.single_leg_open_edge_max_points = 3;
+  std::vector<PersonFeature> people;
+  std::vector<uint8_t> used;
+  LegCandidate stub = Leg(3.0, 0.0, 0.95, 0);
+  stub.num_points = 3;
+  stub.open_edges = 1;
+  LegCandidate longer = Leg(0.0, 3.0, 0.95, 1);  // four points: enough of a shape
+  longer.num_points = 4;
+  longer.open_edges = 1;
+  LegCandidate bounded = Leg(-3.0, 0.0, 0.95, 2);  // three points, a return on both sides
+  bounded.num_points = 3;
+  detector.Detect({stub, longer, bounded}, options, &people, &used);
+  ASSERT_EQ(people.size(), 2u);
+  for (const PersonFeature& p : people) EXPECT_NE(p.leg_index[0], 0);
+  EXPECT_EQ(used, (std::vector<uint8_t>{kStubLeg, 1, 1}));
+  // A stub may still be the other leg of a person.
+  detector.Detect({stub, Leg(3.0, 0.3, 0.95, 1)}, options, &people, &used);
+  ASSERT_EQ(people.size(), 1u);
+  EXPECT_EQ(people[0].num_legs, 2);
+  EXPECT_EQ(used, (std::vector<uint8_t>{1, 1}));
+  // Without the rule (the default) it is a one-leg person.
+  options.single_leg_open_edge_max_points = PersonDetectionOptions{}.single_leg_open_edge_max_points;
+  ASSERT_EQ(options.single_leg_open_edge_max_points, 0);
+  detector.Detect({stub}, options, &people, &used);
+  ASSERT_EQ(people.size(), 1u);
+  EXPECT_EQ(used, (std::vector<uint8_t>{1}));
+}
+
 TEST(PersonDetectorTest, NonFiniteCandidatesAreSkipped) {
   PersonDetector detector;
   std::vector<PersonFeature> people;
@@ -428,6 +459,105 @@ TEST(SegmenterPeopleTest, FarLegsOfTwoBeamsJoinTheirPartner) {
 // except where the range noise makes it look convex (convexity 0.1 or more: measured in 1 of 10
 // scenes at 0.35 degrees, 2 of 10 at 0.9); the same piece in front of a far wall has both edges
 // bounded.
+// A leg-sized round object seen by three beams at the RPLIDAR's 0.9 degrees in front of a far
+// wall, built beam by beam. With person_single_leg_open_edge_max_points 3, where the beam
+// beside it gives no return (a dropout at grazing incidence, or nothing in range) it is a stub:
+// no person and no point feature, counted in leg_stubs. With a return on both sides, or seen
+// by four beams, it stays a one-leg person, and without the rule (the default) the stub is one.
+// Every cluster is a leg candidate and a one-leg person here (thresholds 0), so only the rule
+// decides.
+TEST(SegmenterPeopleTest, AThreeBeamLegBesideANoReturnIsAStub) {
+  const double step = 0.9 * M_PI / 180.0;
+  // Beams from -30 to +30 degrees; a wall at x = 6 m; a circle of `radius` at `range` whose
+  // centre is at bearing `centre_rad`; `open` makes the beam just after the object invalid.
+  const auto scan_of = [&](double range, double radius, double centre_rad, bool open) {
+    TestScan scan;
+    const Eigen::Vector2d centre = range * Eigen::Vector2d(std::cos(centre_rad), std::sin(centre_rad));
+    int last_hit = -1;
+    for (int i = -33; i <= 33; ++i) {
+      const double a = i * step;
+      const Eigen::Vector2d u(std::cos(a), std::sin(a));
+      double r = 6.0 / u.x();
+      const double along = centre.dot(u);
+      const double miss2 = centre.squaredNorm() - along * along;
+      if (miss2 < radius * radius) {
+        r = along - std::sqrt(radius * radius - miss2);
+        last_hit = static_cast<int>(scan.angle_rad.size());
+      }
+      scan.angle_rad.push_back(static_cast<float>(a));
+      scan.range_m.push_back(static_cast<float>(r));
+      scan.valid.push_back(1);
+    }
+    if (open) scan.valid[static_cast<size_t>(last_hit + 1)] = 0;
+    return scan;
+  };
+  SegmenterOptions options;
+  options.leg_threshold = 0.0;
+  options.person.single_leg_threshold = 0.0;
+  options.person.single_leg_open_edge_max_points = 3;
+  const auto near_object = [](const std::vector<Feature>& features, double range) {
+    int count = 0;
+    for (const Feature& f : features) count += std::abs(f.range_m - range) < 0.2;
+    return count;
+  };
+  const auto people_near = [](const Segmenter& segmenter, double range) {
+    int count = 0;
+    for (const PersonFeature& p : segmenter.people()) count += std::abs(p.range_m - range) < 0.2;
+    return count;
+  };
+  {  // three beams, open edge: a stub
+    const TestScan scan = scan_of(3.0, 0.06, 0.0, true);
+    Segmenter segmenter(options);
+    const std::vector<Feature>& features = segmenter.Segment(scan.View());
+    EXPECT_EQ(near_object(features, 3.0), 0);
+    EXPECT_EQ(people_near(segmenter, 3.0), 0);
+    EXPECT_EQ(segmenter.stats().leg_stubs, 1);
+    // Every person's legs are still point features of the scan.
+    for (const PersonFeature& p : segmenter.people()) {
+      for (int k = 0; k < p.num_legs; ++k) {
+        ASSERT_GE(p.leg_index[k], 0);
+        ASSERT_LT(static_cast<size_t>(p.leg_index[k]), features.size());
+      }
+    }
+  }
+  {  // three beams, a return on both sides: a one-leg person
+    const TestScan scan = scan_of(3.0, 0.06, 0.0, false);
+    Segmenter segmenter(options);
+    const std::vector<Feature>& features = segmenter.Segment(scan.View());
+    ASSERT_EQ(near_object(features, 3.0), 1);
+    EXPECT_EQ(people_near(segmenter, 3.0), 1);
+    EXPECT_EQ(segmenter.stats().leg_stubs, 0);
+  }
+  {  // four beams, open edge: a one-leg person
+    const TestScan scan = scan_of(3.0, 0.075, 0.5 * step, true);
+    Segmenter segmenter(options);
+    const std::vector<Feature>& features = segmenter.Segment(scan.View());
+    ASSERT_EQ(near_object(features, 3.0), 1);
+    int points = 0;
+    for (const Feature& f : features) {
+      if (std::abs(f.range_m - 3.0) < 0.2) points = f.num_points;
+    }
+    EXPECT_EQ(points, 4);
+    EXPECT_EQ(people_near(segmenter, 3.0), 1);
+    EXPECT_EQ(segmenter.stats().leg_stubs, 0);
+  }
+  {  // without the rule (the default) the stub is a one-leg person
+    options.person.single_leg_open_edge_max_points =
+        SegmenterOptions{}.person.single_leg_open_edge_max_points;
+    const TestScan scan = scan_of(3.0, 0.06, 0.0, true);
+    Segmenter segmenter(options);
+    const std::vector<Feature>& features = segmenter.Segment(scan.View());
+    ASSERT_EQ(near_object(features, 3.0), 1);
+    int points = 0;
+    for (const Feature& f : features) {
+      if (std::abs(f.range_m - 3.0) < 0.2) points = f.num_points;
+    }
+    EXPECT_EQ(points, 3);
+    EXPECT_EQ(people_near(segmenter, 3.0), 1);
+    EXPECT_EQ(segmenter.stats().leg_stubs, 0);
+  }
+}
+
 TEST(SegmenterPeopleTest, AFlatPieceBetweenNoReturnsIsNoPerson) {
   for (double spacing : {0.35, 0.9}) {
     int scenes_with_people = 0;

@@ -362,7 +362,7 @@ TEST(SegmenterStageTest, RenamedKeysNameTheirNewKey) {
 TEST(SegmenterStageTest, EveryKeyOfTheSchemaIsReadAndDocumented) {
   const std::string table = SegmenterOptionsTable();
   const std::vector<slammtt::testing::OptionsTableRow> rows = slammtt::testing::ParseOptionsTable(table);
-  ASSERT_EQ(rows.size(), 38u) << table;
+  ASSERT_EQ(rows.size(), 39u) << table;
   EXPECT_TRUE(slammtt::testing::KeysAreUnique(rows)) << "a key twice";
   for (const RenamedKey& r : RenamedSegmenterKeys()) {
     const auto named = [&](const std::string& key) {
@@ -387,6 +387,7 @@ TEST(SegmenterStageTest, EveryKeyOfTheSchemaIsReadAndDocumented) {
   EXPECT_EQ(o.person.hidden_leg_centre, d.person.hidden_leg_centre);
   EXPECT_EQ(o.person.single_leg_surface_clearance_m, d.person.single_leg_surface_clearance_m);
   EXPECT_EQ(o.person.separate_dropout_pieces, d.person.separate_dropout_pieces);
+  EXPECT_EQ(o.person.single_leg_open_edge_max_points, d.person.single_leg_open_edge_max_points);
   const std::string docs = slammtt::testing::ReadCheckoutFile("docs/perception.md");
   ASSERT_FALSE(docs.empty()) << "docs/perception.md is part of the checkout";
   EXPECT_NE(docs.find(table), std::string::npos)
