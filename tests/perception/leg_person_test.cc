@@ -520,41 +520,32 @@ TEST(SegmenterPeopleTest, AThreeBeamLegBesideANoReturnIsAStub) {
       }
     }
   }
-  {  // three beams, a return on both sides: a one-leg person
-    const TestScan scan = scan_of(3.0, 0.06, 0.0, false);
+  // A scan whose object (`points` beams) stays one point feature and one one-leg person.
+  const auto expect_one_leg_person = [&](const TestScan& scan, int points) {
     Segmenter segmenter(options);
     const std::vector<Feature>& features = segmenter.Segment(scan.View());
     ASSERT_EQ(near_object(features, 3.0), 1);
-    EXPECT_EQ(people_near(segmenter, 3.0), 1);
-    EXPECT_EQ(segmenter.stats().leg_stubs, 0);
-  }
-  {  // four beams, open edge: a one-leg person
-    const TestScan scan = scan_of(3.0, 0.075, 0.5 * step, true);
-    Segmenter segmenter(options);
-    const std::vector<Feature>& features = segmenter.Segment(scan.View());
-    ASSERT_EQ(near_object(features, 3.0), 1);
-    int points = 0;
     for (const Feature& f : features) {
-      if (std::abs(f.range_m - 3.0) < 0.2) points = f.num_points;
+      if (std::abs(f.range_m - 3.0) < 0.2) {
+        EXPECT_EQ(f.num_points, points);
+      }
     }
-    EXPECT_EQ(points, 4);
     EXPECT_EQ(people_near(segmenter, 3.0), 1);
     EXPECT_EQ(segmenter.stats().leg_stubs, 0);
+  };
+  {
+    SCOPED_TRACE("three beams, a return on both sides: a one-leg person");
+    expect_one_leg_person(scan_of(3.0, 0.06, 0.0, false), 3);
   }
-  {  // without the rule (the default) the stub is a one-leg person
+  {
+    SCOPED_TRACE("four beams, open edge: a one-leg person");
+    expect_one_leg_person(scan_of(3.0, 0.075, 0.5 * step, true), 4);
+  }
+  {
+    SCOPED_TRACE("without the rule (the default) the stub is a one-leg person");
     options.person.single_leg_open_edge_max_points =
         SegmenterOptions{}.person.single_leg_open_edge_max_points;
-    const TestScan scan = scan_of(3.0, 0.06, 0.0, true);
-    Segmenter segmenter(options);
-    const std::vector<Feature>& features = segmenter.Segment(scan.View());
-    ASSERT_EQ(near_object(features, 3.0), 1);
-    int points = 0;
-    for (const Feature& f : features) {
-      if (std::abs(f.range_m - 3.0) < 0.2) points = f.num_points;
-    }
-    EXPECT_EQ(points, 3);
-    EXPECT_EQ(people_near(segmenter, 3.0), 1);
-    EXPECT_EQ(segmenter.stats().leg_stubs, 0);
+    expect_one_leg_person(scan_of(3.0, 0.06, 0.0, true), 3);
   }
 }
 
