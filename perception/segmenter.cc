@@ -148,10 +148,13 @@ const std::vector<Feature>& Segmenter::FindPeople() {
     c.provisional = provisional;
     c.open_edges = 2 - f.bounded_edges;
     c.num_points = f.num_points;
-    c.surface_clearance_m =
-        SurfaceClearance(f.range_m * Eigen::Vector2d(std::cos(f.bearing_rad),
-                                                     std::sin(f.bearing_rad)),
-                         lines_);
+    // Only its rule reads it (off by default): not worth a pass over the lines per candidate.
+    if (options_.person.single_leg_surface_clearance_m > 0.0) {
+      c.surface_clearance_m =
+          SurfaceClearance(f.range_m * Eigen::Vector2d(std::cos(f.bearing_rad),
+                                                       std::sin(f.bearing_rad)),
+                           lines_);
+    }
     // Flat (a leg, round, shows about 0.7: leg_features.h), with both edges unbounded.
     if (f.bounded_edges == 0 && f.leg_cluster >= 0) {
       const LegClusterRecord& r = leg_clusters_[static_cast<size_t>(f.leg_cluster)];
@@ -168,7 +171,7 @@ const std::vector<Feature>& Segmenter::FindPeople() {
   stats_.leg_candidates = static_cast<int64_t>(candidates_.size());
   // Provisional legs get the codes -2, -3, ... until they have a place among the features.
   for (size_t j = 0; j < provisional_.size(); ++j) add(provisional_[j], true, -2 - int32_t(j));
-  FindDropoutRuns();
+  if (options_.person.separate_dropout_pieces) FindDropoutRuns();
   person_detector_.Detect(candidates_, options_.person, &people_, &candidate_used_,
                           SightLinesOfScan());
   for (const PersonFeature& p : people_) stats_.people_one_leg += p.num_legs == 1;

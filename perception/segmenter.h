@@ -246,7 +246,8 @@ class Segmenter {
   std::vector<int32_t> final_index_;
   std::vector<Feature> merged_;
   std::vector<PersonFeature> people_;
-  // LegCandidate::dropout_run of every candidate (person_detection.h).
+  // LegCandidate::dropout_run of every candidate (person_detection.h); called only when
+  // person.separate_dropout_pieces reads it (else every candidate keeps -1).
   void FindDropoutRuns();
   std::vector<int32_t> ring_of_input_;
   std::vector<int32_t> piece_at_ring_;
