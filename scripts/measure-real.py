@@ -19,7 +19,16 @@ For each recording:
     slammtt-replay OUTDIR/NAME.lcm -o OUTDIR/NAME-mount.lcm --config OUTDIR/NAME.lcm.mount.yaml
     slammtt-replay OUTDIR/NAME.lcm -o OUTDIR/NAME-sensor.lcm --config OUTDIR/NAME.sensor.yaml
 --set KEY=VALUE (repeatable) adds `KEY: VALUE` to the `estimator:` section of both
-configurations (as scripts/measure-estimator.py's --set), to measure what an option costs here.
+configurations (as scripts/measure-estimator.py's --set), to measure what an option costs here;
+`segmenter.KEY=VALUE` to the `segmenter:` section.
+
+--perturbed also runs the `sensor` configuration four more times, with the estimator's floors of
+a line feature's sigmas (`lines_min_rho_sigma_m`, `lines_min_alpha_sigma_deg`) 1 % above and 1 %
+below their values, one at a time, and reports every figure's median over the five runs
+(`sensor_median`, each run in `sensor_runs`). One run's figures are not reproducible in this
+sense: such a change of 1 % moves the Mines wall spread by up to 19 % and the demo's share of
+scans with as many reported people as leg pairs by up to 12 % (docs/targets.md, "Real recordings:
+one run against five"), so a change of the method is judged by the median of five.
 
 Two configurations, no parameter chosen for a recording: `mount` is the import's file as it is
 (the README's command: the estimator's defaults, a 360-degree view of 30 m); `sensor` is that
@@ -33,6 +42,7 @@ import argparse
 import json
 import math
 import os
+import statistics
 import subprocess
 import sys
 
@@ -67,13 +77,58 @@ def run(command):
 
 
 def apply_settings(config, settings):
-    """`KEY=VALUE` settings into the configuration's `estimator:` section (values as YAML)."""
+    """`KEY=VALUE` settings into the configuration's `estimator:` section, `segmenter.KEY=VALUE`
+    into its `segmenter:` section (values as YAML)."""
     from ruamel.yaml import YAML
     yaml = YAML(typ="safe", pure=True)
-    estimator = config.setdefault("estimator", {})
     for setting in settings:
         key, _, value = setting.partition("=")
-        estimator[key] = yaml.load(value)
+        section, _, name = key.rpartition(".")
+        if section not in ("", "estimator", "segmenter"):
+            sys.exit(f"measure-real: --set {setting}: only estimator and segmenter options")
+        config.setdefault(section or "estimator", {})[name] = yaml.load(value)
+
+
+# The estimator options --perturbed moves by 1 % either way (module docstring).
+PERTURBED_OPTIONS = ("lines_min_rho_sigma_m", "lines_min_alpha_sigma_deg")
+PERTURBATION = 0.01
+
+
+def option_defaults(bin_dir):
+    """{name: default} of the estimator's numeric options (`slammtt-estimator --options-table`)."""
+    done = subprocess.run([os.path.join(bin_dir, "slammtt-estimator"), "--options-table"],
+                          capture_output=True, text=True, check=True)
+    defaults = {}
+    for line in done.stdout.splitlines():
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if len(cells) >= 2 and cells[0].startswith("`"):
+            try:
+                defaults[cells[0].strip("`")] = float(cells[1])
+            except ValueError:
+                pass
+    return defaults
+
+
+def perturbations(settings, defaults):
+    """The four extra settings lists of --perturbed: each option 1 % up, then 1 % down."""
+    given = {}
+    for setting in settings:
+        key, _, value = setting.partition("=")
+        given[key.removeprefix("estimator.")] = value
+    runs = []
+    for name in PERTURBED_OPTIONS:
+        value = float(given[name]) if name in given else defaults[name]
+        for factor in (1.0 + PERTURBATION, 1.0 - PERTURBATION):
+            runs.append([*settings, f"{name}={value * factor!r}"])
+    return runs
+
+
+def median_figures(runs):
+    """Every figure's median over the runs (the same keys; nested dicts likewise)."""
+    first = runs[0]
+    if isinstance(first, dict):
+        return {k: median_figures([r[k] for r in runs]) for k in first}
+    return statistics.median(runs)
 
 
 def write_set_config(mount_yaml, settings, path):
@@ -133,7 +188,8 @@ def sharpness_figures(log, config_path):
     return result
 
 
-def measure(bin_dir, real_dir, outdir, name, relative, kind, settings=()):
+def measure(bin_dir, real_dir, outdir, name, relative, kind, settings=(), perturbed=()):
+    """The figures of one recording; `perturbed`: the settings lists of the extra sensor runs."""
     stem = os.path.join(outdir, name)
     imported = stem + ".lcm"
     run([os.path.join(bin_dir, "slammtt-import"), "-q", os.path.join(real_dir, relative),
@@ -144,14 +200,22 @@ def measure(bin_dir, real_dir, outdir, name, relative, kind, settings=()):
     if settings:
         config_paths["mount"] = stem + ".mount-set.yaml"
         write_set_config(imported + ".mount.yaml", settings, config_paths["mount"])
+    for k, extra in enumerate(perturbed):
+        config_paths[f"sensor_{k + 1}"] = f"{stem}.sensor-{k + 1}.yaml"
+        write_sensor_config(imported + ".mount.yaml", first_scan, config_paths[f"sensor_{k + 1}"],
+                            extra)
     result = {}
-    for config in CONFIGS:
+    for config, path in config_paths.items():
         out = f"{stem}-{config}.lcm"
         run([os.path.join(bin_dir, "slammtt-replay"), "-q", "--no-timing", imported, "-o", out,
-             "--config", config_paths[config]])
+             "--config", path])
         log = figures.read_channels(out)
         result[config] = (people_figures(log) if kind == "people"
-                          else sharpness_figures(log, config_paths[config]))
+                          else sharpness_figures(log, path))
+    if perturbed:
+        runs = [result.pop(f"sensor_{k + 1}") for k in range(len(perturbed))]
+        result["sensor_runs"] = [result["sensor"], *runs]
+        result["sensor_median"] = median_figures(result["sensor_runs"])
     return result
 
 
@@ -162,7 +226,7 @@ def print_tables(results):
     print("|---|---|---|---|---|---|---|---|---|")
     for name, by_config in results.items():
         for config, f in by_config.items():
-            if "person_identities" in f:
+            if isinstance(f, dict) and "person_identities" in f:
                 print(f"| {name} | {config} | {f['minutes']:.2f} | {f['person_identities']} | "
                       f"{f['person_identities_per_minute']:.1f} | {f['mean_reported']:.2f} | "
                       f"{f['mean_pairs']:.2f} | {f['match_pairs']:.3f} | "
@@ -174,7 +238,7 @@ def print_tables(results):
     for name, by_config in results.items():
         for config, f in by_config.items():
             for trajectory in ("estimate", "odometry"):
-                if trajectory in f:
+                if isinstance(f, dict) and trajectory in f:
                     s = f[trajectory]
                     print(f"| {name} | {config} | {trajectory} | {s['wall_spread_m']:.4f} | "
                           f"{s['occupied_cells']} | {s['map_line_rms_m']:.4f} | "
@@ -189,13 +253,17 @@ def main():
                         help="the real recordings (default ../shared/data/real)")
     parser.add_argument("--json", default=None, help="default OUTDIR/real.json")
     parser.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
-                        help="an estimator option for both configurations (repeatable)")
+                        help="an estimator option (segmenter.KEY: a segmenter option) for both "
+                             "configurations (repeatable)")
+    parser.add_argument("--perturbed", action="store_true",
+                        help="four more sensor runs with two noise floors 1 %% off; medians")
     args = parser.parse_args()
     if not os.path.isdir(args.real):
         sys.exit(f"measure-real: {args.real}: no such folder (the real recordings)")
     os.makedirs(args.outdir, exist_ok=True)
+    perturbed = perturbations(args.set, option_defaults(args.bin)) if args.perturbed else ()
     results = {name: measure(args.bin, args.real, args.outdir, name, relative, kind,
-                             args.set)
+                             args.set, perturbed)
                for name, relative, kind in RECORDINGS}
     print_tables(results)
     path = args.json or os.path.join(args.outdir, "real.json")

@@ -74,13 +74,26 @@ WORSE = 1.05     # a floor is the measured figure made 5 % worse
 # 0.1000 -> 0.0975 m (sharper than raw odometry's 0.0980 again), RMS 0.0769 -> 0.0835 m, share
 # 0.976 -> 0.977. (With the anchor on: 32.2, 17.1 and 0.421, exp1 0.0928 / 0.0652 / 0.977, exp2
 # 0.0891 / 0.0748 / 0.975.) Measured by scripts/measure-real.py on the merge.
+# Until then each floor was one run's figure. One run's figure does not say how the method does
+# on the recording: with the estimator's floors of a line feature's sigmas 1 % higher or lower
+# (lines_min_rho_sigma_m 0.03 -> 0.0303 / 0.0297, lines_min_alpha_sigma_deg 1 -> 1.01 / 0.99),
+# the figures above moved to: the demo 16.2-19.0 identities per minute and 0.339-0.398
+# agreement, Mines exp1 spread 0.0919-0.0991 m and RMS 0.0586-0.0697 m, exp2 spread
+# 0.0869-0.1144 m and RMS 0.0768-0.0835 m (negative_2 25.9-27.0). A change of the method moved
+# them as much as that, either way, whatever it did. So the floors are now each figure's median
+# over five runs, the shipped configuration and those four (scripts/measure-real.py
+# --perturbed, `sensor_median`), measured on main at a505322 (the figures above in brackets: one
+# run's), made 5 % worse as before: negative_2 25.9 (25.9), the demo 18.1 (18.1) and 0.379
+# (0.384), exp1 0.0963 (0.0936) / 0.0614 (0.0586) / 0.978 (0.978), exp2 0.0965 (0.0975) / 0.0784
+# (0.0835) / 0.974 (0.977). docs/targets.md, "Real recordings: one run against five".
 MEASURED = {
-    ("negative_2", "sensor"): {"person_identities_per_minute": 25.9},
-    ("leg_tracker_demo", "sensor"): {"person_identities_per_minute": 18.1, "match_pairs": 0.384},
-    ("mines_exp1", "sensor"): {"wall_spread_m": 0.0936, "map_line_rms_m": 0.0586,
-                               "map_line_share": 0.978},
-    ("mines_exp2", "sensor"): {"wall_spread_m": 0.0975, "map_line_rms_m": 0.0835,
-                               "map_line_share": 0.977},
+    ("negative_2", "sensor_median"): {"person_identities_per_minute": 25.9},
+    ("leg_tracker_demo", "sensor_median"): {"person_identities_per_minute": 18.1,
+                                            "match_pairs": 0.379},
+    ("mines_exp1", "sensor_median"): {"wall_spread_m": 0.0963, "map_line_rms_m": 0.0614,
+                                      "map_line_share": 0.978},
+    ("mines_exp2", "sensor_median"): {"wall_spread_m": 0.0965, "map_line_rms_m": 0.0784,
+                                      "map_line_share": 0.974},
 }
 HIGHER_IS_BETTER = {"match_pairs", "map_line_share"}
 
@@ -213,10 +226,11 @@ def measured(tmp_path_factory):
                         "skipped")
     out = tmp_path_factory.mktemp("measure-real")
     done = subprocess.run([sys.executable, str(SCRIPT), str(out), "--bin", str(BIN_DIR),
-                           "--real", str(SHARED_REAL)], capture_output=True, text=True,
-                          timeout=600)
+                           "--real", str(SHARED_REAL), "--perturbed"], capture_output=True,
+                          text=True, timeout=900)
     assert done.returncode == 0, done.stderr
     assert "| leg_tracker_demo | sensor |" in done.stdout      # the table is printed
+    assert "| leg_tracker_demo | sensor_median |" in done.stdout
     return json.loads((out / "real.json").read_text())
 
 
@@ -249,6 +263,16 @@ def test_every_scan_is_measured(shared_real, measured):
             assert mount["odometry"][key] == sensor["odometry"][key]
         assert sensor["estimate"]["wall_points"] == sensor["odometry"]["wall_points"] > 50000
         assert sensor["map_lines"] > 10
+
+
+def test_the_median_is_over_five_runs_of_which_one_is_the_shipped_configuration(shared_real,
+                                                                                 measured):
+    for recording in ("negative_2", "leg_tracker_demo", "mines_exp1", "mines_exp2"):
+        runs = measured[recording]["sensor_runs"]
+        assert len(runs) == 5 and runs[0] == measured[recording]["sensor"], recording
+    # The perturbed runs are other runs: somewhere a figure differs from the shipped one's.
+    demo = measured["leg_tracker_demo"]["sensor_runs"]
+    assert any(run["match_pairs"] != demo[0]["match_pairs"] for run in demo[1:])
 
 
 def test_the_mount_file_alone_gives_the_sensors_estimate(shared_real, measured):
