@@ -102,12 +102,12 @@ TEST(PeopleTest, AStandingPersonWhoWalksOffLeavesNoStaticTrackBehind) {
   }
   ASSERT_EQ(measured[static_cast<size_t>(still_seen)], 1);
   PeopleOptions options;
-  options.taken_over_within_m = 0.5;
+  ASSERT_EQ(options.taken_over_within_m, 0.5);  // on by default
   EXPECT_EQ(PersonTracksTakenOver(measured, options, scene.state), std::vector<int>{left_behind});
   measured[static_cast<size_t>(walked_off)] = 0;
   EXPECT_TRUE(PersonTracksTakenOver(measured, options, scene.state).empty());
   measured[static_cast<size_t>(walked_off)] = 1;
-  options = PeopleOptions();  // the default: off
+  options.taken_over_within_m = 0.0;  // off
   EXPECT_TRUE(PersonTracksTakenOver(measured, options, scene.state).empty());
 }
 
