@@ -589,28 +589,42 @@ void Segmenter::FillRunPoints(size_t ring_start, size_t count, size_t offset) {
   }
 }
 
-LineFeature Segmenter::MakeLine(size_t ring_start, size_t count) {
+size_t Segmenter::FillFitPoints(const RingRun& run, size_t offset) {
+  size_t k = run.ring_start;
+  for (size_t i = 0; i < run.skip_first; ++i) k = Next(k);
+  const size_t count = run.count - run.skip_first - run.skip_last;
+  FillRunPoints(k, count, offset);
+  return count;
+}
+
+LineFeature Segmenter::MakeLine(size_t fit_count, const RingRun& first, const RingRun& last) {
   const double* x = sensor_x_.data();
   const double* y = sensor_y_.data();
-  const LineFit fit = FitLine(x, y, count, options_.sigma_r_m, options_.bearing_sigma_rad);
+  const LineFit fit = FitLine(x, y, fit_count, options_.sigma_r_m, options_.bearing_sigma_rad);
   LineFeature line;
   line.rho_m = fit.rho_m;
   line.alpha_rad = fit.alpha_rad;
   line.covariance = fit.covariance;
-  line.num_points = static_cast<int>(count);
+  line.num_points = static_cast<int>(fit_count);
   line.rms_residual_m = fit.rms_residual_m;
   const double ca = std::cos(fit.alpha_rad);
   const double sa = std::sin(fit.alpha_rad);
-  const auto project = [&](double px, double py) {
+  // The extent: the runs' end beams (a corner left out of the fit still bounds what was seen).
+  size_t last_beam = last.ring_start;
+  for (size_t i = 1; i < last.count; ++i) last_beam = Next(last_beam);
+  const auto project = [&](size_t k) {
+    double sin_a = 0.0;
+    double cos_a = 0.0;
+    SinCosSeries(beams_[k].angle_rad, &sin_a, &cos_a);
+    const double px = beams_[k].range_m * cos_a;
+    const double py = beams_[k].range_m * sin_a;
     const double e = DistanceFromLine(fit.rho_m, ca, sa, px, py);
     return Eigen::Vector2d(px - e * ca, py - e * sa);
   };
-  line.first_point_m = project(x[0], y[0]);
-  line.last_point_m = project(x[count - 1], y[count - 1]);
-  size_t k = ring_start;
-  line.first_beam_index = beams_[k].index;
-  for (size_t i = 1; i < count; ++i) k = Next(k);
-  line.last_beam_index = beams_[k].index;
+  line.first_point_m = project(first.ring_start);
+  line.last_point_m = project(last_beam);
+  line.first_beam_index = beams_[first.ring_start].index;
+  line.last_beam_index = beams_[last_beam].index;
   return line;
 }
 
@@ -624,9 +638,8 @@ bool Segmenter::TryMergeLines(size_t first, size_t second, LineFeature* merged) 
   }
   const RingRun& ra = line_runs_[first];
   const RingRun& rb = line_runs_[second];
-  FillRunPoints(ra.ring_start, ra.count, 0);
-  FillRunPoints(rb.ring_start, rb.count, ra.count);
-  const size_t n = ra.count + rb.count;
+  const size_t na = FillFitPoints(ra, 0);
+  const size_t n = na + FillFitPoints(rb, na);
   const LineFit fit = FitLine(sensor_x_.data(), sensor_y_.data(), n, options_.sigma_r_m,
                               options_.bearing_sigma_rad);
   const double ca = std::cos(fit.alpha_rad);
@@ -638,8 +651,7 @@ bool Segmenter::TryMergeLines(size_t first, size_t second, LineFeature* merged) 
       return false;
     }
   }
-  *merged = MakeLine(ra.ring_start, n);  // the points of both runs are in the buffer
-  merged->last_beam_index = b.last_beam_index;
+  *merged = MakeLine(n, ra, rb);  // the fitted points of both runs are in the buffer
   return true;
 }
 
@@ -716,20 +728,27 @@ void Segmenter::ExtractLines() {
     }
     structure_[ci] = 1;
     ++stats_.clusters_structure;
+    if (options_.line_fit_without_shared_corners) {
+      LeaveSharedCornersOutOfFits(runs_, &run_fits_);
+    } else {
+      run_fits_.resize(runs_.size());
+      for (size_t r = 0; r < runs_.size(); ++r) run_fits_[r] = {runs_[r].begin, runs_[r].end};
+    }
     size_t covered_end = 0;  // runs share their corner points: count each beam once
-    for (const PointRun& run : runs_) {
+    for (size_t r = 0; r < runs_.size(); ++r) {
+      const PointRun& run = runs_[r];
       if (!qualifies(run)) continue;
       size_t k = c.ring_start;
       for (size_t i = 0; i < run.begin; ++i) k = Next(k);
-      line_runs_.push_back(RingRun{k, run.size(), false});
+      line_runs_.push_back(RingRun{k, run.size(), run_fits_[r].fit_begin - run.begin,
+                                   run.end - run_fits_[r].fit_end, false});
       stats_.beams_on_lines +=
           static_cast<int64_t>(run.end - std::max(run.begin, std::min(covered_end, run.end)));
       covered_end = std::max(covered_end, run.end);
     }
   }
   for (const RingRun& run : line_runs_) {
-    FillRunPoints(run.ring_start, run.count, 0);
-    lines_.push_back(MakeLine(run.ring_start, run.count));
+    lines_.push_back(MakeLine(FillFitPoints(run, 0), run, run));
   }
   MergeCollinearLines();
   stats_.lines = static_cast<int64_t>(lines_.size());

@@ -193,6 +193,16 @@ class Segmenter {
     size_t ring_start;  // ring index of the first point
     size_t count;
   };
+  // The beams of a line: count beams from ring_start, of which the first skip_first and the
+  // last skip_last are in its extent but not in its fit (LeaveSharedCornersOutOfFits).
+  struct RingRun {
+    size_t ring_start;
+    size_t count;
+    size_t skip_first;
+    size_t skip_last;
+    bool merged;  // two runs joined by MergeCollinearLines()
+  };
+
   void CollectBeams(const ScanView& scan);
   void PutInCircularOrder();
   void CountGapsAndDropDuplicates();
@@ -203,7 +213,11 @@ class Segmenter {
   void FillRunPoints(size_t ring_start, size_t count, size_t offset);
   double SplitDistance(double range_m) const;
   double MeanRange(size_t count) const;  // of sensor_x_, sensor_y_ [0, count)
-  LineFeature MakeLine(size_t ring_start, size_t count);
+  // Fills sensor_x_/sensor_y_ from offset with the fitted beams of run; returns their count.
+  size_t FillFitPoints(const RingRun& run, size_t offset);
+  // The line fitted to sensor_x_/sensor_y_ [0, fit_count), its extent from the first beam of
+  // `first` to the last beam of `last` (the same run, or two merged ones).
+  LineFeature MakeLine(size_t fit_count, const RingRun& first, const RingRun& last);
   bool TryMergeLines(size_t first, size_t second, LineFeature* merged);
   void MergeCollinearLines();
   void ClassifyLoneBeam(const Cluster& cluster);
@@ -229,15 +243,11 @@ class Segmenter {
   std::vector<double> sensor_y_;
   std::vector<PointRun> runs_;
   std::vector<PointRun> run_stack_;
+  std::vector<FitRange> run_fits_;
   std::vector<uint8_t> structure_;   // structure_[c]: cluster c gave line features
   std::vector<Feature> features_;
   std::vector<Feature> provisional_; // two-point leg candidates
   std::vector<LineFeature> lines_;
-  struct RingRun {
-    size_t ring_start;
-    size_t count;
-    bool merged;  // two runs joined by MergeCollinearLines()
-  };
   std::vector<RingRun> line_runs_;   // the beams of each line, parallel to lines_
   std::vector<LegClusterRecord> leg_clusters_;
   const LegModel* leg_model_ = nullptr;

@@ -100,6 +100,8 @@ void VisitSegmenterOptions(OptionVisitor* v, SegmenterOptions* o) {
          "points of a line feature");
   v->Double("min_line_length_m", &o->min_line_length_m, R::Above(0),
             "end-to-end length of a line feature");
+  v->Bool("line_fit_without_shared_corners", &o->line_fit_without_shared_corners,
+          "the point two runs share is left out of both lines' fits (kept in their extents)");
   int leg_classifier = static_cast<int>(o->leg_classifier);
   v->Choice("leg_classifier", &leg_classifier, {"trained", "shape"},
             "`trained`: P(leg) of the learned model; `shape`: the hand-written score");

@@ -138,6 +138,11 @@ struct SegmenterOptions {
   double line_split_range_fraction = 0.005;
   int min_line_points = 5;
   double min_line_length_m = 0.4;
+  // true: a point that two neighbouring runs share (where split-and-merge split) is left out
+  // of both lines' fits, and still bounds their extents (line_extraction.h,
+  // LeaveSharedCornersOutOfFits: at an occlusion edge it is the first point on the surface
+  // behind). Which runs are lines does not change.
+  bool line_fit_without_shared_corners = false;
 
   // Leg-likeness of every point feature: the learned model's P(leg) (leg_classifier.h), or the
   // hand-written shape score (leg_likeness.h, with `leg` and this struct's sigma_r_m).

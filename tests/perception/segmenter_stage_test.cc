@@ -362,7 +362,7 @@ TEST(SegmenterStageTest, RenamedKeysNameTheirNewKey) {
 TEST(SegmenterStageTest, EveryKeyOfTheSchemaIsReadAndDocumented) {
   const std::string table = SegmenterOptionsTable();
   const std::vector<slammtt::testing::OptionsTableRow> rows = slammtt::testing::ParseOptionsTable(table);
-  ASSERT_EQ(rows.size(), 39u) << table;
+  ASSERT_EQ(rows.size(), 40u) << table;
   EXPECT_TRUE(slammtt::testing::KeysAreUnique(rows)) << "a key twice";
   for (const RenamedKey& r : RenamedSegmenterKeys()) {
     const auto named = [&](const std::string& key) {
