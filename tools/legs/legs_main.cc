@@ -353,8 +353,17 @@ void PrintCauses(const PersonCauses& c) {
       }
     }
   }
-  std::cout << "    false one-leg people " << one_leg << ":" << singles.str() << "\n"
-            << "    false pairs " << pairs << ":" << pair_text.str() << "\n"
+  std::cout << "    false one-leg people " << one_leg << ":" << singles.str() << "\n";
+  const std::vector<double>& alone = c.false_one_leg_alone_to_centre_m;
+  if (!alone.empty()) {
+    std::cout << "      on a person's leg and that person's only feature " << alone.size()
+              << " (the person missed): feature to the person's centre median "
+              << Fixed(Median(alone), 3) << " m, max "
+              << Fixed(*std::max_element(alone.begin(), alone.end()), 3)
+              << " m; the person's farther leg from its centre median "
+              << Fixed(Median(c.false_one_leg_alone_farther_leg_m), 3) << " m\n";
+  }
+  std::cout << "    false pairs " << pairs << ":" << pair_text.str() << "\n"
             << "    matched one-leg " << c.one_leg_errors_m.size() << " (centre error median "
             << Fixed(Median(c.one_leg_errors_m), 3) << " m; truth minus feature along the sight "
             << "line median " << Fixed(Median(c.one_leg_radial_m), 3) << " m, across "

@@ -139,6 +139,32 @@ LegOrigin OriginOf(const Feature& feature, const SensorFrame& frame) {
   return origin;
 }
 
+// A false one-leg person on a leg of person `person_id`: when no feature of the scan matched that
+// person (it is in the truth set), the feature was the person's only one and too far from its
+// centre; records how far, and how far the person's farther leg is from its centre.
+void AddLoneLegOfAPerson(const PersonFeature& p, int64_t person_id,
+                         const std::vector<TruthPerson>& people,
+                         const std::vector<size_t>& person_objects,
+                         const std::vector<uint8_t>& matched, const SensorFrame& frame,
+                         PersonCauses* causes) {
+  const SensorFrameOf to_sensor(frame.truth.robot.sensor_pose);
+  for (size_t j = 0; j < people.size(); ++j) {
+    const ObjectTruth& person = frame.truth.objects[person_objects[j]];
+    if (person.id != person_id || matched[j]) continue;
+    const Eigen::Vector2d at =
+        p.range_m * Eigen::Vector2d(std::cos(p.bearing_rad), std::sin(p.bearing_rad));
+    double farther_leg_m = 0.0;
+    for (const ObjectTruth& leg : frame.truth.objects) {
+      if (leg.kind == ObjectKind::kLeg && leg.parent_id == person.id) {
+        farther_leg_m =
+            std::max(farther_leg_m, (to_sensor(leg.x_m, leg.y_m) - people[j].centre_m).norm());
+      }
+    }
+    causes->false_one_leg_alone_to_centre_m.push_back((people[j].centre_m - at).norm());
+    causes->false_one_leg_alone_farther_leg_m.push_back(farther_leg_m);
+  }
+}
+
 // Adds one scan's person features to `causes` (outcome: ScorePeople's, per person feature).
 void AddCauses(const Segmenter& segmenter, const SensorFrame& frame,
                const std::vector<TruthPerson>& people, const std::vector<size_t>& person_objects,
@@ -150,11 +176,19 @@ void AddCauses(const Segmenter& segmenter, const SensorFrame& frame,
   const SensorFrameOf to_sensor(frame.truth.robot.sensor_pose);
   std::vector<uint8_t> matched(people.size(), 0);
   for (size_t i = 0; i < found.size(); ++i) {
+    if (outcome[i] >= 0) matched[static_cast<size_t>(outcome[i])] = 1;
+  }
+  for (size_t i = 0; i < found.size(); ++i) {
     const PersonFeature& p = found[i];
     if (outcome[i] == kPersonFalse) {
-      const int a = static_cast<int>(leg_of(p.leg_index[0]).source);
+      const LegOrigin origin = leg_of(p.leg_index[0]);
+      const int a = static_cast<int>(origin.source);
       if (p.num_legs == 1) {
         ++causes->false_one_leg[a];
+        if (origin.source == LegSource::kPersonLeg) {
+          AddLoneLegOfAPerson(p, origin.person_id, people, person_objects, matched, frame,
+                              causes);
+        }
       } else {
         const int b = static_cast<int>(leg_of(p.leg_index[1]).source);
         ++causes->false_pairs[std::min(a, b)][std::max(a, b)];
@@ -163,7 +197,6 @@ void AddCauses(const Segmenter& segmenter, const SensorFrame& frame,
     }
     if (outcome[i] < 0) continue;
     const size_t j = static_cast<size_t>(outcome[i]);
-    matched[j] = 1;
     const Eigen::Vector2d at = p.range_m * Eigen::Vector2d(std::cos(p.bearing_rad),
                                                            std::sin(p.bearing_rad));
     const Eigen::Vector2d error = people[j].centre_m - at;

@@ -34,6 +34,11 @@ struct PersonCauses {
   // leg, pairs by the sources of both legs ([lower][higher]).
   int64_t false_one_leg[kLegSources] = {};
   int64_t false_pairs[kLegSources][kLegSources] = {};
+  // False one-leg people on a person's leg that no feature of the scan matched: the person's
+  // only feature, placed too far from its centre (the distance from the feature to that centre,
+  // and from the farther of the person's two legs to it: a walker's trailing leg).
+  std::vector<double> false_one_leg_alone_to_centre_m;
+  std::vector<double> false_one_leg_alone_farther_leg_m;
   // Matched person features: centre errors of one-leg and two-leg people; pairs whose two legs
   // come from two different people (or a person and something else).
   std::vector<double> one_leg_errors_m;
