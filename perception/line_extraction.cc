@@ -216,10 +216,11 @@ void SplitAndMerge(const double* x_m, const double* y_m, size_t count, double sp
   runs->resize(kept + 1);
 }
 
-void LeaveSharedCornersOutOfFits(const std::vector<PointRun>& runs,
-                                 std::vector<FitRange>* fits) {
+void FitRangesOfRuns(const std::vector<PointRun>& runs, bool leave_out_shared_corners,
+                     std::vector<FitRange>* fits) {
   fits->resize(runs.size());
   for (size_t k = 0; k < runs.size(); ++k) (*fits)[k] = FitRange{runs[k].begin, runs[k].end};
+  if (!leave_out_shared_corners) return;
   for (size_t k = 0; k + 1 < runs.size(); ++k) {
     if (runs[k].end != runs[k + 1].begin + 1) continue;
     if ((*fits)[k].fit_end - (*fits)[k].fit_begin >= 3) (*fits)[k].fit_end -= 1;

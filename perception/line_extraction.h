@@ -33,7 +33,8 @@ struct LineFeature {
   // the line, sensor frame [m].
   Eigen::Vector2d first_point_m = Eigen::Vector2d::Zero();
   Eigen::Vector2d last_point_m = Eigen::Vector2d::Zero();
-  int num_points = 0;           // beams on the line
+  int num_points = 0;           // beams the line is fitted to (a run's beams but a left-out
+                                // shared corner: SegmenterOptions::line_fit_without_shared_corners)
   double rms_residual_m = 0.0;  // RMS perpendicular distance of those beams from the line
   // Input indices (positions in the scan as given) of the first and last beam of the run.
   int32_t first_beam_index = -1;
@@ -110,17 +111,19 @@ void SplitAndMerge(const double* x_m, const double* y_m, size_t count, double sp
 // SplitAndMerge leaves the point it splits at in both runs. A measured point lies on one
 // surface, and the scan cannot tell which: at an occlusion edge the first beam past the edge
 // hits the surface behind, seen obliquely a few centimetres off the nearer surface's extension
-// (office scenario: the first wall point past a 0.4 m cabinet side lies on the side's line
-// within the noise, but always on one side of it, and tilted the side's fit 2.7 degrees on every
-// seed). The fit of each run leaves such a point out: fit_begin / fit_end are the points of the
-// run that its line is fitted to. `runs` in point order as SplitAndMerge gives them; a point
-// shared by two neighbouring runs leaves the fit of each that keeps at least two points without
-// it. The runs themselves (the extent the scan saw) are not changed.
+// and always on the same side of it; at a convex corner it is the beam nearest the corner, on
+// one of the two sides. In both fits it turns the other surface's line (office scenario: such
+// points are one cause of a 0.4 m cabinet side's landmark being 2.5-3.3 degrees off on every
+// seed; docs/perception.md, "Line features"). FitRangesOfRuns gives, for each run of `runs` (in
+// point order, as SplitAndMerge gives them), the points its line is fitted to: the whole run,
+// or with leave_out_shared_corners a point shared by two neighbouring runs left out of the fit
+// of each that keeps at least two points without it. The runs themselves (the extent the scan
+// saw) are not changed.
 struct FitRange {
   size_t fit_begin = 0;
   size_t fit_end = 0;
 };
-void LeaveSharedCornersOutOfFits(const std::vector<PointRun>& runs,
-                                 std::vector<FitRange>* fits);
+void FitRangesOfRuns(const std::vector<PointRun>& runs, bool leave_out_shared_corners,
+                     std::vector<FitRange>* fits);
 
 }  // namespace slammtt

@@ -589,6 +589,12 @@ void Segmenter::FillRunPoints(size_t ring_start, size_t count, size_t offset) {
   }
 }
 
+size_t Segmenter::LastBeam(const RingRun& run) const {
+  size_t k = run.ring_start;
+  for (size_t i = 1; i < run.count; ++i) k = Next(k);
+  return k;
+}
+
 size_t Segmenter::FillFitPoints(const RingRun& run, size_t offset) {
   size_t k = run.ring_start;
   for (size_t i = 0; i < run.skip_first; ++i) k = Next(k);
@@ -610,8 +616,7 @@ LineFeature Segmenter::MakeLine(size_t fit_count, const RingRun& first, const Ri
   const double ca = std::cos(fit.alpha_rad);
   const double sa = std::sin(fit.alpha_rad);
   // The extent: the runs' end beams (a corner left out of the fit still bounds what was seen).
-  size_t last_beam = last.ring_start;
-  for (size_t i = 1; i < last.count; ++i) last_beam = Next(last_beam);
+  const size_t last_beam = LastBeam(last);
   const auto project = [&](size_t k) {
     double sin_a = 0.0;
     double cos_a = 0.0;
@@ -638,8 +643,15 @@ bool Segmenter::TryMergeLines(size_t first, size_t second, LineFeature* merged) 
   }
   const RingRun& ra = line_runs_[first];
   const RingRun& rb = line_runs_[second];
-  const size_t na = FillFitPoints(ra, 0);
-  const size_t n = na + FillFitPoints(rb, na);
+  // Two runs of one cluster that share their corner point and become one line fit it once.
+  RingRun fit_a = ra;
+  RingRun fit_b = rb;
+  if (options_.line_fit_without_shared_corners && LastBeam(ra) == rb.ring_start) {
+    fit_a.skip_last = 0;
+    fit_b.skip_first = 1;
+  }
+  const size_t na = FillFitPoints(fit_a, 0);
+  const size_t n = na + FillFitPoints(fit_b, na);
   const LineFit fit = FitLine(sensor_x_.data(), sensor_y_.data(), n, options_.sigma_r_m,
                               options_.bearing_sigma_rad);
   const double ca = std::cos(fit.alpha_rad);
@@ -728,12 +740,7 @@ void Segmenter::ExtractLines() {
     }
     structure_[ci] = 1;
     ++stats_.clusters_structure;
-    if (options_.line_fit_without_shared_corners) {
-      LeaveSharedCornersOutOfFits(runs_, &run_fits_);
-    } else {
-      run_fits_.resize(runs_.size());
-      for (size_t r = 0; r < runs_.size(); ++r) run_fits_[r] = {runs_[r].begin, runs_[r].end};
-    }
+    FitRangesOfRuns(runs_, options_.line_fit_without_shared_corners, &run_fits_);
     size_t covered_end = 0;  // runs share their corner points: count each beam once
     for (size_t r = 0; r < runs_.size(); ++r) {
       const PointRun& run = runs_[r];

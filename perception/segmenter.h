@@ -194,7 +194,7 @@ class Segmenter {
     size_t count;
   };
   // The beams of a line: count beams from ring_start, of which the first skip_first and the
-  // last skip_last are in its extent but not in its fit (LeaveSharedCornersOutOfFits).
+  // last skip_last are in its extent but not in its fit (FitRangesOfRuns).
   struct RingRun {
     size_t ring_start;
     size_t count;
@@ -213,6 +213,7 @@ class Segmenter {
   void FillRunPoints(size_t ring_start, size_t count, size_t offset);
   double SplitDistance(double range_m) const;
   double MeanRange(size_t count) const;  // of sensor_x_, sensor_y_ [0, count)
+  size_t LastBeam(const RingRun& run) const;  // ring index of the run's last beam
   // Fills sensor_x_/sensor_y_ from offset with the fitted beams of run; returns their count.
   size_t FillFitPoints(const RingRun& run, size_t offset);
   // The line fitted to sensor_x_/sensor_y_ [0, fit_count), its extent from the first beam of

@@ -140,7 +140,7 @@ struct SegmenterOptions {
   double min_line_length_m = 0.4;
   // true: a point that two neighbouring runs share (where split-and-merge split) is left out
   // of both lines' fits, and still bounds their extents (line_extraction.h,
-  // LeaveSharedCornersOutOfFits: at an occlusion edge it is the first point on the surface
+  // FitRangesOfRuns: at an occlusion edge it is the first point on the surface
   // behind). Which runs are lines does not change.
   bool line_fit_without_shared_corners = false;
 

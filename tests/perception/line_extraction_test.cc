@@ -128,7 +128,7 @@ TEST(SharedCornersTest, ThePointTwoRunsShareLeavesBothFits) {
   // Runs as SplitAndMerge gives them: [0, 11) and [10, 21) share point 10; [21, 24) shares none.
   const std::vector<PointRun> runs = {{0, 11}, {10, 21}, {21, 24}};
   std::vector<FitRange> fits;
-  LeaveSharedCornersOutOfFits(runs, &fits);
+  FitRangesOfRuns(runs, true, &fits);
   ASSERT_EQ(fits.size(), 3u);
   EXPECT_EQ(fits[0].fit_begin, 0u);
   EXPECT_EQ(fits[0].fit_end, 10u);
@@ -138,14 +138,19 @@ TEST(SharedCornersTest, ThePointTwoRunsShareLeavesBothFits) {
   EXPECT_EQ(fits[2].fit_end, 24u);
   // A run that would keep fewer than two points keeps the corner; a run between two corners
   // gives up both.
-  LeaveSharedCornersOutOfFits({{0, 2}, {1, 5}, {4, 9}}, &fits);
+  FitRangesOfRuns({{0, 2}, {1, 5}, {4, 9}}, true, &fits);
   ASSERT_EQ(fits.size(), 3u);
   EXPECT_EQ(fits[0].fit_end, 2u);
   EXPECT_EQ(fits[1].fit_begin, 2u);
   EXPECT_EQ(fits[1].fit_end, 4u);
   EXPECT_EQ(fits[2].fit_begin, 5u);
-  LeaveSharedCornersOutOfFits({}, &fits);
+  FitRangesOfRuns({}, true, &fits);
   EXPECT_TRUE(fits.empty());
+  // Without the option every run is fitted whole.
+  FitRangesOfRuns(runs, false, &fits);
+  ASSERT_EQ(fits.size(), 3u);
+  EXPECT_EQ(fits[0].fit_end, 11u);
+  EXPECT_EQ(fits[1].fit_begin, 10u);
 }
 
 // Merging joins runs that splitting cut too eagerly (a noisy point near a chord's middle).
