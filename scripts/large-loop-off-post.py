@@ -7,7 +7,9 @@ return at 330 s), per landmark (sightings off its most sighted post) and per pos
 as two or more landmarks). The labels themselves are wrong for about 2 % of features (drawn with
 the model's noise from the visible posts of seed 16's world and labelled the same way).
 
-Usage: large-loop-off-post.py REPLAY_LOG WORLD_LOG [BIN_S]
+Usage: large-loop-off-post.py REPLAY_LOG WORLD_LOG [BIN_S] [labels]
+  labels: also the share of wrong labels (features drawn with the model's noise from the posts
+          visible at every 8th scan, labelled the same way)
 """
 import math
 import os
@@ -67,3 +69,19 @@ for lid, c in per.items():
     for p, n in c.items(): bypost[p][lid] += n
 dup = [p for p, c in bypost.items() if len(c) > 1 and c.most_common(2)[1][1] >= 5]
 print(f"  posts sighted as >=2 landmarks (>=5 sightings each): {len(dup)} of {len(bypost)}")
+
+if "labels" in sys.argv[4:]:
+    rng = np.random.default_rng(0)
+    n = wrong = 0
+    for k, t in enumerate(sorted(gt)):
+        if k % 8:
+            continue
+        x, y, h = gt[t]
+        sx, sy = x + 0.1*math.cos(h), y + 0.1*math.sin(h)
+        vis = np.where(visible[t])[0]
+        rel = LM[vis] - [sx, sy]; rr = np.hypot(rel[:, 0], rel[:, 1]); bb = np.arctan2(rel[:, 1], rel[:, 0]) - h
+        for i in range(len(vis)):
+            zr = rr[i] + rng.normal(0, 0.2); zb = bb[i] + rng.normal(0, math.radians(2))
+            db = (zb - bb + np.pi) % (2*np.pi) - np.pi
+            n += 1; wrong += int(np.argmin((zr - rr)**2/0.04 + db**2/math.radians(2)**2)) != i
+    print(f"labels wrong: {wrong} of {n} features drawn from the visible posts ({100*wrong/n:.1f} %)")
