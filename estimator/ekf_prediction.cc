@@ -10,11 +10,22 @@ namespace slammtt {
 void ApplyRobotPrediction(const Eigen::Vector3d& new_pose, const Eigen::Matrix4d& jacobian,
                           const Eigen::Matrix4d& noise, SlamState* state) {
   constexpr int kR = SlamState::kRobotDim;
+  Eigen::Matrix4d f = jacobian;
+  if (state->first_estimate_jacobians() && state->has_predicted_pose()) {
+    // First-estimate Jacobians: the motion's Jacobian with respect to the heading is
+    // J (p_new - p_start) for any chain of increments (J the 90-degree rotation); with p_start
+    // the pose predicted for the previous scan instead of its updated estimate, the product of
+    // the scans' Jacobians keeps the absolute heading unobservable (Huang et al. 2008).
+    const Eigen::Vector3d& start = state->predicted_pose();
+    f(0, 2) = -(new_pose(1) - start(1));
+    f(1, 2) = new_pose(0) - start(0);
+  }
+  state->set_predicted_pose(new_pose);
   auto cov = state->covariance();
   // Rows, then columns: (F P) F^T restricted to the robot's rows and columns.
-  const Eigen::Matrix<double, kR, Eigen::Dynamic> rows = jacobian * cov.topRows(kR);
+  const Eigen::Matrix<double, kR, Eigen::Dynamic> rows = f * cov.topRows(kR);
   cov.topRows(kR) = rows;
-  const Eigen::Matrix<double, Eigen::Dynamic, kR> cols = cov.leftCols(kR) * jacobian.transpose();
+  const Eigen::Matrix<double, Eigen::Dynamic, kR> cols = cov.leftCols(kR) * f.transpose();
   cov.leftCols(kR) = cols;
   const Eigen::Matrix4d robot = cov.topLeftCorner<kR, kR>() + noise;
   cov.topLeftCorner<kR, kR>() = 0.5 * (robot + robot.transpose());

@@ -68,6 +68,15 @@ UpdateStats ApplyObservations(const std::vector<ObjectObservation>& observations
       }
       const Eigen::Vector2d predicted =
           PredictRangeBearing(robot, position, mount, &l.h_robot, &l.h_position);
+      if (state->first_estimate_jacobians() && state->has_predicted_pose() &&
+          !object.has_velocity()) {
+        // First-estimate Jacobians (slam_state.h): a static landmark's, at the pose predicted
+        // for this scan and the landmark's first estimate; the innovation at the current
+        // estimates. (An object with velocity states keeps the standard Jacobians: its first
+        // estimates would have to follow it by the model from its birth, at zero velocity.)
+        PredictRangeBearing(state->predicted_pose(), object.first_estimate_m, mount, &l.h_robot,
+                            &l.h_position);
+      }
       l.innovation = observation.measurement.range_bearing - predicted;
       l.innovation(1) = WrapAngle(l.innovation(1));
       l.r = observation.measurement.covariance;

@@ -35,7 +35,9 @@ SlamState InitialState(const EstimatorOptions& options) {
   const double drift_sigma = options.heading_drift_sigma_rad_per_m;
   Eigen::Vector3d pose = options.initial_pose;
   pose(2) = WrapAngle(pose(2));
-  return SlamState(pose, Eigen::Matrix3d::Zero(), drift_sigma * drift_sigma);
+  SlamState state(pose, Eigen::Matrix3d::Zero(), drift_sigma * drift_sigma);
+  state.set_first_estimate_jacobians(options.first_estimate_jacobians);
+  return state;
 }
 
 }  // namespace

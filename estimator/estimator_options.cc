@@ -76,6 +76,9 @@ void VisitMotionOptions(OptionVisitor* v, EstimatorOptions* o) {
             "prior sigma of the odometry's heading drift state b (0: no drift state)");
   v->Double("heading_drift_walk_var_per_m", &o->heading_drift_walk_var_per_m, R::AtLeast(0),
             "random walk of b [rad^2/m^2] per metre travelled");
+  v->Bool("first_estimate_jacobians", &o->first_estimate_jacobians,
+          "Jacobians at the first estimates (predicted pose, landmark's first position): no "
+          "heading information from the filter's own landmarks");
   v->Double("mover_acceleration_sigma_mps2", &o->mover_acceleration_sigma_mps2, R::AtLeast(0),
             "process noise sigma_Q (eq. 8) of MOVING objects");
   v->Double("undecided_acceleration_sigma_mps2", &o->undecided_acceleration_sigma_mps2,

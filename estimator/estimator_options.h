@@ -76,6 +76,11 @@ struct EstimatorOptions {
   // 0.03 % change of a wheel's size) over 100 m, the order of a tyre warming up or losing
   // pressure over a run. Ignored when the prior sigma is 0.
   double heading_drift_walk_var_per_m = 1e-8;
+  // First-estimate Jacobians (slam_state.h, docs/estimator.md): the prediction's Jacobian at
+  // the previous scan's predicted pose and a static landmark's measurement Jacobians at this
+  // scan's predicted pose and the landmark's first estimate, so that the filter gains no
+  // information on its absolute heading from its own landmarks. Off: the standard EKF.
+  bool first_estimate_jacobians = false;
   // sigma_Q of eq. 8. A MOVING object walks at a steady velocity between turns (its turns are
   // manoeuvres, below); an UNDECIDED one gets a more forgiving model while its velocity is
   // judged, so that its velocity covariance does not become overconfident about a static

@@ -87,6 +87,7 @@ int SlamState::AddObject(const Eigen::Vector2d& position,
                          const ObjectRecord& record) {
   StateObject object;
   object.position_index = AppendCorrelatedPair(position, jacobian_robot, independent_covariance);
+  object.first_estimate_m = position;
   object.record = record;
   objects_.push_back(object);
   return num_objects() - 1;
@@ -134,6 +135,8 @@ void SlamState::RemoveVelocityAssumingZero(int k) {
   // states is then the whole operation.)
   RemoveStates({v, v + 1});
   o.velocity_index = -1;
+  // A static landmark from now on: its first estimate as one is where it is now.
+  o.first_estimate_m = mean_.segment<2>(o.position_index);
 }
 
 void SlamState::AddStationaryAnchor(int k) {

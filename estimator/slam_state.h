@@ -114,6 +114,10 @@ struct StateObject {
   // when it got them (AddStationaryAnchor), -1 for none. No model moves it and no measurement
   // updates it directly; it keeps, through its correlations, where the object was then.
   int anchor_index = -1;
+  // First-estimate Jacobians (SlamState::first_estimate_jacobians): where the object was when it
+  // entered the state, or when it became a static landmark (lost its velocity states). A static
+  // landmark's measurement Jacobians are evaluated here, not at its current estimate.
+  Eigen::Vector2d first_estimate_m = Eigen::Vector2d::Zero();
   ObjectRecord record;
   bool has_velocity() const { return velocity_index >= 0; }
   bool has_anchor() const { return anchor_index >= 0; }
@@ -150,6 +154,26 @@ class SlamState {
   }
 
   Eigen::Vector3d robot_pose() const { return mean_.head<3>(); }
+
+  // First-estimate Jacobians (Huang, Mourikis and Roumeliotis, "Analysis and improvement of the
+  // consistency of extended Kalman filter based SLAM", ICRA 2008): an EKF whose Jacobians are
+  // evaluated at estimates that later updates moved gains information on the absolute heading,
+  // which no sensor of a robot seeing only its own landmarks gives (docs/estimator.md, "First-
+  // estimate Jacobians"). With this on, the prediction's Jacobian uses the pose predicted at the
+  // previous scan (not the updated one) and a static landmark's measurement Jacobians use the
+  // pose predicted for this scan and its first estimate (StateObject::first_estimate_m); the
+  // innovations still use the current estimates. Objects with velocity states keep the
+  // standard Jacobians. Off: the standard EKF.
+  bool first_estimate_jacobians() const { return first_estimate_jacobians_; }
+  void set_first_estimate_jacobians(bool on) { first_estimate_jacobians_ = on; }
+  // The robot's pose as predicted for the current scan (before its updates), once a
+  // prediction has set it (ApplyRobotPrediction).
+  bool has_predicted_pose() const { return has_predicted_pose_; }
+  const Eigen::Vector3d& predicted_pose() const { return predicted_pose_; }
+  void set_predicted_pose(const Eigen::Vector3d& pose) {
+    predicted_pose_ = pose;
+    has_predicted_pose_ = true;
+  }
   Eigen::Matrix3d robot_covariance() const { return cov_.topLeftCorner<3, 3>(); }
   // The odometry's heading drift b [rad per metre travelled] and its variance.
   double heading_drift_rad_per_m() const { return mean_(kHeadingDriftIndex); }
@@ -242,6 +266,9 @@ class SlamState {
   }
 
  private:
+  bool first_estimate_jacobians_ = false;
+  bool has_predicted_pose_ = false;
+  Eigen::Vector3d predicted_pose_ = Eigen::Vector3d::Zero();
   void Reserve(int dim);
   int AppendStates(int count);  // uninitialised mean/covariance rows; returns first index
   // Appends two states of mean `value` and error G (pose) + independent (AddObject, AddLine).

@@ -49,6 +49,8 @@ FeedbackCounts ShiftToSmoothedEstimate(const SmoothedEstimate& smoothed,
   counts.heading_shift_rad = WrapAngle(pose_now(2) - before(2));
   mean.head<2>() = pose_now.head<2>();
   mean(2) = WrapAngle(pose_now(2));
+  // The smoother's estimate is a new linearisation point (first-estimate Jacobians).
+  state->set_predicted_pose(mean.head<3>());
   for (const auto& [id, position] : smoothed.landmarks) {
     const auto it = index_of.find(id);
     if (it != index_of.end()) {
@@ -56,6 +58,7 @@ FeedbackCounts ShiftToSmoothedEstimate(const SmoothedEstimate& smoothed,
       counts.largest_landmark_shift_m =
           std::max(counts.largest_landmark_shift_m, (position - mean.segment<2>(p)).norm());
       mean.segment<2>(p) = position;
+      state->object(it->second).first_estimate_m = position;
       ++counts.landmarks_moved;
     } else if (archive != nullptr && archive->MoveLandmark(id, position)) {
       ++counts.archived_moved;

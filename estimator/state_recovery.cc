@@ -33,7 +33,9 @@ RecoveryOutcome RecoverFiniteState(const Eigen::Vector3d& last_pose,
   const std::vector<int> bad = NonFiniteStates(*state);
   if (bad.empty()) return outcome;
   if (bad.front() < SlamState::kRobotDim) {
+    const bool first_estimates = state->first_estimate_jacobians();
     *state = SlamState(last_pose, last_pose_covariance, heading_drift_variance);
+    state->set_first_estimate_jacobians(first_estimates);
     outcome.robot_reset = true;
     return outcome;
   }
