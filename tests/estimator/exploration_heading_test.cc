@@ -16,6 +16,7 @@
 #include "estimator/landmark_window.h"
 #include "estimator/range_bearing_model.h"
 #include "estimator/slam_state.h"
+#include "tests/estimator/landmark_from_measurement.h"
 
 namespace slammtt {
 namespace {
@@ -88,13 +89,8 @@ Exploration Explore(double length_m, double visible_m, bool reobserve, bool firs
           true_range_bearing + Eigen::Vector2d(0.2 * normal(rng), bearing_sigma * normal(rng));
       z.covariance = r;
       if (id_of[i] < 0) {
-        Eigen::Matrix<double, 2, 3> g_robot;
-        Eigen::Matrix2d g_measurement;
-        const Eigen::Vector2d point = PointFromRangeBearing(state.robot_pose(), z.range_bearing,
-                                                            mount, &g_robot, &g_measurement);
         id_of[i] = static_cast<int64_t>(i);
-        state.AddObject(point, g_robot, g_measurement * r * g_measurement.transpose(),
-                        ConfirmedStaticLandmark(id_of[i]));
+        AddLandmarkFromMeasurement(z, mount, ConfirmedStaticLandmark(id_of[i]), &state);
         continue;
       }
       if (!reobserve) continue;

@@ -14,6 +14,7 @@
 #include "estimator/ekf_update.h"
 #include "estimator/range_bearing_model.h"
 #include "estimator/slam_state.h"
+#include "tests/estimator/landmark_from_measurement.h"
 
 namespace slammtt {
 namespace {
@@ -83,12 +84,7 @@ DriveOutcome Drive(Path path, double true_drift_rad_per_m, double prior_sigma_ra
       z.range_bearing = true_range_bearing + Eigen::Vector2d(0.03 * normal(rng), 0.01 * normal(rng));
       z.covariance = r;
       if (object_of[i] < 0) {
-        Eigen::Matrix<double, 2, 3> g_robot;
-        Eigen::Matrix2d g_measurement;
-        const Eigen::Vector2d point = PointFromRangeBearing(state.robot_pose(), z.range_bearing,
-                                                            mount, &g_robot, &g_measurement);
-        object_of[i] = state.AddObject(point, g_robot, g_measurement * r * g_measurement.transpose(),
-                                       ObjectRecord{});
+        object_of[i] = AddLandmarkFromMeasurement(z, mount, ObjectRecord{}, &state);
         continue;
       }
       observations.push_back(ObjectObservation{object_of[i], z});
