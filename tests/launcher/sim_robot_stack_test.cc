@@ -8,12 +8,14 @@
 #include <dirent.h>
 #include <signal.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <fstream>
 #include <iostream>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <thread>
 #include <vector>
@@ -22,7 +24,9 @@
 
 #include "runtime/lcm_io.h"
 #include "runtime/log_reader.h"
+#include "slammtt_msgs/ground_truth_t.hpp"
 #include "slammtt_msgs/odometry_t.hpp"
+#include "slammtt_msgs/pose_t.hpp"
 #include "tests/support/child_process.h"
 
 namespace slammtt {
@@ -101,12 +105,24 @@ TEST(SimRobotStackTest, TeleopDrivesTheSimulatedRobotAndEvalScoresTheRecordedRun
   ASSERT_FALSE(log.empty()) << launch_output;
   std::map<std::string, int> counts;
   std::vector<slammtt_msgs::odometry_t> odometry;
+  std::vector<int64_t> truth_utimes;
+  std::set<int64_t> pose_utimes;
   LogReader reader(log);
   while (auto event = reader.Next()) {
     ++counts[event->channel];
-    if (event->channel != "ODOMETRY") continue;
-    odometry.emplace_back();
-    ASSERT_TRUE(Decode(event->data.data(), static_cast<int>(event->data.size()), &odometry.back()));
+    const int size = static_cast<int>(event->data.size());
+    if (event->channel == "GROUND_TRUTH") {
+      slammtt_msgs::ground_truth_t truth;
+      ASSERT_TRUE(Decode(event->data.data(), size, &truth));
+      truth_utimes.push_back(truth.utime);
+    } else if (event->channel == "POSE") {
+      slammtt_msgs::pose_t pose;
+      ASSERT_TRUE(Decode(event->data.data(), size, &pose));
+      pose_utimes.insert(pose.utime);
+    } else if (event->channel == "ODOMETRY") {
+      odometry.emplace_back();
+      ASSERT_TRUE(Decode(event->data.data(), size, &odometry.back()));
+    }
   }
   // One GROUND_TRUTH for every LASER_SCAN the logger heard: the robot answers each scan at
   // once and outlives the logger (the last scan's truth may come as the logger stops).
@@ -126,9 +142,18 @@ TEST(SimRobotStackTest, TeleopDrivesTheSimulatedRobotAndEvalScoresTheRecordedRun
   std::cout << eval.out;  // the figures of this run, for the record
   const nlohmann::json report = nlohmann::json::parse(ReadWholeFile(report_path));
   const nlohmann::json& detail = report.at("detail");
-  // Every ground-truth scan has the estimator's POSE of the same utime.
-  EXPECT_EQ(detail.at("robot").at("scans").get<int>(),
-            detail.at("input").at("ground_truth_scans").get<int>());
+  // Every ground-truth scan has the estimator's POSE of the same utime, but perhaps the last:
+  // the logger may record the last scan's truth as the launcher stops the estimator (the race
+  // of the counts above; seen once: 225 of 226 scans placed, the one without POSE the last).
+  ASSERT_FALSE(truth_utimes.empty());
+  const int64_t last_truth = *std::max_element(truth_utimes.begin(), truth_utimes.end());
+  int without_pose = 0;
+  for (int64_t utime : truth_utimes) {
+    without_pose += utime != last_truth && pose_utimes.count(utime) == 0;
+  }
+  EXPECT_EQ(without_pose, 0);
+  EXPECT_GE(detail.at("robot").at("scans").get<int>(),
+            detail.at("input").at("ground_truth_scans").get<int>() - 1);
   // Measured on this test (office seed 1, 7 runs while other builds loaded the machine): ATE
   // RMSE 0.008-0.013 m, the base's odometry 0.001-0.002 m (the office's wheel slip is small).
   // The bound, about 2.5 times that, leaves room for scheduling delays (a late world step or a
