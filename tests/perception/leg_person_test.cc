@@ -121,11 +121,16 @@ LegCandidate Leg(double x, double y, double likeness, int32_t index, bool provis
   return c;
 }
 
-TEST(PersonDetectorTest, PairsCloseLegsAndKeepsSingleLegs) {
+// A detector and the buffers of its output; each test sets the options it measures.
+class PersonDetectorTest : public ::testing::Test {
+ protected:
   PersonDetector detector;
-  const PersonDetectionOptions options;
+  PersonDetectionOptions options;
   std::vector<PersonFeature> people;
   std::vector<uint8_t> used;
+};
+
+TEST_F(PersonDetectorTest, PairsCloseLegsAndKeepsSingleLegs) {
   // Person A: legs 0.25 m apart at 2 m; a lone leg 2 m to the left.
   detector.Detect({Leg(2.0, 0.125, 0.9, 0), Leg(2.0, -0.125, 0.8, 1), Leg(0.0, 2.0, 0.9, 2)},
                   options, &people, &used);
@@ -176,12 +181,8 @@ SightScan MakeSightScan(const std::vector<std::array<double, 3>>& nearer) {
   return scan;
 }
 
-TEST(PersonDetectorTest, OneLegCentreLiesWhereTheOtherLegCanHide) {
-  PersonDetector detector;
-  PersonDetectionOptions options;
+TEST_F(PersonDetectorTest, OneLegCentreLiesWhereTheOtherLegCanHide) {
   options.hidden_leg_centre = true;
-  std::vector<PersonFeature> people;
-  std::vector<uint8_t> used;
   // A lone leg (radius 0.06 m) at 2 m, bearing 0: its shadow is the only place the scan does
   // not see, so the other leg is behind it and the body beyond the leg along the sight line.
   const double half_deg = std::atan(0.06 / 2.0) / kDeg;
@@ -224,11 +225,7 @@ TEST(PersonDetectorTest, OneLegCentreLiesWhereTheOtherLegCanHide) {
   EXPECT_NEAR(people[0].range_m, 2.0, 1e-9);
 }
 
-TEST(PersonDetectorTest, SeparationBoundsAndGreedyPairing) {
-  PersonDetector detector;
-  const PersonDetectionOptions options;
-  std::vector<PersonFeature> people;
-  std::vector<uint8_t> used;
+TEST_F(PersonDetectorTest, SeparationBoundsAndGreedyPairing) {
   // Two legs 0.8 m apart: two single-leg people, not one.
   detector.Detect({Leg(2.0, 0.4, 0.9, 0), Leg(2.0, -0.4, 0.9, 1)}, options, &people, &used);
   ASSERT_EQ(people.size(), 2u);
@@ -249,11 +246,7 @@ TEST(PersonDetectorTest, SeparationBoundsAndGreedyPairing) {
   EXPECT_EQ(used[2], 0);
 }
 
-TEST(PersonDetectorTest, ProvisionalLegsOnlyJoinARealLeg) {
-  PersonDetector detector;
-  const PersonDetectionOptions options;
-  std::vector<PersonFeature> people;
-  std::vector<uint8_t> used;
+TEST_F(PersonDetectorTest, ProvisionalLegsOnlyJoinARealLeg) {
   detector.Detect({Leg(4.0, 0.1, 0.9, -2, true), Leg(4.0, -0.1, 0.9, -3, true)}, options, &people,
                   &used);
   EXPECT_TRUE(people.empty());
@@ -262,11 +255,7 @@ TEST(PersonDetectorTest, ProvisionalLegsOnlyJoinARealLeg) {
   EXPECT_EQ(people[0].num_legs, 2);
 }
 
-TEST(PersonDetectorTest, SurfacePiecesMakeNoPersonAloneAndNoPairTogether) {
-  PersonDetector detector;
-  const PersonDetectionOptions options;
-  std::vector<PersonFeature> people;
-  std::vector<uint8_t> used;
+TEST_F(PersonDetectorTest, SurfacePiecesMakeNoPersonAloneAndNoPairTogether) {
   LegCandidate piece = Leg(3.0, 0.0, 0.95, 0);
   piece.surface_piece = true;
   LegCandidate other_piece = Leg(3.0, 0.3, 0.95, 1);
@@ -283,12 +272,8 @@ TEST(PersonDetectorTest, SurfacePiecesMakeNoPersonAloneAndNoPairTogether) {
   EXPECT_EQ(people[0].num_legs, 2);
 }
 
-TEST(PersonDetectorTest, ALegRightInFrontOfASurfaceMakesNoPersonAlone) {
-  PersonDetector detector;
-  PersonDetectionOptions options;
+TEST_F(PersonDetectorTest, ALegRightInFrontOfASurfaceMakesNoPersonAlone) {
   options.single_leg_surface_clearance_m = 0.2;
-  std::vector<PersonFeature> people;
-  std::vector<uint8_t> used;
   LegCandidate against = Leg(3.0, 0.0, 0.95, 0);
   against.surface_clearance_m = 0.12;  // no room behind it for the other leg
   LegCandidate clear = Leg(0.0, 3.0, 0.95, 1);
@@ -309,12 +294,8 @@ TEST(PersonDetectorTest, ALegRightInFrontOfASurfaceMakesNoPersonAlone) {
   EXPECT_EQ(people.size(), 1u);
 }
 
-TEST(PersonDetectorTest, PiecesOfOneDropoutRunMakeNoPerson) {
-  PersonDetector detector;
-  PersonDetectionOptions options;
+TEST_F(PersonDetectorTest, PiecesOfOneDropoutRunMakeNoPerson) {
   options.separate_dropout_pieces = true;
-  std::vector<PersonFeature> people;
-  std::vector<uint8_t> used;
   LegCandidate a = Leg(3.0, 0.0, 0.95, 0);
   LegCandidate b = Leg(3.0, 0.3, 0.95, 1);
   LegCandidate c = Leg(3.0, 0.6, 0.95, 2);
@@ -333,12 +314,8 @@ TEST(PersonDetectorTest, PiecesOfOneDropoutRunMakeNoPerson) {
   EXPECT_EQ(people.size(), 2u);
 }
 
-TEST(PersonDetectorTest, AShortLegWithAnOpenEdgeIsAStub) {
-  PersonDetector detector;
-  PersonDetectionOptions options;
+TEST_F(PersonDetectorTest, AShortLegWithAnOpenEdgeIsAStub) {
   options.single_leg_open_edge_max_points = 3;
-  std::vector<PersonFeature> people;
-  std::vector<uint8_t> used;
   LegCandidate stub = Leg(3.0, 0.0, 0.95, 0);
   stub.num_points = 3;
   stub.open_edges = 1;
@@ -364,10 +341,7 @@ TEST(PersonDetectorTest, AShortLegWithAnOpenEdgeIsAStub) {
   EXPECT_EQ(used, (std::vector<uint8_t>{1}));
 }
 
-TEST(PersonDetectorTest, NonFiniteCandidatesAreSkipped) {
-  PersonDetector detector;
-  std::vector<PersonFeature> people;
-  std::vector<uint8_t> used;
+TEST_F(PersonDetectorTest, NonFiniteCandidatesAreSkipped) {
   LegCandidate nan_leg = Leg(2.0, 0.1, 0.9, 0);
   nan_leg.range_m = std::nan("");
   detector.Detect({nan_leg, Leg(2.0, -0.1, 0.9, 1)}, PersonDetectionOptions{}, &people, &used);
@@ -376,7 +350,7 @@ TEST(PersonDetectorTest, NonFiniteCandidatesAreSkipped) {
   EXPECT_TRUE(people[0].covariance.allFinite());
 }
 
-TEST(PersonDetectorTest, CovarianceConversionsRoundTrip) {
+TEST_F(PersonDetectorTest, CovarianceConversionsRoundTrip) {
   Eigen::Matrix2d polar;
   polar << 0.01, 0.001, 0.001, 0.0004;
   const double r = 3.0, b = 0.7;
