@@ -581,12 +581,17 @@ void Segmenter::FillRunPoints(size_t ring_start, size_t count, size_t offset) {
   }
   size_t k = ring_start;
   for (size_t i = offset; i < offset + count; ++i, k = Next(k)) {
-    double sin_a = 0.0;
-    double cos_a = 0.0;
-    SinCosSeries(beams_[k].angle_rad, &sin_a, &cos_a);
-    sensor_x_[i] = beams_[k].range_m * cos_a;
-    sensor_y_[i] = beams_[k].range_m * sin_a;
+    const Eigen::Vector2d point = BeamPoint(k);
+    sensor_x_[i] = point.x();
+    sensor_y_[i] = point.y();
   }
+}
+
+Eigen::Vector2d Segmenter::BeamPoint(size_t k) const {
+  double sin_a = 0.0;
+  double cos_a = 0.0;
+  SinCosSeries(beams_[k].angle_rad, &sin_a, &cos_a);
+  return beams_[k].range_m * Eigen::Vector2d(cos_a, sin_a);
 }
 
 size_t Segmenter::LastBeam(const RingRun& run) const {
@@ -618,13 +623,9 @@ LineFeature Segmenter::MakeLine(size_t fit_count, const RingRun& first, const Ri
   // The extent: the runs' end beams (a corner left out of the fit still bounds what was seen).
   const size_t last_beam = LastBeam(last);
   const auto project = [&](size_t k) {
-    double sin_a = 0.0;
-    double cos_a = 0.0;
-    SinCosSeries(beams_[k].angle_rad, &sin_a, &cos_a);
-    const double px = beams_[k].range_m * cos_a;
-    const double py = beams_[k].range_m * sin_a;
-    const double e = DistanceFromLine(fit.rho_m, ca, sa, px, py);
-    return Eigen::Vector2d(px - e * ca, py - e * sa);
+    const Eigen::Vector2d p = BeamPoint(k);
+    const double e = DistanceFromLine(fit.rho_m, ca, sa, p.x(), p.y());
+    return Eigen::Vector2d(p.x() - e * ca, p.y() - e * sa);
   };
   line.first_point_m = project(first.ring_start);
   line.last_point_m = project(last_beam);

@@ -211,6 +211,7 @@ class Segmenter {
   void CountDepthEdges();
   bool ExplainedByCircle(size_t count, double lines_rms_m, size_t runs) const;
   void FillRunPoints(size_t ring_start, size_t count, size_t offset);
+  Eigen::Vector2d BeamPoint(size_t k) const;  // ring beam k in the sensor frame
   double SplitDistance(double range_m) const;
   double MeanRange(size_t count) const;  // of sensor_x_, sensor_y_ [0, count)
   size_t LastBeam(const RingRun& run) const;  // ring index of the run's last beam
