@@ -31,6 +31,20 @@ struct SensorFrameOf {
   double x, y, c, s;
 };
 
+// The legs of person `person_id` among the truth's objects.
+std::vector<const ObjectTruth*> LegsOf(const TruthSnapshot& truth, int64_t person_id) {
+  std::vector<const ObjectTruth*> legs;
+  for (const ObjectTruth& o : truth.objects) {
+    if (o.kind == ObjectKind::kLeg && o.parent_id == person_id) legs.push_back(&o);
+  }
+  return legs;
+}
+
+// A person feature's centre in the sensor frame.
+Eigen::Vector2d CentreOf(const PersonFeature& p) {
+  return p.range_m * Eigen::Vector2d(std::cos(p.bearing_rad), std::sin(p.bearing_rad));
+}
+
 // People with the beams of their most visible leg, and the static surfaces, in the sensor
 // frame; person_objects[i]: the index of people[i] in truth.objects.
 void TruthInSensorFrame(const TruthSnapshot& truth, std::vector<TruthPerson>* people,
@@ -45,10 +59,8 @@ void TruthInSensorFrame(const TruthSnapshot& truth, std::vector<TruthPerson>* pe
     person_objects->push_back(i);
     TruthPerson person;
     person.centre_m = to_sensor(o.x_m, o.y_m);
-    for (const ObjectTruth& leg : truth.objects) {
-      if (leg.kind == ObjectKind::kLeg && leg.parent_id == o.id) {
-        person.max_leg_beams = std::max(person.max_leg_beams, leg.beams_on_object);
-      }
+    for (const ObjectTruth* leg : LegsOf(truth, o.id)) {
+      person.max_leg_beams = std::max(person.max_leg_beams, leg->beams_on_object);
     }
     people->push_back(person);
   }
@@ -151,16 +163,12 @@ void AddLoneLegOfAPerson(const PersonFeature& p, int64_t person_id,
   for (size_t j = 0; j < people.size(); ++j) {
     const ObjectTruth& person = frame.truth.objects[person_objects[j]];
     if (person.id != person_id || matched[j]) continue;
-    const Eigen::Vector2d at =
-        p.range_m * Eigen::Vector2d(std::cos(p.bearing_rad), std::sin(p.bearing_rad));
     double farther_leg_m = 0.0;
-    for (const ObjectTruth& leg : frame.truth.objects) {
-      if (leg.kind == ObjectKind::kLeg && leg.parent_id == person.id) {
-        farther_leg_m =
-            std::max(farther_leg_m, (to_sensor(leg.x_m, leg.y_m) - people[j].centre_m).norm());
-      }
+    for (const ObjectTruth* leg : LegsOf(frame.truth, person.id)) {
+      farther_leg_m =
+          std::max(farther_leg_m, (to_sensor(leg->x_m, leg->y_m) - people[j].centre_m).norm());
     }
-    causes->false_one_leg_alone_to_centre_m.push_back((people[j].centre_m - at).norm());
+    causes->false_one_leg_alone_to_centre_m.push_back((people[j].centre_m - CentreOf(p)).norm());
     causes->false_one_leg_alone_farther_leg_m.push_back(farther_leg_m);
   }
 }
@@ -197,21 +205,15 @@ void AddCauses(const Segmenter& segmenter, const SensorFrame& frame,
     }
     if (outcome[i] < 0) continue;
     const size_t j = static_cast<size_t>(outcome[i]);
-    const Eigen::Vector2d at = p.range_m * Eigen::Vector2d(std::cos(p.bearing_rad),
-                                                           std::sin(p.bearing_rad));
+    const Eigen::Vector2d at = CentreOf(p);
     const Eigen::Vector2d error = people[j].centre_m - at;
     const ObjectTruth& person = frame.truth.objects[person_objects[j]];
     if (p.num_legs == 2) {
       causes->pair_errors_m.push_back(error.norm());
+      const std::vector<const ObjectTruth*> legs = LegsOf(frame.truth, person.id);
       Eigen::Vector2d legs_sum = Eigen::Vector2d::Zero();
-      int legs = 0;
-      for (const ObjectTruth& leg : frame.truth.objects) {
-        if (leg.kind == ObjectKind::kLeg && leg.parent_id == person.id) {
-          legs_sum += to_sensor(leg.x_m, leg.y_m);
-          ++legs;
-        }
-      }
-      if (legs == 2) {
+      for (const ObjectTruth* leg : legs) legs_sum += to_sensor(leg->x_m, leg->y_m);
+      if (legs.size() == 2) {
         causes->pair_errors_to_legs_m.push_back((0.5 * legs_sum - at).norm());
         causes->pair_body_to_legs_m.push_back((0.5 * legs_sum - people[j].centre_m).norm());
       }
@@ -227,10 +229,8 @@ void AddCauses(const Segmenter& segmenter, const SensorFrame& frame,
     causes->one_leg_radial_m.push_back(error.dot(along));
     causes->one_leg_lateral_m.push_back(along.x() * error.y() - along.y() * error.x());
     int fewest = 1 << 30;
-    for (const ObjectTruth& leg : frame.truth.objects) {
-      if (leg.kind == ObjectKind::kLeg && leg.parent_id == person.id) {
-        fewest = std::min(fewest, leg.beams_on_object);
-      }
+    for (const ObjectTruth* leg : LegsOf(frame.truth, person.id)) {
+      fewest = std::min(fewest, leg->beams_on_object);
     }
     causes->one_leg_other_hidden += fewest < 3;
   }
