@@ -346,6 +346,13 @@ std::vector<StaticObservation> Estimator::ManageTracks(ScanInProgress* s) {
   std::vector<int> removed = PersonTracksTakenOver(s->assignment.ObjectsMeasured(),
                                                    options_.people, state_);
   s->counts->person_tracks_taken_over = static_cast<int>(removed.size());
+  // One person moving between two tracks: the one that took this scan's measurement stays.
+  const std::vector<int> in_turn = PersonTracksMeasuredInTurn(s->assignment.ObjectsMeasured(),
+                                                              options_.people, state_);
+  s->counts->person_tracks_measured_in_turn = static_cast<int>(in_turn.size());
+  for (int j : in_turn) {
+    if (std::find(removed.begin(), removed.end(), j) == removed.end()) removed.push_back(j);
+  }
   removed.insert(removed.end(), taken_over.begin(), taken_over.end());
   // The measurements of confirmed static landmarks, taken while the assignment's object indices
   // are still those of the state (pruning and new objects renumber them).

@@ -16,6 +16,10 @@ void VisitPeopleOptions(OptionVisitor* v, PeopleOptions* o) {
             "no person track is born closer than this to another (0: off)");
   v->Double("taken_over_within_m", &o->taken_over_within_m, R::AtLeast(0),
             "an unmeasured STATIC person this near a measured MOVING one goes (0: off)");
+  v->Double("measured_in_turn_within_m", &o->measured_in_turn_within_m, R::AtLeast(0),
+            "two person tracks this near that are measured in turn are one person (0: off)");
+  v->Int("measured_in_turn_window_scans", &o->measured_in_turn_window_scans, R::Between(3, 32),
+         "... judged over this many scans");
   v->Double("taken_over_born_within_s", &o->taken_over_born_within_s, R::AtLeast(0),
             "... born at most this long before the STATIC one's last measurement");
   v->Double("report_pair_births_confidence", &o->report_pair_births_confidence, R::Between(0, 1),
@@ -116,6 +120,54 @@ std::vector<int> PersonTracksTakenOver(const std::vector<uint8_t>& measured,
     }
   }
   return taken_over;
+}
+
+namespace {
+
+// Whether the measurements of the last `window` scans went from one track to the other and back
+// (bit 0 the newest scan; `a` and `b` never set together).
+bool MeasuredInTurn(uint32_t a, uint32_t b, int window) {
+  int owner = 0;  // 1: a, 2: b, 0: none yet
+  int changes = 0;
+  for (int bit = window - 1; bit >= 0; --bit) {
+    const int now = (a >> bit) & 1u ? 1 : ((b >> bit) & 1u ? 2 : 0);
+    if (now == 0) continue;
+    if (owner != 0 && now != owner) ++changes;
+    owner = now;
+  }
+  return changes >= 2;
+}
+
+}  // namespace
+
+std::vector<int> PersonTracksMeasuredInTurn(const std::vector<uint8_t>& measured,
+                                            const PeopleOptions& options, const SlamState& state) {
+  std::vector<int> unmeasured;
+  if (!(options.measured_in_turn_within_m > 0.0)) return unmeasured;
+  const int window = options.measured_in_turn_window_scans;
+  const uint32_t mask = window >= 32 ? ~0u : ((1u << window) - 1u);
+  for (int j = 0; j < state.num_objects(); ++j) {
+    const ObjectRecord& a = state.object(j).record;
+    if (measured[static_cast<size_t>(j)] || a.kind != ObjectKind::kPerson ||
+        (a.recent_scans & mask) != mask) {
+      continue;
+    }
+    for (int m = 0; m < state.num_objects(); ++m) {
+      const ObjectRecord& b = state.object(m).record;
+      if (!measured[static_cast<size_t>(m)] || b.kind != ObjectKind::kPerson ||
+          (b.recent_scans & mask) != mask) {
+        continue;
+      }
+      const uint32_t hits_a = a.recent_hits & mask;
+      const uint32_t hits_b = b.recent_hits & mask;
+      if ((hits_a & hits_b) != 0u || !MeasuredInTurn(hits_a, hits_b, window)) continue;
+      if ((state.position(m) - state.position(j)).norm() <= options.measured_in_turn_within_m) {
+        unmeasured.push_back(j);
+        break;
+      }
+    }
+  }
+  return unmeasured;
 }
 
 }  // namespace slammtt

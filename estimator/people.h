@@ -75,6 +75,10 @@ struct PeopleOptions {
   double min_separation_m = 0.4;      // no person track is born closer to another (see above)
   double taken_over_within_m = 0.5;   // a standing track this near a measured walker goes
   double taken_over_born_within_s = 1.0;  // ... born at most this long before its last hit
+  // Two person tracks this near, measured in turn, are one person (see
+  // PersonTracksMeasuredInTurn); 0: off.
+  double measured_in_turn_within_m = 1.0;
+  int measured_in_turn_window_scans = 10;  // ... over this many scans
   // A new person track is reported in the scan it is born in when the person feature that
   // started it is two legs paired with at least this confidence (see ReportedAtBirth); 0: off.
   double report_pair_births_confidence = 0.85;
@@ -128,6 +132,16 @@ bool TooCloseToAPerson(const Eigen::Vector2d& point_m, const PeopleOptions& opti
 // PERSON or of class MOVING.
 bool BesideAPersonOrMover(const Eigen::Vector2d& point_m, const PeopleOptions& options,
                           const SlamState& state);
+
+// Two person tracks within measured_in_turn_within_m of each other, both alive over the last
+// measured_in_turn_window_scans scans, never measured in the same scan of them and measured in
+// turn (the measurements went from one to the other and back at least once), where one got a
+// measurement this scan and the other did not: one person who moves between two tracks that
+// each take the measurements near them (a person pacing on the spot, each track STATIC; two
+// people side by side give two person features in most scans and both tracks are measured
+// together). Returns the unmeasured ones, increasing.
+std::vector<int> PersonTracksMeasuredInTurn(const std::vector<uint8_t>& measured,
+                                            const PeopleOptions& options, const SlamState& state);
 
 // The STATIC person tracks that a MOVING person track took over (see above), increasing.
 // `measured`: per object of the state, whether it got a measurement this scan.

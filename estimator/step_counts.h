@@ -21,6 +21,7 @@ struct StepCounts {
   int objects_refused = 0;      // by the object cap
   int person_births_joined = 0;  // person features too near a person track to start one
   int person_tracks_taken_over = 0;  // standing person tracks a walker took over (people.h)
+  int person_tracks_measured_in_turn = 0;  // person tracks one person moved between (people.h)
   int pruned = 0;
   int landmarks_archived = 0;   // left the state for the archive (landmark_window.h)
   int landmarks_restored = 0;   // came back from it

@@ -111,6 +111,61 @@ TEST(PeopleTest, AStandingPersonWhoWalksOffLeavesNoStaticTrackBehind) {
   EXPECT_TRUE(PersonTracksTakenOver(measured, options, scene.state).empty());
 }
 
+// One person paces between two person tracks 0.6 m apart, each taking the measurements near it:
+// over the last 10 scans they were never measured together and the measurements went from one
+// to the other and back; this scan measured `pacing_b`, so `pacing_a` goes. Two people side by
+// side (measured together in some scan), a pair whose measurements moved from one to the other
+// only once (one hid the other), a pair farther apart than measured_in_turn_within_m, a pair
+// of which one is no person, a track younger than the window, and everything with the option
+// 0, stay.
+TEST(PeopleTest, TwoPersonTracksMeasuredInTurnAreOnePerson) {
+  StepScene scene;
+  const auto person = [&](const Eigen::Vector2d& position, uint32_t recent_hits) {
+    const int k = scene.AddLandmark(position, 0.05);
+    ObjectRecord& r = scene.state.object(k).record;
+    r.kind = ObjectKind::kPerson;
+    r.recent_scans = 0xFFFFu;
+    r.recent_hits = recent_hits;
+    return k;
+  };
+  // Bit 0 is this scan. Measured in turn: b a a b b . a . b b (newest first).
+  const int pacing_a = person({4.0, 0.0}, 0b0001000110u);
+  const int pacing_b = person({4.6, 0.0}, 0b1100100001u);
+  // Side by side: measured together in scan 2.
+  const int side_a = person({0.0, 4.0}, 0b0000010110u);
+  person({0.6, 4.0}, 0b1100100101u);
+  // One hid the other from scan 5 on: from one track to the other once.
+  const int hidden = person({0.0, -4.0}, 0b1111000000u);
+  person({0.6, -4.0}, 0b0000011111u);
+  // Farther apart than 1 m.
+  const int far = person({-4.0, 0.0}, 0b0001000110u);
+  person({-2.8, 0.0}, 0b1100100001u);
+  // Not a person.
+  const int post = scene.AddLandmark({6.0, 6.0}, 0.05);
+  scene.state.object(post).record.recent_scans = 0xFFFFu;
+  scene.state.object(post).record.recent_hits = 0b0001000110u;
+  person({6.6, 6.0}, 0b1100100001u);
+  // Younger than the window.
+  const int young = person({-6.0, 6.0}, 0b0001000110u);
+  scene.state.object(young).record.recent_scans = 0x1FFu;
+  person({-6.6, 6.0}, 0b1100100001u);
+  std::vector<uint8_t> measured(static_cast<size_t>(scene.state.num_objects()), 0);
+  for (int k = 0; k < scene.state.num_objects(); ++k) {
+    measured[static_cast<size_t>(k)] = scene.state.object(k).record.recent_hits & 1u;
+  }
+  ASSERT_EQ(measured[static_cast<size_t>(pacing_b)], 1);
+  for (int k : {pacing_a, side_a, hidden, far, post, young}) {
+    ASSERT_EQ(measured[static_cast<size_t>(k)], 0);
+  }
+  PeopleOptions options;
+  ASSERT_EQ(options.measured_in_turn_within_m, 1.0);  // on by default
+  ASSERT_EQ(options.measured_in_turn_window_scans, 10);
+  EXPECT_EQ(PersonTracksMeasuredInTurn(measured, options, scene.state),
+            std::vector<int>{pacing_a});
+  options.measured_in_turn_within_m = 0.0;  // off
+  EXPECT_TRUE(PersonTracksMeasuredInTurn(measured, options, scene.state).empty());
+}
+
 // A person track born of two legs paired with confidence 0.9 at 5 s is reported in that scan
 // (while tentative), not in the next one unless confirmation says so; one born of a weaker pair,
 // of one leg (confidence 0), of another kind, or with the option 0, is not reported at birth.
