@@ -27,7 +27,8 @@ nothing moves. --no-odometry runs each ml_ransac run once more with `slammtt-rep
 --drop-channel ODOMETRY` (mode "ml_ransac no-odometry": a robot without wheel odometry, issue
 13 item 5), whose column "ATE ratio" is its ATE over the ATE of the same seed with odometry;
 column "non-person movers/min" is slammtt-eval's non_person_movers_per_minute (at
---people-match-m).
+--people-match-m). --set KEY=VALUE appends an estimator option to every run's configuration,
+--set segmenter.KEY=VALUE a segmenter option (in a `segmenter:` section after it).
 
 Prints one Markdown table row per run; every file stays in OUTDIR. Needs a build (build/bin) and
 python3 with no extra modules. Per-scan times depend on the machine's load: quote them from a
@@ -66,6 +67,25 @@ def run(command):
         last_line = (result.stderr.strip().splitlines() or ["exit " + str(result.returncode)])[-1]
         sys.exit(f"measure-estimator: {' '.join(command)}: {last_line}")
     return result.stdout
+
+
+def config_text(shipped_config, mode, settings):
+    """The shipped estimator configuration (its `estimator:` section last) with `mode` and the
+    --set settings: `KEY=VALUE` into `estimator:`, `segmenter.KEY=VALUE` into a `segmenter:`
+    section after it."""
+    estimator_lines = [f"  mode: {mode}"]
+    segmenter_lines = []
+    for setting in settings:
+        key, _, value = setting.partition("=")
+        section, _, name = key.rpartition(".")
+        if section not in ("", "estimator", "segmenter"):
+            sys.exit(f"measure-estimator: --set {setting}: only estimator and segmenter options")
+        (segmenter_lines if section == "segmenter" else estimator_lines).append(
+            f"  {name}: {value}")
+    text = shipped_config + "\n".join(estimator_lines) + "\n"
+    if segmenter_lines:
+        text += "segmenter:\n" + "\n".join(segmenter_lines) + "\n"
+    return text
 
 
 def static_only_scenario(outdir):
@@ -138,8 +158,9 @@ def main():
     parser.add_argument("--no-odometry", action="store_true",
                         help="also run every ml_ransac run without its ODOMETRY channel")
     parser.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
-                        help="an estimator option appended to every run's configuration "
-                             "(repeatable; for measuring an option's effect)")
+                        help="an estimator option (segmenter.KEY: a segmenter option) appended "
+                             "to every run's configuration (repeatable; for measuring an "
+                             "option's effect)")
     args = parser.parse_args()
     first, _, last = args.seeds.partition("-")
     seeds = range(int(first), int(last or first) + 1)
@@ -184,10 +205,7 @@ def main():
             for mode, label, dropped in runs:
                 config = f"{stem}-{mode}.yaml"
                 with open(config, "w") as f:
-                    f.write(shipped_config + f"  mode: {mode}\n")
-                    for setting in args.set:
-                        key, _, value = setting.partition("=")
-                        f.write(f"  {key}: {value}\n")
+                    f.write(config_text(shipped_config, mode, args.set))
                 out = f"{stem}-{label.replace(' ', '-')}.out.lcm"
                 run([os.path.join(BIN, "slammtt-replay"), "--quiet", world, "-o", out,
                      "--config", config] + stages + dropped)
