@@ -551,7 +551,8 @@ void Estimator::ReportEstimate(int64_t utime, ScanResult* result) const {
     e.object_class = record.object_class;
     const bool has_velocity = state_.object(j).has_velocity();
     e.confirmed = ReportedConfirmed(record, has_velocity, utime, options_.tracks);
-    e.reported = ReportedTrack(record, has_velocity, utime, options_.tracks) ||
+    e.reported = (ReportedTrack(record, has_velocity, utime, options_.tracks) &&
+                  ShowsAPerson(record, options_.people)) ||
                  ReportedAtBirth(record, utime, options_.people);
     e.kind = record.kind;
     e.measured = record.last_seen_utime == utime;

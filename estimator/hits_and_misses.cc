@@ -29,7 +29,9 @@ void RecordHitsAndMisses(const ScanAssociation& scan, const std::vector<double>&
     if (!assignment.ObjectFree(j)) {
       RecordHit(scan.utime, options.tracks, &record);
       const int i = assignment.MeasurementOf(j);
-      RecordMeasurementKind(scan.measurements[static_cast<size_t>(i)].person, &record);
+      const PointMeasurement& z = scan.measurements[static_cast<size_t>(i)];
+      RecordMeasurementKind(z.person, &record);
+      if (z.person && z.pair_confidence > 0.0) ++record.pair_hits;
       record.last_seen_m = now.position(j);
       continue;
     }

@@ -44,6 +44,7 @@ std::vector<StaticObservation> AddNewObjects(const ScanAssociation& scan,
     record.last_seen_m = position;
     record.continues_id = continues_id[static_cast<size_t>(i)];
     record.person_hits = z.person ? 1 : 0;
+    record.pair_hits = z.person && z.pair_confidence > 0.0 ? 1 : 0;
     record.kind = KindOfRecord(record);
     record.birth_pair_confidence =
         z.person && !BesideAPersonOrMover(position, options.people, *state) ? z.pair_confidence

@@ -44,6 +44,8 @@ struct ObjectRecord {
   // (people.h: a person when most of its measurements were person features).
   int person_hits = 0;
   ObjectKind kind = ObjectKind::kOther;
+  // Of the person features, those of two legs paired (people.h, report_min_pair_hits).
+  int pair_hits = 0;
   // The person feature that started the object: its two legs' confidence (0: one leg, or not
   // a person feature; people.h, ReportedAtBirth).
   double birth_pair_confidence = 0.0;
