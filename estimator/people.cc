@@ -28,15 +28,14 @@ void VisitPeopleOptions(OptionVisitor* v, PeopleOptions* o) {
             "... unless a person or mover lies this near");
   v->Int("report_min_pair_hits", &o->report_min_pair_hits, R::Between(0, 1000),
          "a person track is reported once this many scans measured two legs paired (0: off)");
-  v->Int("report_undecided_min_hits", &o->report_undecided_min_hits, R::Between(0, 1000),
-         "... and while UNDECIDED once it has this many hits (0: off)");
+  v->Double("report_min_person_share", &o->report_min_person_share, R::Between(0, 1),
+            "... while person features made at least this share of its hits (0: off)");
 }
 
 bool ShowsAPerson(const ObjectRecord& record, const PeopleOptions& options) {
   if (record.kind != ObjectKind::kPerson) return true;
-  if (record.pair_hits < options.report_min_pair_hits) return false;
-  return record.object_class != ObjectClass::kUndecided ||
-         record.hits >= options.report_undecided_min_hits;
+  return record.pair_hits >= options.report_min_pair_hits &&
+         record.person_hits >= options.report_min_person_share * record.hits;
 }
 
 bool ReportedAtBirth(const ObjectRecord& record, int64_t utime, const PeopleOptions& options) {

@@ -443,6 +443,60 @@ TEST(EstimatorStageTest, ACoastingTrackSaysSoAndIsNotReported) {
   EXPECT_TRUE(person_at(25).confirmed);  // a static track: its existence is not in doubt
 }
 
+// The person of PersonAndPost seen as one leg only (the person feature keeps leg 0, leg 1 is
+// not there) for 15 scans, then as two legs paired: with the defaults its track is reported as
+// a person from its confirmation on; with people_report_min_pair_hits 1 it is a person track
+// that is not reported until its first scan of two legs paired (people.h, ShowsAPerson). The
+// post is reported either way.
+TEST(EstimatorStageTest, APersonSeenAsOneLegIsReportedOnlyOnceItsLegsWerePairedWhenAsked) {
+  for (const int min_pair_hits : {0, 1}) {
+    SCOPED_TRACE(min_pair_hits);
+    EstimatorStageOptions options;
+    ASSERT_EQ(options.estimator.people.report_min_pair_hits, 0);  // off by default
+    options.estimator.people.report_min_pair_hits = min_pair_hits;
+    EstimatorStage stage(options, Channels());
+    RecordingSink out;
+    std::vector<slammtt_msgs::tracks_t> tracks;
+    for (int k = 0; k <= 20; ++k) {
+      const int64_t t = 100000 * k;
+      Feed(&stage, "ODOMETRY", OdometryBytes(t, 0.0, 0.0), out);
+      slammtt_msgs::features_t m = PersonAndPost();
+      m.utime = t;
+      if (k < 15) {  // one leg: leg 1 was not seen
+        m.features = {m.features[0], m.features[2]};
+        m.num_features = 2;
+        m.people[0].num_legs = 1;
+        m.people[0].leg_index[1] = -1;
+        m.people[0].range_m = std::hypot(2.0, 0.1);
+        m.people[0].bearing_rad = std::atan2(0.1, 2.0);
+        m.people[0].confidence = 0.4;
+      }
+      Feed(&stage, "FEATURES", Encode(m), out);
+      tracks.push_back(out.Get<slammtt_msgs::tracks_t>(out.messages.size() - 4));
+    }
+    using Track = slammtt_msgs::track_t;
+    auto person_at = [&](int k) {
+      for (const Track& t : tracks[static_cast<size_t>(k)].tracks) {
+        if (t.kind == Track::KIND_PERSON) return t;
+      }
+      ADD_FAILURE() << "no person track at scan " << k;
+      return Track{};
+    };
+    for (int k = 2; k < 15; ++k) {
+      EXPECT_TRUE(person_at(k).confirmed) << k;
+      EXPECT_TRUE(person_at(k).measured) << k;
+      EXPECT_EQ(person_at(k).reported, min_pair_hits == 0) << k;
+    }
+    EXPECT_EQ(person_at(14).id, person_at(15).id);
+    for (int k = 15; k <= 20; ++k) EXPECT_TRUE(person_at(k).reported) << k;
+    for (const Track& t : tracks.back().tracks) {
+      if (t.kind == Track::KIND_OTHER) {
+        EXPECT_TRUE(t.reported);
+      }
+    }
+  }
+}
+
 // A wall 3 m ahead (x = 3, from y = -1 to 2) and one 2 m to the left (y = 2), as line features
 // of a robot standing at the origin.
 std::vector<uint8_t> WallFeaturesBytes(int64_t utime) {

@@ -196,6 +196,36 @@ TEST(PeopleTest, ATwoLegPersonIsReportedInTheScanItIsBornIn) {
   EXPECT_FALSE(ReportedAtBirth(born, 5 * kSecond, options));
 }
 
+// ShowsAPerson: with both rules off every track is shown; a person track needs
+// report_min_pair_hits scans of two legs paired and report_min_person_share of its hits as
+// person features; a track of kind other is never held back by them.
+TEST(PeopleTest, APersonTrackIsShownOnceItShowedTheEvidenceAskedFor) {
+  PeopleOptions options;
+  ASSERT_EQ(options.report_min_pair_hits, 0);  // both off by default
+  ASSERT_EQ(options.report_min_person_share, 0.0);
+  ObjectRecord one_leg = NewObjectRecord(1, 0, ObjectClass::kUndecided);
+  one_leg.hits = 4;
+  one_leg.person_hits = 3;  // three one-leg person features and a point feature
+  one_leg.kind = KindOfRecord(one_leg);
+  ASSERT_EQ(one_leg.kind, ObjectKind::kPerson);
+  EXPECT_TRUE(ShowsAPerson(one_leg, options));
+  options.report_min_pair_hits = 1;
+  EXPECT_FALSE(ShowsAPerson(one_leg, options));
+  ObjectRecord paired = one_leg;
+  paired.pair_hits = 1;
+  EXPECT_TRUE(ShowsAPerson(paired, options));
+  options.report_min_pair_hits = 2;
+  EXPECT_FALSE(ShowsAPerson(paired, options));
+  options.report_min_pair_hits = 0;
+  options.report_min_person_share = 0.75;  // 3 of 4: shown; 3 of 5 would not make a person
+  EXPECT_TRUE(ShowsAPerson(one_leg, options));
+  options.report_min_person_share = 0.8;
+  EXPECT_FALSE(ShowsAPerson(one_leg, options));
+  ObjectRecord post = NewObjectRecord(2, 0, ObjectClass::kStatic);
+  options.report_min_pair_hits = 3;
+  EXPECT_TRUE(ShowsAPerson(post, options));
+}
+
 // A birth 0.8 m from a person track (or a MOVING track of any kind) is beside it (clearance
 // 1 m); one 1.2 m away, or beside a static landmark that is not a person, is not.
 TEST(PeopleTest, ABirthBesideAPersonOrAMoverIsNotClear) {
