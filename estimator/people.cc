@@ -29,13 +29,14 @@ void VisitPeopleOptions(OptionVisitor* v, PeopleOptions* o) {
   v->Int("report_min_pair_hits", &o->report_min_pair_hits, R::Between(0, 1000),
          "a person track is reported once this many scans measured two legs paired (0: off)");
   v->Double("report_min_person_share", &o->report_min_person_share, R::Between(0, 1),
-            "... while person features made at least this share of its hits (0: off)");
+            "... and unless MOVING, person features made this share of its hits (0: off)");
 }
 
 bool ShowsAPerson(const ObjectRecord& record, const PeopleOptions& options) {
   if (record.kind != ObjectKind::kPerson) return true;
   return record.pair_hits >= options.report_min_pair_hits &&
-         record.person_hits >= options.report_min_person_share * record.hits;
+         (record.object_class == ObjectClass::kMoving ||
+          record.person_hits >= options.report_min_person_share * record.hits);
 }
 
 bool ReportedAtBirth(const ObjectRecord& record, int64_t utime, const PeopleOptions& options) {

@@ -88,7 +88,7 @@ struct PeopleOptions {
   // scans of two legs paired (ObjectRecord::pair_hits), 0: off;
   int report_min_pair_hits = 0;
   // the share of its measured scans that were person features (person_hits / hits; its kind
-  // asks for more than half), 0: off.
+  // asks for more than half) while it is not MOVING, 0: off.
   double report_min_person_share = 0.0;
 };
 
@@ -115,16 +115,17 @@ bool ReportedAtBirth(const ObjectRecord& record, int64_t utime, const PeopleOpti
 // Whether a track of kind PERSON has shown enough evidence of a person to be reported as one
 // (the reporting rules of track_management.h, ReportedTrack, apply as well; any other kind:
 // true). A person is recognised by its shape, two legs paired: one leg alone is a narrow
-// cylinder as a chair or table leg is (report_min_pair_hits); and a track whose measurements
-// were as often point features as person features is not clearly a person
-// (report_min_person_share). Why both are off (docs/estimator.md, "People", and docs/targets.md,
-// "negative_2: which rule reports each false person"): on the real negative_2 recording (no
-// person in it) every reported person identity was reported by confirmation (none at birth),
-// 11 of 25 at their 2nd hit; one pair took it from 25.9 to 18.7 identities per minute (median
-// of five runs) but office's people MOTA from 0.804 (13) / 0.841 to 0.773 (13) / 0.816 on seeds
-// 1-20 (the simulated people's tracks are often born and kept on one leg: "unreported" misses);
-// a share of 0.7 gave 17.6 per minute, but the leg_tracker_demo's agreement with the leg pairs
-// fell from 0.385 to 0.310 (its walkers are first seen as points) and office to 0.775 (13).
+// cylinder as a chair or table leg is (report_min_pair_hits); and a track that does not walk
+// and whose measurements were as often point features as person features is not clearly a
+// person (report_min_person_share; a MOVING track's motion is evidence of its own, and the
+// walkers of the real leg_tracker_demo are first seen as points). Why both are off
+// (docs/targets.md, "negative_2: which rule reports each false person"): on the real
+// negative_2 recording (no person in it) every reported person identity was reported by
+// confirmation (none at birth), 11 of 25 at their 2nd hit. Medians of five runs against main's
+// 25.9 identities per minute, and office people MOTA seeds 1-20 worst (seed) / median against
+// 0.804 (13) / 0.841: one pair 18.7, but 0.773 (13) / 0.816 (the simulated people's tracks are
+// often born and kept on one leg: "unreported" misses); a share of 0.7 21.8, but 0.795 (13) /
+// 0.834 (standing people unreported), the demo's agreement with the leg pairs 0.385 -> 0.378.
 bool ShowsAPerson(const ObjectRecord& record, const PeopleOptions& options);
 
 // The schema of these options (common/options_schema.h; keys in EstimatorOptions' group

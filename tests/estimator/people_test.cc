@@ -197,8 +197,8 @@ TEST(PeopleTest, ATwoLegPersonIsReportedInTheScanItIsBornIn) {
 }
 
 // ShowsAPerson: with both rules off every track is shown; a person track needs
-// report_min_pair_hits scans of two legs paired and report_min_person_share of its hits as
-// person features; a track of kind other is never held back by them.
+// report_min_pair_hits scans of two legs paired and, unless MOVING, report_min_person_share of
+// its hits as person features; a track of kind other is never held back by them.
 TEST(PeopleTest, APersonTrackIsShownOnceItShowedTheEvidenceAskedFor) {
   PeopleOptions options;
   ASSERT_EQ(options.report_min_pair_hits, 0);  // both off by default
@@ -221,6 +221,9 @@ TEST(PeopleTest, APersonTrackIsShownOnceItShowedTheEvidenceAskedFor) {
   EXPECT_TRUE(ShowsAPerson(one_leg, options));
   options.report_min_person_share = 0.8;
   EXPECT_FALSE(ShowsAPerson(one_leg, options));
+  ObjectRecord walker = one_leg;  // its motion shows it: the share is not asked of it
+  walker.object_class = ObjectClass::kMoving;
+  EXPECT_TRUE(ShowsAPerson(walker, options));
   ObjectRecord post = NewObjectRecord(2, 0, ObjectClass::kStatic);
   options.report_min_pair_hits = 3;
   EXPECT_TRUE(ShowsAPerson(post, options));
