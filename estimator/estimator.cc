@@ -552,7 +552,9 @@ void Estimator::ReportEstimate(int64_t utime, ScanResult* result) const {
     const bool has_velocity = state_.object(j).has_velocity();
     e.confirmed = ReportedConfirmed(record, has_velocity, utime, options_.tracks);
     e.reported = (ReportedTrack(record, has_velocity, utime, options_.tracks) &&
-                  ShowsAPerson(record, options_.people)) ||
+                  ShowsAPerson(record,
+                               (state_.position(j) - state_.robot_pose().head<2>()).norm(),
+                               options_.people)) ||
                  ReportedAtBirth(record, utime, options_.people);
     e.kind = record.kind;
     e.measured = record.last_seen_utime == utime;

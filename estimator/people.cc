@@ -26,14 +26,22 @@ void VisitPeopleOptions(OptionVisitor* v, PeopleOptions* o) {
             "a new person track of two legs this confident is reported at birth (0: off)");
   v->Double("report_pair_births_clear_m", &o->report_pair_births_clear_m, R::AtLeast(0),
             "... unless a person or mover lies this near");
+  v->Double("report_far_m", &o->report_far_m, R::AtLeast(0),
+            "a person track farther than this from the robot needs more hits to be reported (0: off)");
+  v->Int("report_far_min_hits", &o->report_far_min_hits, R::Between(0, 1000),
+         "... this many (ObjectRecord::hits)");
   v->Int("report_min_pair_hits", &o->report_min_pair_hits, R::Between(0, 1000),
          "a person track is reported once this many scans measured two legs paired (0: off)");
   v->Double("report_min_person_share", &o->report_min_person_share, R::Between(0, 1),
             "... and unless MOVING, person features made this share of its hits (0: off)");
 }
 
-bool ShowsAPerson(const ObjectRecord& record, const PeopleOptions& options) {
+bool ShowsAPerson(const ObjectRecord& record, double range_m, const PeopleOptions& options) {
   if (record.kind != ObjectKind::kPerson) return true;
+  if (options.report_far_m > 0.0 && range_m > options.report_far_m &&
+      record.hits < options.report_far_min_hits) {
+    return false;
+  }
   return record.pair_hits >= options.report_min_pair_hits &&
          (record.object_class == ObjectClass::kMoving ||
           record.person_hits >= options.report_min_person_share * record.hits);

@@ -83,9 +83,13 @@ struct PeopleOptions {
   // started it is two legs paired with at least this confidence (see ReportedAtBirth); 0: off.
   double report_pair_births_confidence = 0.85;
   double report_pair_births_clear_m = 1.0;  // ... and no person or mover this near (see there)
-  // Evidence a track of kind PERSON must show before it is reported (see ShowsAPerson; both
-  // off: measured, they cost the simulated people more than they save on negative_2):
-  // scans of two legs paired (ObjectRecord::pair_hits), 0: off;
+  // Evidence a track of kind PERSON must show before it is reported (see ShowsAPerson):
+  // while farther than report_far_m from the robot, report_far_min_hits scans with a
+  // measurement (ObjectRecord::hits; on) ...
+  double report_far_m = 6.0;
+  int report_far_min_hits = 6;
+  // ... and, off (measured, they cost the simulated people more than they save on
+  // negative_2), scans of two legs paired (ObjectRecord::pair_hits), 0: off;
   int report_min_pair_hits = 0;
   // the share of its measured scans that were person features (person_hits / hits; its kind
   // asks for more than half) while it is not MOVING, 0: off.
@@ -112,21 +116,31 @@ struct PeopleOptions {
 // clearance, office's worst seed fell to 0.751 (the correspondences taken).
 bool ReportedAtBirth(const ObjectRecord& record, int64_t utime, const PeopleOptions& options);
 
-// Whether a track of kind PERSON has shown enough evidence of a person to be reported as one
-// (the reporting rules of track_management.h, ReportedTrack, apply as well; any other kind:
-// true). A person is recognised by its shape, two legs paired: one leg alone is a narrow
-// cylinder as a chair or table leg is (report_min_pair_hits); and a track that does not walk
-// and whose measurements were as often point features as person features is not clearly a
-// person (report_min_person_share; a MOVING track's motion is evidence of its own, and the
-// walkers of the real leg_tracker_demo are first seen as points). Why both are off
-// (docs/targets.md, "negative_2: which rule reports each false person"): on the real
-// negative_2 recording (no person in it) every reported person identity was reported by
-// confirmation (none at birth), 11 of 25 at their 2nd hit. Medians of five runs against main's
-// 25.9 identities per minute, and office people MOTA seeds 1-20 worst (seed) / median against
-// 0.804 (13) / 0.841: one pair 18.7, but 0.773 (13) / 0.816 (the simulated people's tracks are
-// often born and kept on one leg: "unreported" misses); a share of 0.7 21.8, but 0.795 (13) /
-// 0.834 (standing people unreported), the demo's agreement with the leg pairs 0.385 -> 0.378.
-bool ShowsAPerson(const ObjectRecord& record, const PeopleOptions& options);
+// Whether a track of kind PERSON, range_m from the robot, has shown enough evidence of a
+// person to be reported as one (the reporting rules of track_management.h, ReportedTrack,
+// apply as well; any other kind: true; a pair birth is reported at birth all the same,
+// ReportedAtBirth).
+// - Far away, a person's shape says little: a leg of 0.12 m shows 3.3 beams of a 0.35-degree
+//   scanner at 6 m (3.8 of a 0.25-degree one), and 3 is the fewest a point feature has
+//   (docs/perception.md), so a table or chair leg there makes person features as readily as a
+//   person does, and the track's evidence is its persistence: report_far_min_hits scans.
+//   On the real negative_2 recording (no person in it) every false person was reported by
+//   confirmation at its 2nd-23rd hit, half of them first beyond 5 m (median 4.9 m; the
+//   simulated offices' reported people: median 2.3 m, 12 of 231 beyond 5 m). 6 m / 6 hits:
+//   negative_2 25.9 -> 18.7 person identities per minute (median of five runs); the simulated
+//   people's MOTA on office and corridor seeds 1-30 the same or higher (three seeds up by
+//   0.002-0.014), leg_tracker_demo unchanged (its scanner reaches 5.6 m). docs/targets.md,
+//   "negative_2: which rule reports each false person".
+// - Off: one leg alone is a narrow cylinder as a chair or table leg is
+//   (report_min_pair_hits); a track that does not walk and whose measurements were as often
+//   point features as person features is not clearly a person (report_min_person_share; a
+//   MOVING track's motion is evidence of its own, and the demo's walkers are first seen as
+//   points). Medians of five runs against 25.9 identities per minute, and office people MOTA
+//   seeds 1-20 worst (seed) / median against 0.804 (13) / 0.841: one pair 18.7, but 0.773 (13)
+//   / 0.816 (the simulated people's tracks are often born and kept on one leg); a share of 0.7
+//   21.8, but 0.795 (13) / 0.834 (standing people unreported), and the demo's agreement with
+//   the leg pairs 0.385 -> 0.378.
+bool ShowsAPerson(const ObjectRecord& record, double range_m, const PeopleOptions& options);
 
 // The schema of these options (common/options_schema.h; keys in EstimatorOptions' group
 // `people`).

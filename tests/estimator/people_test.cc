@@ -196,37 +196,62 @@ TEST(PeopleTest, ATwoLegPersonIsReportedInTheScanItIsBornIn) {
   EXPECT_FALSE(ReportedAtBirth(born, 5 * kSecond, options));
 }
 
+// ShowsAPerson, far away: a person track 7 m from the robot is reported from its 6th hit on
+// (people_report_far_m 6, people_report_far_min_hits 6, the defaults), one 5 m away from its
+// confirmation; a track of kind other is not held back, and report_far_m 0 turns it off.
+TEST(PeopleTest, AFarPersonTrackIsReportedOnlyOnceItWasMeasuredInEnoughScans) {
+  PeopleOptions options;
+  ASSERT_EQ(options.report_far_m, 6.0);  // on by default
+  ASSERT_EQ(options.report_far_min_hits, 6);
+  ObjectRecord person = NewObjectRecord(1, 0, ObjectClass::kUndecided);
+  person.hits = 5;
+  person.person_hits = 5;
+  person.kind = KindOfRecord(person);
+  EXPECT_FALSE(ShowsAPerson(person, 7.0, options));
+  EXPECT_TRUE(ShowsAPerson(person, 5.0, options));
+  ObjectRecord sixth = person;
+  sixth.hits = 6;
+  sixth.person_hits = 6;
+  EXPECT_TRUE(ShowsAPerson(sixth, 7.0, options));
+  ObjectRecord other = person;
+  other.person_hits = 0;
+  other.kind = KindOfRecord(other);
+  EXPECT_TRUE(ShowsAPerson(other, 7.0, options));
+  options.report_far_m = 0.0;
+  EXPECT_TRUE(ShowsAPerson(person, 7.0, options));
+}
+
 // ShowsAPerson: with both rules off every track is shown; a person track needs
 // report_min_pair_hits scans of two legs paired and, unless MOVING, report_min_person_share of
 // its hits as person features; a track of kind other is never held back by them.
 TEST(PeopleTest, APersonTrackIsShownOnceItShowedTheEvidenceAskedFor) {
   PeopleOptions options;
-  ASSERT_EQ(options.report_min_pair_hits, 0);  // both off by default
+  ASSERT_EQ(options.report_min_pair_hits, 0);  // both off by default (2 m away: near)
   ASSERT_EQ(options.report_min_person_share, 0.0);
   ObjectRecord one_leg = NewObjectRecord(1, 0, ObjectClass::kUndecided);
   one_leg.hits = 4;
   one_leg.person_hits = 3;  // three one-leg person features and a point feature
   one_leg.kind = KindOfRecord(one_leg);
   ASSERT_EQ(one_leg.kind, ObjectKind::kPerson);
-  EXPECT_TRUE(ShowsAPerson(one_leg, options));
+  EXPECT_TRUE(ShowsAPerson(one_leg, 2.0, options));
   options.report_min_pair_hits = 1;
-  EXPECT_FALSE(ShowsAPerson(one_leg, options));
+  EXPECT_FALSE(ShowsAPerson(one_leg, 2.0, options));
   ObjectRecord paired = one_leg;
   paired.pair_hits = 1;
-  EXPECT_TRUE(ShowsAPerson(paired, options));
+  EXPECT_TRUE(ShowsAPerson(paired, 2.0, options));
   options.report_min_pair_hits = 2;
-  EXPECT_FALSE(ShowsAPerson(paired, options));
+  EXPECT_FALSE(ShowsAPerson(paired, 2.0, options));
   options.report_min_pair_hits = 0;
   options.report_min_person_share = 0.75;  // 3 of 4: shown; 3 of 5 would not make a person
-  EXPECT_TRUE(ShowsAPerson(one_leg, options));
+  EXPECT_TRUE(ShowsAPerson(one_leg, 2.0, options));
   options.report_min_person_share = 0.8;
-  EXPECT_FALSE(ShowsAPerson(one_leg, options));
+  EXPECT_FALSE(ShowsAPerson(one_leg, 2.0, options));
   ObjectRecord walker = one_leg;  // its motion shows it: the share is not asked of it
   walker.object_class = ObjectClass::kMoving;
-  EXPECT_TRUE(ShowsAPerson(walker, options));
+  EXPECT_TRUE(ShowsAPerson(walker, 2.0, options));
   ObjectRecord post = NewObjectRecord(2, 0, ObjectClass::kStatic);
   options.report_min_pair_hits = 3;
-  EXPECT_TRUE(ShowsAPerson(post, options));
+  EXPECT_TRUE(ShowsAPerson(post, 2.0, options));
 }
 
 // A birth 0.8 m from a person track (or a MOVING track of any kind) is beside it (clearance

@@ -93,8 +93,11 @@ WORSE = 1.05     # a floor is the measured figure made 5 % worse
 # Then a walker's take-over of the standing person it was (people_taken_over_within_m 0.5, on):
 # medians exp1 0.0988 / 0.0631 / 0.979 (within these floors, not within the old one-run ones),
 # exp2 0.0975 / 0.0791 / 0.974, the demo 18.1 and 0.385, negative_2 25.9.
+# Then a person track more than 6 m from the robot is reported from its 6th hit
+# (people_report_far_m, people_report_far_min_hits; reporting only): negative_2 25.9 -> 18.7 (18
+# identities in 0.96 min, each of the five runs), every other median as before.
 MEASURED = {
-    ("negative_2", "sensor_median"): {"person_identities_per_minute": 25.9},
+    ("negative_2", "sensor_median"): {"person_identities_per_minute": 18.7},
     ("leg_tracker_demo", "sensor_median"): {"person_identities_per_minute": 18.1,
                                             "match_pairs": 0.379},
     ("mines_exp1", "sensor_median"): {"wall_spread_m": 0.0963, "map_line_rms_m": 0.0614,
