@@ -497,6 +497,54 @@ TEST(EstimatorStageTest, APersonSeenAsOneLegIsReportedOnlyOnceItsLegsWerePairedW
   }
 }
 
+// The person of PersonAndPost moved 5 m farther away, to 7 m (its legs with it), seen at every
+// scan: beyond people_report_far_m (6 m) its track is confirmed at its 2nd hit but reported
+// only from its 6th (people_report_far_min_hits; people.h, ShowsAPerson); at 2 m, from its
+// 2nd. With people_report_far_m 0, at 7 m too.
+TEST(EstimatorStageTest, AFarPersonIsReportedFromItsSixthHit) {
+  for (const double far_m : {6.0, 0.0}) {
+    for (const double range_m : {7.0, 2.0}) {
+      SCOPED_TRACE(::testing::Message() << far_m << " " << range_m);
+      EstimatorStageOptions options;
+      ASSERT_EQ(options.estimator.people.report_far_m, 6.0);  // on by default
+      ASSERT_EQ(options.estimator.people.report_far_min_hits, 6);
+      options.estimator.people.report_far_m = far_m;
+      EstimatorStage stage(options, Channels());
+      RecordingSink out;
+      std::vector<slammtt_msgs::tracks_t> tracks;
+      for (int k = 0; k <= 8; ++k) {
+        const int64_t t = 100000 * k;
+        Feed(&stage, "ODOMETRY", OdometryBytes(t, 0.0, 0.0), out);
+        slammtt_msgs::features_t m = PersonAndPost();
+        m.utime = t;
+        for (int leg = 0; leg < 2; ++leg) {
+          slammtt_msgs::feature_t& f = m.features[static_cast<size_t>(leg)];
+          const double y = leg == 0 ? 0.1 : -0.1;
+          f.range_m = std::hypot(range_m, y);
+          f.bearing_rad = std::atan2(y, range_m);
+        }
+        m.people[0].range_m = range_m;
+        Feed(&stage, "FEATURES", Encode(m), out);
+        tracks.push_back(out.Get<slammtt_msgs::tracks_t>(out.messages.size() - 4));
+      }
+      using Track = slammtt_msgs::track_t;
+      auto person_at = [&](int k) {
+        for (const Track& t : tracks[static_cast<size_t>(k)].tracks) {
+          if (t.kind == Track::KIND_PERSON) return t;
+        }
+        ADD_FAILURE() << "no person track at scan " << k;
+        return Track{};
+      };
+      const bool held_back = far_m > 0.0 && range_m > far_m;
+      for (int k = 1; k <= 8; ++k) {  // scan k: hit k + 1
+        EXPECT_TRUE(person_at(k).confirmed) << k;
+        EXPECT_EQ(person_at(k).hits, k + 1) << k;
+        EXPECT_EQ(person_at(k).reported, !held_back || k + 1 >= 6) << k;
+      }
+    }
+  }
+}
+
 // A wall 3 m ahead (x = 3, from y = -1 to 2) and one 2 m to the left (y = 2), as line features
 // of a robot standing at the origin.
 std::vector<uint8_t> WallFeaturesBytes(int64_t utime) {
