@@ -27,7 +27,7 @@ void VisitPeopleOptions(OptionVisitor* v, PeopleOptions* o) {
   v->Double("report_pair_births_clear_m", &o->report_pair_births_clear_m, R::AtLeast(0),
             "... unless a person or mover lies this near");
   v->Double("report_far_m", &o->report_far_m, R::AtLeast(0),
-            "a person track farther than this from the robot needs more hits to be reported (0: off)");
+            "a person track farther from the robot needs more hits to be reported (0: off)");
   v->Int("report_far_min_hits", &o->report_far_min_hits, R::Between(0, 1000),
          "... this many (ObjectRecord::hits)");
   v->Int("report_min_pair_hits", &o->report_min_pair_hits, R::Between(0, 1000),
