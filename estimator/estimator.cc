@@ -331,14 +331,15 @@ std::vector<StaticObservation> Estimator::ManageTracks(ScanInProgress* s) {
       TakeOverLostIdentities(s->utime, options_, s->assignment, &state_, s->counts);
   // Which measurements may start objects: an object that took its own measurement need not
   // block a second thing beside it (new_object_gate_skips_claimed_objects); the UNDECIDED
-  // objects such a birth is beside forget the moving evidence the two things' measurements gave,
+  // objects such a birth is beside forget the moving evidence the two things' measurements gave
+  // (and, new_object_beside_claimed_restarts_state, start again from their own measurement)
   // before they are judged.
   const std::vector<double> birth_nis = NearestNisForBirths(
       s->features.measurements, s->gating, s->assignment, state_, options_);
   if (options_.new_object_gate_skips_claimed_objects) {  // off, birth_nis is nearest_nis
     RestartObjectsBesideBirths(ClaimedObjectsBesideBirths(s->gating, birth_nis, s->assignment,
                                                           options_.new_object_gate_dn_chi2),
-                               &state_);
+                               association, s->assignment, options_, &state_);
   }
   // 8. Static or dynamic (line 12); then the standing people a walker took over (people.h).
   ClassifyObjects(association, s->gating.gated, options_, after_updates, s->assignment,

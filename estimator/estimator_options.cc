@@ -148,6 +148,10 @@ void VisitAssociationOptions(OptionVisitor* v, EstimatorOptions* o) {
   v->Double("new_object_beside_claimed_min_separation_m",
             &o->new_object_beside_claimed_min_separation_m, R::AtLeast(0),
             "... when the two measured points are at least this far apart");
+  v->Bool("new_object_beside_claimed_restarts_state",
+          &o->new_object_beside_claimed_restarts_state,
+          "... and the UNDECIDED object beside the birth starts its state again from its own "
+          "measurement");
   v->BeginGroup("ransac");
   VisitRansacOptions(v, &o->ransac);
   v->EndGroup();

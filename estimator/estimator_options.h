@@ -178,6 +178,10 @@ struct EstimatorOptions {
   // most likely one thing (a person's two legs, taken as points where no person feature pairs
   // them). Far landmarks side by side at the edge of the range are metres apart.
   double new_object_beside_claimed_min_separation_m = 2.0;
+  // ... and the UNDECIDED object beside such a birth starts its state again from the
+  // measurement it took in this scan (new_objects.h: RestartObjectsBesideBirths); off, only its
+  // moving evidence restarts.
+  bool new_object_beside_claimed_restarts_state = false;
   RansacOptions ransac;
   int update_group_size = 32;                    // observations per batch update (ekf_update.h)
   // Per-scan budget of static-landmark updates (0: no limit). Every measurement is still gated

@@ -66,13 +66,31 @@ std::vector<StaticObservation> AddNewObjects(const ScanAssociation& scan,
   return first_sightings;
 }
 
-int RestartObjectsBesideBirths(const std::vector<int>& objects, SlamState* state) {
+int RestartObjectsBesideBirths(const std::vector<int>& objects, const ScanAssociation& scan,
+                               const Assignment& assignment, const EstimatorOptions& options,
+                               SlamState* state) {
   int restarted = 0;
   for (const int k : objects) {
     ObjectRecord& record = state->object(k).record;
-    if (record.object_class != ObjectClass::kUndecided) continue;
+    const int own = assignment.MeasurementOf(k);
+    if (record.object_class != ObjectClass::kUndecided || own < 0) continue;
     record.moving_evidence_scans = 0;
     ++restarted;
+    if (!options.new_object_beside_claimed_restarts_state) continue;
+    const PointMeasurement& z = scan.measurements[static_cast<size_t>(own)];
+    Eigen::Matrix<double, 2, 3> jacobian_robot;
+    Eigen::Matrix2d jacobian_measurement;
+    const Eigen::Vector2d position = PointFromRangeBearing(
+        state->robot_pose(), z.range_bearing, options.sensor, &jacobian_robot,
+        &jacobian_measurement);
+    const double sigma = options.new_object_velocity_sigma_mps;
+    state->RestartObject(k, position, jacobian_robot,
+                         jacobian_measurement * z.covariance * jacobian_measurement.transpose(),
+                         sigma * sigma * Eigen::Matrix2d::Identity());
+    // Its velocity (and still window) start at this scan, with this scan's measurement.
+    record.hits_with_velocity = 1;
+    record.last_seen_m = position;
+    RestartStillWindow(position, std::numeric_limits<double>::infinity(), scan.utime, &record);
   }
   return restarted;
 }

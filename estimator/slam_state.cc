@@ -103,6 +103,43 @@ int SlamState::AddLine(const Eigen::Vector2d& line,
   return num_lines() - 1;
 }
 
+void SlamState::RestartObject(int k, const Eigen::Vector2d& position,
+                              const Eigen::Matrix<double, 2, 3>& jacobian_robot,
+                              const Eigen::Matrix2d& independent_covariance,
+                              const Eigen::Matrix2d& velocity_covariance) {
+  ++revision_;
+  StateObject& o = object(k);
+  const int p = o.position_index;
+  // As AppendCorrelatedPair: G * P_r,x against every state; the object's own states (its old
+  // position, velocity and anchor columns) are overwritten below.
+  const Eigen::MatrixXd cross = jacobian_robot * cov_.topLeftCorner(kRobotPoseDim, dim_);
+  const Eigen::Matrix2d own =
+      jacobian_robot * cov_.topLeftCorner<3, 3>() * jacobian_robot.transpose() +
+      independent_covariance;
+  mean_.segment<2>(p) = position;
+  cov_.block(p, 0, 2, dim_) = cross;
+  cov_.block(0, p, dim_, 2) = cross.transpose();
+  cov_.block<2, 2>(p, p) = 0.5 * (own + own.transpose());
+  if (o.has_velocity()) {
+    const int v = o.velocity_index;
+    mean_.segment<2>(v).setZero();
+    cov_.block(v, 0, 2, dim_).setZero();
+    cov_.block(0, v, dim_, 2).setZero();
+    cov_.block<2, 2>(v, v) = 0.5 * (velocity_covariance + velocity_covariance.transpose());
+  }
+  if (o.has_anchor()) {
+    const int a = o.anchor_index;
+    mean_.segment<2>(a) = position;
+    const Eigen::MatrixXd position_rows = cov_.block(p, 0, 2, dim_);
+    cov_.block(a, 0, 2, dim_) = position_rows;
+    cov_.block(0, a, dim_, 2) = position_rows.transpose();
+    cov_.block<2, 2>(a, a) = cov_.block<2, 2>(p, p);
+    cov_.block<2, 2>(p, a) = cov_.block<2, 2>(p, p);
+    cov_.block<2, 2>(a, p) = cov_.block<2, 2>(p, p);
+  }
+  o.first_estimate_m = position;
+}
+
 void SlamState::AddVelocity(int k, const Eigen::Vector2d& velocity,
                             const Eigen::Matrix2d& covariance) {
   if (object(k).has_velocity()) return;

@@ -225,6 +225,17 @@ class SlamState {
     return cov_.block<2, 2>(p, p);
   }
 
+  // Starts object k again, keeping its slot and record: its position becomes `position` with
+  // the covariance and cross-covariances AddObject gives a new object (G = jacobian_robot,
+  // independent error `independent_covariance`), its velocity states (if any) zero with
+  // covariance `velocity_covariance` and independent of everything, its stationary anchor (if
+  // any) a fresh copy of the new position. What the state knew of the object is forgotten, not
+  // what its measurements told about the robot.
+  void RestartObject(int k, const Eigen::Vector2d& position,
+                     const Eigen::Matrix<double, 2, 3>& jacobian_robot,
+                     const Eigen::Matrix2d& independent_covariance,
+                     const Eigen::Matrix2d& velocity_covariance);
+
   // Gives object k velocity states with the given mean and a covariance independent of
   // everything else (the prior of a landmark that starts to move). No-op if it has them.
   void AddVelocity(int k, const Eigen::Vector2d& velocity, const Eigen::Matrix2d& covariance);

@@ -172,6 +172,61 @@ TEST(SlamStateTest, AStationaryAnchorIsAPerfectlyCorrelatedCopyOfThePosition) {
   EXPECT_EQ(state.dim(), n - 4);
 }
 
+// Starting an object again (new_objects.h: RestartObjectsBesideBirths) gives it what AddObject
+// and AddVelocity give a new object, in its own slots: the position correlated with everything
+// only through the robot, the velocity at zero and independent, the anchor a fresh copy.
+TEST(SlamStateTest, RestartingAnObjectGivesItTheStateOfANewOne) {
+  SlamState state = RandomState(11);
+  state.AddStationaryAnchor(3);
+  const int n = state.dim();
+  const int pos = state.object(3).position_index;
+  const int vel = state.object(3).velocity_index;
+  const int anchor = state.object(3).anchor_index;
+  const Eigen::MatrixXd before = state.covariance();
+  const Eigen::VectorXd mean_before = state.mean();
+  Eigen::Matrix<double, 2, 3> g;
+  g << 1.0, 0.0, -2.0, 0.0, 1.0, 3.0;
+  const Eigen::Matrix2d c = Eigen::Vector2d(0.04, 0.09).asDiagonal();
+  const Eigen::Matrix2d velocity_prior = 2.0 * Eigen::Matrix2d::Identity();
+  state.RestartObject(3, Eigen::Vector2d(7.0, -1.0), g, c, velocity_prior);
+  ASSERT_EQ(state.dim(), n);
+  const Eigen::MatrixXd after = state.covariance();
+  EXPECT_EQ(state.position(3), Eigen::Vector2d(7.0, -1.0));
+  EXPECT_EQ(state.velocity(3), Eigen::Vector2d::Zero());
+  EXPECT_EQ(Eigen::Vector2d(state.mean().segment<2>(anchor)), Eigen::Vector2d(7.0, -1.0));
+  EXPECT_EQ(state.object(3).first_estimate_m, Eigen::Vector2d(7.0, -1.0));
+  const Eigen::Matrix<double, 3, Eigen::Dynamic> pose_rows = before.topRows(3);
+  // Against every other state (robot, heading drift, the other objects): G P_pose,x.
+  for (int x = 0; x < n; ++x) {
+    if ((x >= pos && x < pos + 2) || (x >= vel && x < vel + 2) ||
+        (x >= anchor && x < anchor + 2)) {
+      continue;
+    }
+    EXPECT_TRUE((after.block<2, 1>(pos, x).isApprox(g * pose_rows.col(x), 1e-12))) << x;
+    EXPECT_TRUE((after.block<2, 1>(vel, x).isZero())) << x;
+    EXPECT_TRUE((after.block<2, 1>(anchor, x).isApprox(after.block<2, 1>(pos, x)))) << x;
+    // The other states keep their mean and covariance.
+    EXPECT_EQ(state.mean()(x), mean_before(x));
+    for (int y = 0; y < n; ++y) {
+      if ((y >= pos && y < pos + 2) || (y >= vel && y < vel + 2) ||
+          (y >= anchor && y < anchor + 2)) {
+        continue;
+      }
+      EXPECT_EQ(after(x, y), before(x, y));
+    }
+  }
+  const Eigen::Matrix2d own = g * before.topLeftCorner<3, 3>() * g.transpose() + c;
+  EXPECT_TRUE((after.block<2, 2>(pos, pos).isApprox(own)));
+  EXPECT_TRUE((after.block<2, 2>(anchor, anchor).isApprox(own)));
+  EXPECT_TRUE((after.block<2, 2>(pos, anchor).isApprox(own)));
+  EXPECT_EQ(Eigen::Matrix2d(after.block<2, 2>(vel, vel)), velocity_prior);
+  EXPECT_TRUE((after.block<2, 2>(pos, vel).isZero()));
+  EXPECT_EQ(after, after.transpose());
+  // Still a covariance.
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(after);
+  EXPECT_GT(eigen.eigenvalues().minCoeff(), -1e-12);
+}
+
 // The state after an object with an anchor moved for dt (eq. 6 with the process noise of eq. 8):
 // its position and its anchor differ.
 SlamState AnchoredAndMoved(uint64_t seed, double dt_s) {

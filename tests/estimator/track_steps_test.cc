@@ -365,10 +365,15 @@ TEST(NewObjectsTest, AClaimedObjectDoesNotBlockABirthBesideIt) {
   EXPECT_EQ(births[5], gating.nearest_nis[5]);
   const std::vector<int> beside = ClaimedObjectsBesideBirths(gating, births, assignment, dn);
   EXPECT_EQ(beside, (std::vector<int>{undecided}));
-  EXPECT_EQ(RestartObjectsBesideBirths(beside, &scene.state), 1);
+  const std::vector<uint8_t> all_update = scene.AllMayUpdate();
+  const ScanAssociation this_scan{scene.measurements, all_update, 4 * kSecond};
+  EXPECT_EQ(RestartObjectsBesideBirths(beside, this_scan, assignment, scene.options, &scene.state),
+            1);
   EXPECT_EQ(scene.state.object(undecided).record.moving_evidence_scans, 0);
   // Only an UNDECIDED object is restarted.
-  EXPECT_EQ(RestartObjectsBesideBirths({moving}, &scene.state), 0);
+  EXPECT_EQ(RestartObjectsBesideBirths({moving}, this_scan, assignment, scene.options,
+                                       &scene.state),
+            0);
   EXPECT_EQ(scene.state.object(moving).record.moving_evidence_scans, 3);
   // A person still blocks the point beside it (its other leg).
   scene.state.object(undecided).record.kind = ObjectKind::kPerson;
@@ -389,6 +394,81 @@ TEST(NewObjectsTest, AClaimedObjectDoesNotBlockABirthBesideIt) {
   AddNewObjects(scan, births, std::vector<int64_t>(6, 0), scene.options, assignment, &next_id,
                 &scene.state, &scene.counts);
   EXPECT_EQ(scene.counts.new_objects, 2);  // measurements 1 and 5
+}
+
+// Two posts 3 m apart at 30 m, at the edge of the range: an UNDECIDED object born on one took the
+// other's measurements while the first was out of range, so its estimate stands near the second
+// post with a covariance grown small on those measurements and a velocity from the walk. Once a
+// new object is born on the second post, the first object starts again from its own measurement
+// (new_object_beside_claimed_restarts_state) as a new object would be: kept, it would walk back
+// to its post as a velocity and become a false MOVING track (s1-crossing seed 3).
+TEST(NewObjectsTest, AnObjectBesideABirthStartsAgainFromItsOwnMeasurement) {
+  StepScene scene;
+  scene.state = SlamState(Eigen::Vector3d::Zero(), Eigen::Vector3d(0.01, 0.01, 1e-4).asDiagonal());
+  const Eigen::Vector2d own_post(30.0, 0.0);
+  const Eigen::Vector2d other_post(30.0, 3.0);
+  // A landmark seen before, correlated with the robot.
+  Eigen::Matrix<double, 2, 3> g;
+  g << 1.0, 0.0, 0.0, 0.0, 1.0, 10.0;
+  ObjectRecord landmark_record;
+  landmark_record.id = 1;
+  landmark_record.object_class = ObjectClass::kStatic;
+  const int landmark = scene.state.AddObject({10.0, 0.0}, g, 0.01 * Eigen::Matrix2d::Identity(),
+                                             landmark_record);
+  const int dragged = scene.AddMover({30.0, 2.4}, 0.3, {0.2, 0.9}, 0.4, ObjectClass::kUndecided);
+  scene.state.object(dragged).record.moving_evidence_scans = 1;
+  scene.state.object(dragged).record.hits_with_velocity = 6;
+  const int own = scene.Measure(own_post, 0.03, 0.035);     // 2 degrees of bearing noise
+  scene.Measure(other_post, 0.03, 0.035);                   // starts an object beside it
+  Assignment assignment(2, scene.state.num_objects());
+  assignment.Set(own, dragged);
+  const std::vector<uint8_t> may_update = scene.AllMayUpdate();
+  const ScanAssociation scan{scene.measurements, may_update, 4 * kSecond};
+  const SlamState kept_state = scene.state;
+
+  // Off: only the moving evidence restarts, the estimate stays between the posts.
+  scene.options.new_object_beside_claimed_restarts_state = false;
+  EXPECT_EQ(RestartObjectsBesideBirths({dragged}, scan, assignment, scene.options, &scene.state),
+            1);
+  EXPECT_EQ(scene.state.object(dragged).record.moving_evidence_scans, 0);
+  EXPECT_EQ(scene.state.position(dragged), kept_state.position(dragged));
+  EXPECT_EQ(scene.state.velocity(dragged), kept_state.velocity(dragged));
+
+  // On: the object is where its own measurement puts it, with a new object's uncertainty.
+  scene.state = kept_state;
+  scene.options.new_object_beside_claimed_restarts_state = true;
+  EXPECT_EQ(RestartObjectsBesideBirths({dragged}, scan, assignment, scene.options, &scene.state),
+            1);
+  const ObjectRecord& record = scene.state.object(dragged).record;
+  EXPECT_EQ(record.moving_evidence_scans, 0);
+  EXPECT_EQ(record.hits_with_velocity, 1);
+  EXPECT_EQ(record.id, kept_state.object(dragged).record.id);
+  EXPECT_TRUE(scene.state.position(dragged).isApprox(own_post, 1e-9));
+  EXPECT_EQ(scene.state.velocity(dragged), Eigen::Vector2d::Zero());
+  // The same state as the object AddNewObjects starts from that measurement.
+  SlamState fresh = kept_state;
+  const std::vector<double> births = {kInfinity, 0.0};
+  Assignment none(2, fresh.num_objects());
+  int64_t next_id = 50;
+  StepCounts counts;
+  AddNewObjects(scan, births, {0, 0}, scene.options, none, &next_id, &fresh, &counts);
+  ASSERT_EQ(counts.new_objects, 1);
+  const int born = fresh.num_objects() - 1;
+  EXPECT_TRUE(fresh.position(born).isApprox(scene.state.position(dragged)));
+  EXPECT_TRUE(fresh.ObjectCovariance(born).isApprox(scene.state.ObjectCovariance(dragged)));
+  const int p_fresh = fresh.object(born).position_index;
+  const int p_dragged = scene.state.object(dragged).position_index;
+  const int p_landmark = scene.state.object(landmark).position_index;
+  EXPECT_TRUE((fresh.covariance().block<2, 2>(p_fresh, p_landmark).isApprox(
+      scene.state.covariance().block<2, 2>(p_dragged, p_landmark))));
+  EXPECT_TRUE((fresh.covariance().block<2, 3>(p_fresh, 0).isApprox(
+      scene.state.covariance().block<2, 3>(p_dragged, 0))));
+  // A wider position uncertainty than the dragged estimate had: the next measurements of its
+  // post move the estimate, not the velocity.
+  const double restarted_variance =
+      scene.state.ObjectCovariance(dragged).topLeftCorner<2, 2>().trace();
+  const double dragged_variance = kept_state.ObjectCovariance(dragged).topLeftCorner<2, 2>().trace();
+  EXPECT_GT(restarted_variance, dragged_variance);
 }
 
 TEST(NewObjectsTest, TheCapRefusesAndTheStaticWorldMapsConfirmedLandmarks) {
