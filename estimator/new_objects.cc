@@ -9,6 +9,29 @@
 
 namespace slammtt {
 
+namespace {
+
+// A measurement placed in the map from the robot's pose (the inverse of eq. 10 with the mount,
+// eq. 11): the point, its Jacobian with respect to the robot's pose and the measurement's
+// covariance carried into the map frame, as a new object starts.
+struct PlacedMeasurement {
+  Eigen::Vector2d position = Eigen::Vector2d::Zero();
+  Eigen::Matrix<double, 2, 3> jacobian_robot = Eigen::Matrix<double, 2, 3>::Zero();
+  Eigen::Matrix2d covariance = Eigen::Matrix2d::Zero();
+};
+
+PlacedMeasurement Place(const PointMeasurement& z, const EstimatorOptions& options,
+                        const SlamState& state) {
+  PlacedMeasurement placed;
+  Eigen::Matrix2d jacobian_measurement;
+  placed.position = PointFromRangeBearing(state.robot_pose(), z.range_bearing, options.sensor,
+                                          &placed.jacobian_robot, &jacobian_measurement);
+  placed.covariance = jacobian_measurement * z.covariance * jacobian_measurement.transpose();
+  return placed;
+}
+
+}  // namespace
+
 std::vector<StaticObservation> AddNewObjects(const ScanAssociation& scan,
                                              const std::vector<double>& nearest_nis,
                                              const std::vector<int64_t>& continues_id,
@@ -27,11 +50,8 @@ std::vector<StaticObservation> AddNewObjects(const ScanAssociation& scan,
       continue;
     }
     const PointMeasurement& z = scan.measurements[static_cast<size_t>(i)];
-    Eigen::Matrix<double, 2, 3> jacobian_robot;
-    Eigen::Matrix2d jacobian_measurement;
-    const Eigen::Vector2d position = PointFromRangeBearing(
-        state->robot_pose(), z.range_bearing, options.sensor, &jacobian_robot,
-        &jacobian_measurement);
+    const PlacedMeasurement placed = Place(z, options, *state);
+    const Eigen::Vector2d& position = placed.position;
     // A person feature this close to a person track is that person (people.h).
     if (!static_world && z.person && TooCloseToAPerson(position, options.people, *state)) {
       ++counts->person_births_joined;
@@ -49,9 +69,7 @@ std::vector<StaticObservation> AddNewObjects(const ScanAssociation& scan,
     record.birth_pair_confidence =
         z.person && !BesideAPersonOrMover(position, options.people, *state) ? z.pair_confidence
                                                                             : 0.0;
-    const int k = state->AddObject(
-        position, jacobian_robot,
-        jacobian_measurement * z.covariance * jacobian_measurement.transpose(), record);
+    const int k = state->AddObject(position, placed.jacobian_robot, placed.covariance, record);
     if (!static_world) {
       const double sigma = options.new_object_velocity_sigma_mps;
       state->AddVelocity(k, Eigen::Vector2d::Zero(), sigma * sigma * Eigen::Matrix2d::Identity());
@@ -77,15 +95,11 @@ int RestartObjectsBesideBirths(const std::vector<int>& objects, const ScanAssoci
     record.moving_evidence_scans = 0;
     ++restarted;
     if (!options.new_object_beside_claimed_restarts_state) continue;
-    const PointMeasurement& z = scan.measurements[static_cast<size_t>(own)];
-    Eigen::Matrix<double, 2, 3> jacobian_robot;
-    Eigen::Matrix2d jacobian_measurement;
-    const Eigen::Vector2d position = PointFromRangeBearing(
-        state->robot_pose(), z.range_bearing, options.sensor, &jacobian_robot,
-        &jacobian_measurement);
+    const PlacedMeasurement placed =
+        Place(scan.measurements[static_cast<size_t>(own)], options, *state);
+    const Eigen::Vector2d& position = placed.position;
     const double sigma = options.new_object_velocity_sigma_mps;
-    state->RestartObject(k, position, jacobian_robot,
-                         jacobian_measurement * z.covariance * jacobian_measurement.transpose(),
+    state->RestartObject(k, position, placed.jacobian_robot, placed.covariance,
                          sigma * sigma * Eigen::Matrix2d::Identity());
     // Its velocity (and still window) start at this scan, with this scan's measurement.
     record.hits_with_velocity = 1;

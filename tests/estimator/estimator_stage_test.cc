@@ -372,6 +372,16 @@ TEST(EstimatorStageTest, StaticObjectsReachTheMap) {
 // and a post: both become STATIC; the person is a track of kind PERSON that never enters the
 // map, the post is the map's one landmark. Every track is measured at every scan, so it
 // coasts 0 s and, once confirmed, is reported; the person feature marks the person track.
+// The track of kind PERSON in `tracks` (scan `k` of a test, for the failure message); a failure
+// and an empty track without one.
+slammtt_msgs::track_t PersonTrackOf(const slammtt_msgs::tracks_t& tracks, int k) {
+  for (const slammtt_msgs::track_t& t : tracks.tracks) {
+    if (t.kind == slammtt_msgs::track_t::KIND_PERSON) return t;
+  }
+  ADD_FAILURE() << "no person track at scan " << k;
+  return slammtt_msgs::track_t{};
+}
+
 TEST(EstimatorStageTest, AStandingPersonIsAStaticPersonTrackNeverInTheMap) {
   EstimatorStage stage(EstimatorStageOptions{}, Channels());
   RecordingSink out;
@@ -426,13 +436,7 @@ TEST(EstimatorStageTest, ACoastingTrackSaysSoAndIsNotReported) {
     Feed(&stage, "FEATURES", Encode(m), out);
     tracks.push_back(out.Get<slammtt_msgs::tracks_t>(out.messages.size() - 4));
   }
-  auto person_at = [&](int k) {
-    for (const auto& t : tracks[static_cast<size_t>(k)].tracks) {
-      if (t.kind == slammtt_msgs::track_t::KIND_PERSON) return t;
-    }
-    ADD_FAILURE() << "no person track at scan " << k;
-    return slammtt_msgs::track_t{};
-  };
+  auto person_at = [&](int k) { return PersonTrackOf(tracks[static_cast<size_t>(k)], k); };
   EXPECT_TRUE(person_at(19).measured);
   EXPECT_TRUE(person_at(19).reported);
   EXPECT_FALSE(person_at(22).measured);
@@ -475,13 +479,7 @@ TEST(EstimatorStageTest, APersonSeenAsOneLegIsReportedOnlyOnceItsLegsWerePairedW
       tracks.push_back(out.Get<slammtt_msgs::tracks_t>(out.messages.size() - 4));
     }
     using Track = slammtt_msgs::track_t;
-    auto person_at = [&](int k) {
-      for (const Track& t : tracks[static_cast<size_t>(k)].tracks) {
-        if (t.kind == Track::KIND_PERSON) return t;
-      }
-      ADD_FAILURE() << "no person track at scan " << k;
-      return Track{};
-    };
+    auto person_at = [&](int k) { return PersonTrackOf(tracks[static_cast<size_t>(k)], k); };
     for (int k = 2; k < 15; ++k) {
       EXPECT_TRUE(person_at(k).confirmed) << k;
       EXPECT_TRUE(person_at(k).measured) << k;
@@ -527,14 +525,7 @@ TEST(EstimatorStageTest, AFarPersonIsReportedFromItsSixthHit) {
         Feed(&stage, "FEATURES", Encode(m), out);
         tracks.push_back(out.Get<slammtt_msgs::tracks_t>(out.messages.size() - 4));
       }
-      using Track = slammtt_msgs::track_t;
-      auto person_at = [&](int k) {
-        for (const Track& t : tracks[static_cast<size_t>(k)].tracks) {
-          if (t.kind == Track::KIND_PERSON) return t;
-        }
-        ADD_FAILURE() << "no person track at scan " << k;
-        return Track{};
-      };
+      auto person_at = [&](int k) { return PersonTrackOf(tracks[static_cast<size_t>(k)], k); };
       const bool held_back = far_m > 0.0 && range_m > far_m;
       for (int k = 1; k <= 8; ++k) {  // scan k: hit k + 1
         EXPECT_TRUE(person_at(k).confirmed) << k;
