@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <stdexcept>
 #include <tuple>
@@ -382,6 +383,25 @@ slammtt_msgs::track_t PersonTrackOf(const slammtt_msgs::tracks_t& tracks, int k)
   return slammtt_msgs::track_t{};
 }
 
+// The TRACKS of scans 0..last of a robot standing at the origin (ODOMETRY and FEATURES every
+// 0.1 s), FEATURES of scan k from features_of_scan(k) with its utime set.
+std::vector<slammtt_msgs::tracks_t> TracksOfAStandingRobot(
+    const EstimatorStageOptions& options, int last,
+    const std::function<slammtt_msgs::features_t(int)>& features_of_scan) {
+  EstimatorStage stage(options, Channels());
+  RecordingSink out;
+  std::vector<slammtt_msgs::tracks_t> tracks;
+  for (int k = 0; k <= last; ++k) {
+    const int64_t t = 100000 * k;
+    Feed(&stage, "ODOMETRY", OdometryBytes(t, 0.0, 0.0), out);
+    slammtt_msgs::features_t m = features_of_scan(k);
+    m.utime = t;
+    Feed(&stage, "FEATURES", Encode(m), out);
+    tracks.push_back(out.Get<slammtt_msgs::tracks_t>(out.messages.size() - 4));
+  }
+  return tracks;
+}
+
 TEST(EstimatorStageTest, AStandingPersonIsAStaticPersonTrackNeverInTheMap) {
   EstimatorStage stage(EstimatorStageOptions{}, Channels());
   RecordingSink out;
@@ -458,26 +478,20 @@ TEST(EstimatorStageTest, APersonSeenAsOneLegIsReportedOnlyOnceItsLegsWerePairedW
     EstimatorStageOptions options;
     ASSERT_EQ(options.estimator.people.report_min_pair_hits, 0);  // off by default
     options.estimator.people.report_min_pair_hits = min_pair_hits;
-    EstimatorStage stage(options, Channels());
-    RecordingSink out;
-    std::vector<slammtt_msgs::tracks_t> tracks;
-    for (int k = 0; k <= 20; ++k) {
-      const int64_t t = 100000 * k;
-      Feed(&stage, "ODOMETRY", OdometryBytes(t, 0.0, 0.0), out);
-      slammtt_msgs::features_t m = PersonAndPost();
-      m.utime = t;
-      if (k < 15) {  // one leg: leg 1 was not seen
-        m.features = {m.features[0], m.features[2]};
-        m.num_features = 2;
-        m.people[0].num_legs = 1;
-        m.people[0].leg_index[1] = -1;
-        m.people[0].range_m = std::hypot(2.0, 0.1);
-        m.people[0].bearing_rad = std::atan2(0.1, 2.0);
-        m.people[0].confidence = 0.4;
-      }
-      Feed(&stage, "FEATURES", Encode(m), out);
-      tracks.push_back(out.Get<slammtt_msgs::tracks_t>(out.messages.size() - 4));
-    }
+    const std::vector<slammtt_msgs::tracks_t> tracks =
+        TracksOfAStandingRobot(options, 20, [](int k) {
+          slammtt_msgs::features_t m = PersonAndPost();
+          if (k < 15) {  // one leg: leg 1 was not seen
+            m.features = {m.features[0], m.features[2]};
+            m.num_features = 2;
+            m.people[0].num_legs = 1;
+            m.people[0].leg_index[1] = -1;
+            m.people[0].range_m = std::hypot(2.0, 0.1);
+            m.people[0].bearing_rad = std::atan2(0.1, 2.0);
+            m.people[0].confidence = 0.4;
+          }
+          return m;
+        });
     using Track = slammtt_msgs::track_t;
     auto person_at = [&](int k) { return PersonTrackOf(tracks[static_cast<size_t>(k)], k); };
     for (int k = 2; k < 15; ++k) {
@@ -507,24 +521,18 @@ TEST(EstimatorStageTest, AFarPersonIsReportedFromItsSixthHit) {
       ASSERT_EQ(options.estimator.people.report_far_m, 6.0);  // on by default
       ASSERT_EQ(options.estimator.people.report_far_min_hits, 6);
       options.estimator.people.report_far_m = far_m;
-      EstimatorStage stage(options, Channels());
-      RecordingSink out;
-      std::vector<slammtt_msgs::tracks_t> tracks;
-      for (int k = 0; k <= 8; ++k) {
-        const int64_t t = 100000 * k;
-        Feed(&stage, "ODOMETRY", OdometryBytes(t, 0.0, 0.0), out);
-        slammtt_msgs::features_t m = PersonAndPost();
-        m.utime = t;
-        for (int leg = 0; leg < 2; ++leg) {
-          slammtt_msgs::feature_t& f = m.features[static_cast<size_t>(leg)];
-          const double y = leg == 0 ? 0.1 : -0.1;
-          f.range_m = std::hypot(range_m, y);
-          f.bearing_rad = std::atan2(y, range_m);
-        }
-        m.people[0].range_m = range_m;
-        Feed(&stage, "FEATURES", Encode(m), out);
-        tracks.push_back(out.Get<slammtt_msgs::tracks_t>(out.messages.size() - 4));
-      }
+      const std::vector<slammtt_msgs::tracks_t> tracks =
+          TracksOfAStandingRobot(options, 8, [range_m](int) {
+            slammtt_msgs::features_t m = PersonAndPost();
+            for (int leg = 0; leg < 2; ++leg) {
+              slammtt_msgs::feature_t& f = m.features[static_cast<size_t>(leg)];
+              const double y = leg == 0 ? 0.1 : -0.1;
+              f.range_m = std::hypot(range_m, y);
+              f.bearing_rad = std::atan2(y, range_m);
+            }
+            m.people[0].range_m = range_m;
+            return m;
+          });
       auto person_at = [&](int k) { return PersonTrackOf(tracks[static_cast<size_t>(k)], k); };
       const bool held_back = far_m > 0.0 && range_m > far_m;
       for (int k = 1; k <= 8; ++k) {  // scan k: hit k + 1
