@@ -344,12 +344,11 @@ std::vector<StaticObservation> Estimator::ManageTracks(ScanInProgress* s) {
   // 8. Static or dynamic (line 12); then the standing people a walker took over (people.h).
   ClassifyObjects(association, s->gating.gated, options_, after_updates, s->assignment,
                   &state_, s->counts);
-  std::vector<int> removed = PersonTracksTakenOver(s->assignment.ObjectsMeasured(),
-                                                   options_.people, state_);
+  const std::vector<uint8_t> measured = s->assignment.ObjectsMeasured();
+  std::vector<int> removed = PersonTracksTakenOver(measured, options_.people, state_);
   s->counts->person_tracks_taken_over = static_cast<int>(removed.size());
   // One person moving between two tracks: the one that took this scan's measurement stays.
-  const std::vector<int> in_turn = PersonTracksMeasuredInTurn(s->assignment.ObjectsMeasured(),
-                                                              options_.people, state_);
+  const std::vector<int> in_turn = PersonTracksMeasuredInTurn(measured, options_.people, state_);
   s->counts->person_tracks_measured_in_turn = static_cast<int>(in_turn.size());
   for (int j : in_turn) {
     if (std::find(removed.begin(), removed.end(), j) == removed.end()) removed.push_back(j);

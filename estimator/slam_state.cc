@@ -68,17 +68,23 @@ int SlamState::AppendCorrelatedPair(const Eigen::Vector2d& value,
   ++revision_;
   const int old_dim = dim_;
   const int p = AppendStates(2);
+  SetCorrelatedPair(p, value, jacobian_robot, independent_covariance, old_dim);
+  return p;
+}
+
+void SlamState::SetCorrelatedPair(int p, const Eigen::Vector2d& value,
+                                  const Eigen::Matrix<double, 2, 3>& jacobian_robot,
+                                  const Eigen::Matrix2d& independent_covariance, int columns) {
   mean_.segment<2>(p) = value;
-  // Cross covariance with everything that was there, the heading drift included: G * P_r,x
+  // Cross covariance with the first `columns` states, the heading drift included: G * P_r,x
   // (rows 0-2 of P: the pose).
-  const Eigen::MatrixXd cross = jacobian_robot * cov_.topLeftCorner(kRobotPoseDim, old_dim);
-  cov_.block(p, 0, 2, old_dim) = cross;
-  cov_.block(0, p, old_dim, 2) = cross.transpose();
+  const Eigen::MatrixXd cross = jacobian_robot * cov_.topLeftCorner(kRobotPoseDim, columns);
+  cov_.block(p, 0, 2, columns) = cross;
+  cov_.block(0, p, columns, 2) = cross.transpose();
   const Eigen::Matrix2d own = jacobian_robot * cov_.topLeftCorner<3, 3>() *
                                   jacobian_robot.transpose() +
                               independent_covariance;
   cov_.block<2, 2>(p, p) = 0.5 * (own + own.transpose());
-  return p;
 }
 
 int SlamState::AddObject(const Eigen::Vector2d& position,
@@ -110,16 +116,8 @@ void SlamState::RestartObject(int k, const Eigen::Vector2d& position,
   ++revision_;
   StateObject& o = object(k);
   const int p = o.position_index;
-  // As AppendCorrelatedPair: G * P_r,x against every state; the object's own states (its old
-  // position, velocity and anchor columns) are overwritten below.
-  const Eigen::MatrixXd cross = jacobian_robot * cov_.topLeftCorner(kRobotPoseDim, dim_);
-  const Eigen::Matrix2d own =
-      jacobian_robot * cov_.topLeftCorner<3, 3>() * jacobian_robot.transpose() +
-      independent_covariance;
-  mean_.segment<2>(p) = position;
-  cov_.block(p, 0, 2, dim_) = cross;
-  cov_.block(0, p, dim_, 2) = cross.transpose();
-  cov_.block<2, 2>(p, p) = 0.5 * (own + own.transpose());
+  // As a new object, against every state; the object's velocity and anchor rows are set below.
+  SetCorrelatedPair(p, position, jacobian_robot, independent_covariance, dim_);
   if (o.has_velocity()) {
     const int v = o.velocity_index;
     mean_.segment<2>(v).setZero();

@@ -288,6 +288,11 @@ class SlamState {
   int AppendCorrelatedPair(const Eigen::Vector2d& value,
                            const Eigen::Matrix<double, 2, 3>& jacobian_robot,
                            const Eigen::Matrix2d& independent_covariance);
+  // Sets states p, p + 1 to `value` with that error against the first `columns` states, their
+  // own covariance included (AppendCorrelatedPair, RestartObject).
+  void SetCorrelatedPair(int p, const Eigen::Vector2d& value,
+                         const Eigen::Matrix<double, 2, 3>& jacobian_robot,
+                         const Eigen::Matrix2d& independent_covariance, int columns);
   void RemoveStates(const std::vector<int>& sorted_state_indices);
 
   Eigen::VectorXd mean_;
